@@ -1,0 +1,85 @@
+# The one entry point. `make help` lists the targets.
+BOARD    ?= mclv
+MOTOR    ?= hurst
+SCENARIO ?= default
+BUILD    ?= build
+JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
+
+CMAKE_DEFS := -DBOARD=$(BOARD) -DMOTOR=$(MOTOR)
+CTEST      := ctest --output-on-failure -j $(JOBS)
+PY         := .venv/bin/python
+
+HOST_DIR := $(BUILD)/host
+ASAN_DIR := $(BUILD)/asan
+COV_DIR  := $(BUILD)/cov
+
+.PHONY: help bootstrap build unit asan coverage check-16bit lint format bench sim firmware test clean
+
+help:
+	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
+	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, coverage, sanitized and plain tests"
+	@echo "make unit         build and run the host tests (plain build)"
+	@echo "make asan         build and run the host tests under ASan + UBSan"
+	@echo "make coverage     gcovr HTML report in $(COV_DIR)/coverage/, fails below the gates"
+	@echo "make check-16bit  core built with avr-gcc (16-bit int), run in simavr, compared bit for bit with the PC"
+	@echo "make lint         cppcheck + clang-format check"
+	@echo "make format       clang-format the sources in place"
+	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
+	@echo "make firmware     dsPIC image with XC16 (needs XC16_DIR or xc16-gcc on PATH)"
+	@echo "make clean        remove $(BUILD)/"
+	@echo "variables: BOARD=$(BOARD) MOTOR=$(MOTOR) SCENARIO=$(SCENARIO) JOBS=$(JOBS)"
+
+bootstrap:
+	@tools/bootstrap
+
+# ---- host builds ----------------------------------------------------------
+$(HOST_DIR)/Makefile $(HOST_DIR)/CMakeCache.txt: CMakeLists.txt
+	cmake -S . -B $(HOST_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_DEFS) >/dev/null
+
+build: $(HOST_DIR)/CMakeCache.txt
+	cmake -S . -B $(HOST_DIR) $(CMAKE_DEFS) >/dev/null
+	cmake --build $(HOST_DIR) -j $(JOBS)
+
+unit: build
+	cd $(HOST_DIR) && $(CTEST)
+
+asan:
+	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DFOC_SANITIZE=ON $(CMAKE_DEFS) >/dev/null
+	cmake --build $(ASAN_DIR) -j $(JOBS)
+	cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 $(CTEST) -LE slow
+
+coverage:
+	cmake -S . -B $(COV_DIR) -DCMAKE_BUILD_TYPE=Debug -DFOC_COVERAGE=ON $(CMAKE_DEFS) >/dev/null
+	cmake --build $(COV_DIR) -j $(JOBS)
+	find $(COV_DIR) -name '*.gcda' -delete
+	cd $(COV_DIR) && $(CTEST) -LE slow
+	tools/coverage_gate $(COV_DIR)
+
+check-16bit:
+	@tools/check16/run $(BUILD)/check16
+
+lint:
+	@tools/lint
+
+format:
+	@tools/lint --fix
+
+bench: build
+	@tools/bench/run $(HOST_DIR) $(BUILD)/bench
+
+sim: bootstrap build
+	@tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD)
+
+firmware:
+	@tools/firmware_build $(BOARD) $(MOTOR)
+
+# The plain suite runs last so the output closes on CTest's summary line.
+test: bootstrap
+	@$(MAKE) --no-print-directory lint
+	@$(MAKE) --no-print-directory check-16bit
+	@$(MAKE) --no-print-directory coverage
+	@$(MAKE) --no-print-directory asan
+	@$(MAKE) --no-print-directory unit
+
+clean:
+	rm -rf $(BUILD)

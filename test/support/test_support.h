@@ -1,0 +1,50 @@
+/* test_support.h - helpers shared by the host tests: error statistics, conversions, PRNG. */
+#ifndef TEST_SUPPORT_H
+#define TEST_SUPPORT_H
+
+/* cmocka needs these before it is included. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "q15.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Worst and mean absolute error of a sweep, with the input that gave the worst. */
+typedef struct {
+    double max_abs;
+    double sum_abs;
+    double sum;
+    long n;
+    double worst_at;
+} err_stats_t;
+
+void err_stats_init(err_stats_t *s);
+void err_stats_add(err_stats_t *s, double err, double at);
+double err_stats_mean_abs(const err_stats_t *s);
+double err_stats_mean(const err_stats_t *s);
+/* Prints "measured: <name>: max |err| = .. <unit> (at ..), mean |err| = .., n = .."
+ * so the figures of every sweep are in the test log. */
+void err_stats_print(const char *name, const err_stats_t *s, const char *unit);
+
+double q15_to_double(q15_t x);
+double q31_to_double(q31_t x);
+/* Binary angle -> radians in [-pi, pi). */
+double angle_to_rad(angle_q15_t a);
+/* Radians -> degrees of the shortest difference a - b, in [-180, 180). */
+double angle_diff_deg(double a_rad, double b_rad);
+
+/* Deterministic xorshift32; state must be non-zero. */
+uint32_t test_rand_u32(uint32_t *state);
+/* Uniform int16 over the whole range. */
+int16_t test_rand_i16(uint32_t *state);
+/* Uniform double in [lo, hi). */
+double test_rand_range(uint32_t *state, double lo, double hi);
+
+#endif /* TEST_SUPPORT_H */
