@@ -136,7 +136,7 @@ static inline q15_t q15_abs_sat(q15_t a)
  * Saturates only for -1 * -1 -> 0x7FFF. */
 static inline q15_t q15_mul(q15_t a, q15_t b)
 {
-    return q15_sat((q15_dsp_mulss(a, b) + 0x4000L) >> 15);
+    return q15_sat((q15_dsp_mulss(a, b) + (int32_t)0x4000) >> 15);
 }
 
 /* a * b in Q15, truncated toward -infinity. Error in (-1, 0] LSB.
