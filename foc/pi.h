@@ -9,20 +9,35 @@
  *   Err = ref - meas                        (Q15, formed in 32 bits, saturated)
  *   U   = Sum + Kp * 2^kp_shift * Err       (Q31 accumulator, saturating)
  *   Out = clamp(round(U), out_min, out_max) (Q15)
- *   Exc = U - Out                           (Q31, saturating)
+ *   Exc = U - Out                           (Q31, saturating; rounded to Q15
+ *                                            for the Kc product, as the
+ *                                            dsPIC's 16-bit multiplier takes it)
  *   Sum = Sum + Ki * Err - Kc * Exc         (Q31, saturating)
  * Kc * Exc removes from the integral what the limiter has cut off, so the
  * integral stops growing while the output is saturated (anti-windup);
- * AN1078 recommends Kc = Ki for most loops.
+ * AN1078 recommends Kc = Ki for most loops. With Kc = Ki the saturated
+ * steady state is U = Out + Err: the integral parks one error above the
+ * limit instead of running away, and leaves the limit as soon as the error
+ * changes sign.
  *
  * Gains >= 1 are kept as a Q15 mantissa with the shift named beside it:
- * proportional gain = kp * 2^kp_shift, kp_shift in 0..7.
+ * proportional gain = kp * 2^kp_shift, kp_shift in 0..7 (larger values are
+ * treated as 7). Ki and Kc are per-call gains in Q15 (0..32767).
+ *
+ * Scaling and overflow (pi_update): ref, meas, out Q15 of the loop's full
+ * scale. Err saturates to [-32768, 32767] (ref = 32767, meas = -32768 gives
+ * 32767, not a wrap). Kp * Err is an exact Q31 product, shifted left by
+ * kp_shift with saturation. All Q31 sums saturate like the dsPIC
+ * accumulator with SATA = 1. U is rounded to Q15 (nearest, ties up, q15.h)
+ * and clamped to the limits. Nothing wraps for any input or gain.
+ * Accuracy: see note 1 in pi.c (measured against a double model of these
+ * same equations in test/foc/test_pi.c).
  */
 typedef struct {
-    q15_t kp;         /* Q15 proportional gain mantissa */
+    q15_t kp;         /* Q15 proportional gain mantissa, 0..32767 */
     uint8_t kp_shift; /* proportional gain exponent, 0..7 */
-    q15_t ki;         /* Q15 integral gain per call */
-    q15_t kc;         /* Q15 anti-windup gain */
+    q15_t ki;         /* Q15 integral gain per call, 0..32767 */
+    q15_t kc;         /* Q15 anti-windup gain, 0..32767 (AN1078: = ki) */
     q15_t out_min;    /* Q15 lower output limit */
     q15_t out_max;    /* Q15 upper output limit, >= out_min */
 } pi_params_t;
@@ -33,10 +48,25 @@ typedef struct {
     q15_t out;     /* Q15 last output */
 } pi_t;
 
-void pi_init(pi_t *pi, const pi_params_t *params);  /* copy params, reset */
-void pi_reset(pi_t *pi);                            /* Sum = 0, Out = 0 */
-void pi_preset(pi_t *pi, q15_t sum);                /* Sum = sum (Q15 -> Q31), e.g. bumpless hand-off */
+/* Copy params (limits through pi_set_limits), then pi_reset. */
+void pi_init(pi_t *pi, const pi_params_t *params);
+
+/* Sum = 0, Out = 0. */
+void pi_reset(pi_t *pi);
+
+/* Sum = sum (Q15 -> Q31, exact), Out = sum clamped to the limits: a bumpless
+ * hand-off, e.g. the speed integrator preset to the open-loop current at
+ * closed-loop entry, so the first pi_update with Err = 0 returns sum
+ * (clamped). */
+void pi_preset(pi_t *pi, q15_t sum);
+
+/* New output limits, used from the next pi_update on (the core limits Vq
+ * after Vd every period). out_min > out_max is a caller error, handled by
+ * setting both limits to out_max. The state is not touched: Kc unwinds a Sum
+ * left beyond a tightened limit. */
 void pi_set_limits(pi_t *pi, q15_t out_min, q15_t out_max);
+
+/* One PI step; returns Out (also kept in pi->out). */
 q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas);
 
 #endif /* PI_H */

@@ -1,0 +1,24 @@
+/* q15_sqrt.h - integer and Q15 square roots, rounded to nearest. */
+#ifndef Q15_SQRT_H
+#define Q15_SQRT_H
+
+#include "q15.h"
+
+/*
+ * q15_isqrt_u32(n): round(sqrt(n)) for any 32-bit n, 0..65536 (n >=
+ * 0xFFFF8000 gives 65536). Bit-by-bit (restoring) square root: 16 iterations
+ * of shifts, adds and compares, no multiply, no division; then one compare
+ * of the remainder to round to nearest (an exact tie cannot occur:
+ * sqrt(n) = k + 1/2 has no integer n).
+ *
+ * q15_sqrt(x): sqrt of a Q15 value, Q15: round(sqrt(x * 32768)).
+ *   x <= 0 gives 0 (the square root of a negative value is not defined;
+ *   0 is the nearest non-negative answer). x = 32767 gives 32767.
+ *   Scaling and overflow: x * 2^15 < 2^30 fits 32 bits; the result is
+ *   < 32767.5, so it always fits q15_t. Error <= 0.5 LSB (exhaustively
+ *   measured over all 32,768 non-negative inputs in test/foc/test_vlimit.c).
+ */
+uint32_t q15_isqrt_u32(uint32_t n);
+q15_t q15_sqrt(q15_t x);
+
+#endif /* Q15_SQRT_H */

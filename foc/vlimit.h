@@ -1,0 +1,23 @@
+/* vlimit.h - voltage-circle limit: the Vq bound left once Vd is applied. */
+#ifndef VLIMIT_H
+#define VLIMIT_H
+
+#include "frames.h"
+
+/*
+ * AN1078 limits Vd first (to +-Vmax, e.g. 0.95 of the SVGen full scale) and
+ * gives Vq what is left of the voltage circle:
+ *   vq_max = sqrt(Vmax^2 - Vd^2)
+ * so |(Vd, Vq)| <= Vmax. Typical use in the core, every period:
+ *   pi_set_limits(&pi_q, -vq_max, vq_max) with vq_max = vlimit_vq_max(vd, vmax).
+ *
+ * vlimit_vq_max(vd, vmax): vmax Q15 (<= 0 gives 0); vd Q15, clamped to
+ * [-vmax, vmax] first, so vd = -32768 is harmless. Returns Q15 in 0..vmax.
+ * Scaling and overflow: Vmax^2 - Vd^2 is formed exactly in 32 bits (Q30,
+ * 0..(2^15 - 1)^2) and its rounded integer square root is already Q15
+ * (q15_isqrt_u32), so there is a single rounding. Error <= 0.5 LSB
+ * (measured over a grid in test/foc/test_vlimit.c; note 1 in vlimit.c).
+ */
+q15_t vlimit_vq_max(q15_t vd, q15_t vmax);
+
+#endif /* VLIMIT_H */
