@@ -1,0 +1,287 @@
+/* smc.h - sliding-mode current observer: rotor angle and speed from alpha/beta currents and
+ * voltages. */
+#ifndef SMC_H
+#define SMC_H
+
+#include "frames.h"
+#include "lpf.h"
+#include "q15.h"
+
+/*
+ * What it computes, once per PWM period n (the equations of AN1078's
+ * "Sensorless FOC for PMSM", per axis alpha and beta):
+ *
+ *   i_est(n) = F i_est(n-1) + G (v(n-1) - e(n-1) - z(n-1))   digitised motor model
+ *   err(n)   = i_est(n) - i_meas(n)
+ *   z(n)     = Kslide * sat(err(n) / MaxSMCError)            linear in the band,
+ *                                                            +-Kslide outside it
+ *   e(n)     = e(n-1)  + K (z(n) - e(n-1))                   first stage (in the loop)
+ *   ef(n)    = ef(n-1) + K (e(n) - ef(n-1))                  second stage (plain)
+ *   theta_raw(n) = atan2(-ef_alpha, ef_beta)                 CORDIC, foc/cordic.h
+ *   theta(n) = theta_raw(n) + comp(omega) (+ pi when omega < 0)
+ *
+ * with F = 1 - Ts R / L and G = Ts / L (per-phase R and L), K = Kslf =
+ * omega Ts (the cut-off at the electrical frequency), floored at the value of
+ * the minimum closed-loop speed. Every IRP_PERCALC periods the angle steps
+ * of theta_raw are summed in 32 bits, scaled to a speed, filtered, and the
+ * new speed sets K, the compensation comp (derived in notes 2-5 from the
+ * observer's discrete transfer functions and the loop delay) and the
+ * validity flag.
+ *
+ * Units and formats (the interface agreed with the mc core):
+ *   currents   Q15 of I_FS (A), the ADC current full scale
+ *              (BOARD_I_FULLSCALE_A = 4.4 A on the MCLV);
+ *   voltages   Q15 of V_FS (V), the SVGen full scale (nominal Vbus / sqrt(3),
+ *              phase peak); G is therefore Ts/L * V_FS/I_FS in these units;
+ *   back-EMF   e, ef, z: Q15 of V_FS (32-bit filter states, Q31 of V_FS);
+ *   speed      electrical, signed (negative = reverse rotation), Q15 of
+ *              omega_fs_hz (the core sets omega_fs_hz = MC_SPEED_FULLSCALE_RPM
+ *              * pole pairs / 60, so the Q15 speed equals the mechanical speed
+ *              in Q15 of MC_SPEED_FULLSCALE_RPM);
+ *   angles     angle_q15_t, electrical, one turn = 2^16.
+ *
+ * Timing contract (note 1): smc_update(s, i_meas, v_applied) is called once
+ * per PWM period n with
+ *   i_meas     the alpha/beta currents sampled at the start of period n
+ *              (instant t_n), offset removed;
+ *   v_applied  the alpha/beta voltage the inverter applied during the
+ *              previous period [t_(n-1), t_n], i.e. the one the current
+ *              evolved under between the previous sample and this one. The
+ *              core passes the command it computed in period n-2 (applied in
+ *              period n-1), after dead-time compensation, scaled to the bus
+ *              actually present: the estimator must be fed the voltage that
+ *              was applied, not the one being computed now.
+ *   theta      estimates the rotor electrical angle at t_n, the instant
+ *              i_meas was sampled (use it for Park of i_meas). A voltage
+ *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
+ *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
+ *
+ * Cost (make bench, host callgrind; dsPIC: no division and no float in the
+ * per-period path): see smc.c. Once every IRP_PERCALC periods the speed
+ * update adds one 32 x 16 scaling, two CORDIC arctangents (the compensation)
+ * and one 32 / 16 division (the back-EMF consistency figure).
+ */
+
+/* ---- parameters ---------------------------------------------------------- */
+
+/*
+ * Coefficients of magnitude >= 1 are a Q15 mantissa and a named left shift:
+ * value = mant * 2^shift / 32768. Initialise with SMC_PARAMS_INIT (below),
+ * which computes and range-checks everything at compile time.
+ */
+typedef struct {
+    q15_t f;              /* F = 1 - Ts R / L, Q15, in (0, 1) */
+    q15_t g;              /* G = Ts/L * V_FS/I_FS (I_FS per V_FS): mantissa, Q15 */
+    uint8_t g_shift;      /* ... and its shift, 0..7 */
+    q15_t kslide;         /* Kslide, Q15 of V_FS, in (0, 1) */
+    q15_t max_err;        /* MaxSMCError, Q15 of I_FS, >= 1 LSB */
+    q15_t kz;             /* Kslide / MaxSMCError (V_FS per I_FS): mantissa, Q15 */
+    uint8_t kz_shift;     /* ... and its shift, 0..15 */
+    q15_t k_per_omega;    /* K = |omega| * k_per_omega: 2 pi omega_fs Ts, Q15 */
+    q15_t k_min;          /* floor of K: 2 pi f_min Ts, Q15 */
+    q15_t omega_min;      /* minimum closed-loop speed, Q15 of omega_fs */
+    q15_t kspeed;         /* omega = sum of angle steps * kspeed * 2^kspeed_shift / 32768 */
+    uint8_t kspeed_shift; /* ... 1 / (2 IRP Ts omega_fs) as mantissa and shift, 0..15 */
+    uint16_t irp_percalc; /* PWM periods per speed calculation, 1..256 */
+    q15_t k_speed_lpf;    /* speed filter coefficient at the speed-loop rate, Q15 */
+    q15_t emf_gain;       /* expected |ef| per unit |omega| (both Q15): mantissa; 0 = */
+    uint8_t emf_shift;    /* ... no consistency check; and its shift, 0..7 */
+} smc_params_t;
+
+/* ---- compile-time parameter computation ---------------------------------- */
+
+/* An expression that is 0, and fails to compile with the error
+ * "negative width in bit-field '<name>'" when cond is false. */
+#define SMC_CHECK(name, cond) ((int)(0 * sizeof(struct { unsigned name : ((cond) ? 1 : -1); })))
+
+/* Smallest shift s in 0..15 with |x| < 2^s (x >= 2^15 gives 16, which the
+ * callers reject). */
+#define SMC_SHIFT_OF(x)                                                                            \
+    ((x) < 1.0       ? 0                                                                           \
+     : (x) < 2.0     ? 1                                                                           \
+     : (x) < 4.0     ? 2                                                                           \
+     : (x) < 8.0     ? 3                                                                           \
+     : (x) < 16.0    ? 4                                                                           \
+     : (x) < 32.0    ? 5                                                                           \
+     : (x) < 64.0    ? 6                                                                           \
+     : (x) < 128.0   ? 7                                                                           \
+     : (x) < 256.0   ? 8                                                                           \
+     : (x) < 512.0   ? 9                                                                           \
+     : (x) < 1024.0  ? 10                                                                          \
+     : (x) < 2048.0  ? 11                                                                          \
+     : (x) < 4096.0  ? 12                                                                          \
+     : (x) < 8192.0  ? 13                                                                          \
+     : (x) < 16384.0 ? 14                                                                          \
+     : (x) < 32768.0 ? 15                                                                          \
+                     : 16)
+
+/* Mantissa of x for the shift SMC_SHIFT_OF(x). */
+#define SMC_MANT_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT_OF(x)))
+
+/* The derived quantities, in double (engineering units in, ratios out). */
+#define SMC_F_(r, l, ts)          (1.0 - (double)(ts) * (double)(r) / (double)(l))
+#define SMC_G_(l, ts, vfs, ifs)   ((double)(ts) / (double)(l) * (double)(vfs) / (double)(ifs))
+#define SMC_KZ_(kslide, maxerr)   ((double)(kslide) / (double)(maxerr))
+#define SMC_KPW_(ts, wfs)         (6.283185307179586 * (double)(wfs) * (double)(ts))
+#define SMC_KSPEED_(ts, wfs, irp) (1.0 / (2.0 * (double)(irp) * (double)(ts) * (double)(wfs)))
+#define SMC_KSLPF_(ts, irp, fc)   (6.283185307179586 * (double)(fc) * (double)(irp) * (double)(ts))
+/* |ef| per unit omega: Ke (V peak per electrical Hz) * omega_fs / V_FS times
+ * the low-speed gain of the two stages, SMC_STAGE_GAIN (note 5). */
+#define SMC_STAGE_GAIN          0.316227766016838 /* 1 / sqrt(10) */
+#define SMC_EMFG_(ke, wfs, vfs) ((double)(ke) * (double)(wfs) / (double)(vfs)*SMC_STAGE_GAIN)
+
+/*
+ * SMC_PARAMS_INIT(r_ohm, l_h, ts_s, v_fs_v, i_fs_a, kslide_frac, maxerr_frac,
+ *                 omega_fs_hz, min_speed_hz, irp_percalc, speed_lpf_hz,
+ *                 ke_v_per_hz)
+ * An initialiser for a `static const smc_params_t`:
+ *   r_ohm, l_h     per-phase resistance and inductance (half the
+ *                  line-to-line meter reading);
+ *   ts_s           PWM period (s);
+ *   v_fs_v, i_fs_a the voltage and current full scales (above);
+ *   kslide_frac    Kslide as a fraction of V_FS, (0, 1);
+ *   maxerr_frac    MaxSMCError as a fraction of I_FS, > 0;
+ *   omega_fs_hz    electrical frequency of Q15 full-scale speed (Hz);
+ *   min_speed_hz   minimum closed-loop electrical speed (Hz): the K floor
+ *                  and the validity threshold;
+ *   irp_percalc    PWM periods per speed calculation, 1..256;
+ *   speed_lpf_hz   cut-off of the speed filter (Hz, at the speed-loop rate);
+ *   ke_v_per_hz    back-EMF, phase peak volts per electrical Hz (0 = no
+ *                  back-EMF consistency check; valid then only tests speed).
+ * Each range is checked; a failure names the quantity in the compiler's
+ * "negative width in bit-field 'smc_...'" error.
+ */
+#define SMC_PARAMS_INIT(r, l, ts, vfs, ifs, kslide, maxerr, wfs, fmin, irp, fspd, ke)              \
+    {                                                                                              \
+        /* f */ (q15_t)(SMC_CHECK(smc_F_needs_0_lt_Ts_R_over_L_lt_1,                               \
+                                  SMC_F_(r, l, ts) > 0.0 && SMC_F_(r, l, ts) < 1.0) +              \
+                        Q15(SMC_F_(r, l, ts))), /* g */                                            \
+            (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_Vfs_over_Ifs_must_be_in_1e_4_to_128,           \
+                              SMC_G_(l, ts, vfs, ifs) >= 1e-4 &&                                   \
+                                  SMC_G_(l, ts, vfs, ifs) < 128.0) +                               \
+                    SMC_MANT_OF(SMC_G_(l, ts, vfs, ifs))),                                         \
+            /* g_shift */ (uint8_t)SMC_SHIFT_OF(SMC_G_(l, ts, vfs, ifs)), /* kslide */             \
+            (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_1, (kslide) > 0.0 && (kslide) < 1.0) +       \
+                    Q15(kslide)), /* max_err */                                                    \
+            (q15_t)(SMC_CHECK(smc_MaxSMCError_must_be_in_1_LSB_to_1,                               \
+                              (maxerr) >= 1.0 / 32768.0 && (maxerr) < 1.0) +                       \
+                    Q15(maxerr)), /* kz */                                                         \
+            (q15_t)(SMC_CHECK(smc_Kslide_over_MaxSMCError_must_be_below_32768,                     \
+                              SMC_KZ_(kslide, maxerr) < 32768.0) +                                 \
+                    SMC_MANT_OF(SMC_KZ_(kslide, maxerr))),                                         \
+            /* kz_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KZ_(kslide, maxerr)), /* k_per_omega */       \
+            (q15_t)(SMC_CHECK(smc_2pi_omega_fs_Ts_must_be_below_1, SMC_KPW_(ts, wfs) < 1.0) +      \
+                    Q15(SMC_KPW_(ts, wfs))), /* k_min */                                           \
+            (q15_t)(SMC_CHECK(smc_min_speed_must_be_in_0_omega_fs,                                 \
+                              (fmin) > 0.0 && (fmin) < (wfs)) +                                    \
+                    Q15(SMC_KPW_(ts, fmin))),                                                      \
+            /* omega_min */ Q15((double)(fmin) / (double)(wfs)), /* kspeed */                      \
+            (q15_t)(SMC_CHECK(smc_speed_scale_1_over_2_IRP_Ts_omega_fs_must_be_below_32768,        \
+                              SMC_KSPEED_(ts, wfs, irp) < 32768.0) +                               \
+                    SMC_MANT_OF(SMC_KSPEED_(ts, wfs, irp))),                                       \
+            /* kspeed_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KSPEED_(ts, wfs, irp)), /* irp_percalc */ \
+            (uint16_t)(SMC_CHECK(smc_IRP_PERCALC_must_be_in_1_256, (irp) >= 1 && (irp) <= 256) +   \
+                       (irp)), /* k_speed_lpf */                                                   \
+            (q15_t)(SMC_CHECK(smc_speed_lpf_2pi_fc_IRP_Ts_must_be_in_0_1,                          \
+                              SMC_KSLPF_(ts, irp, fspd) > 0.0 &&                                   \
+                                  SMC_KSLPF_(ts, irp, fspd) < 1.0) +                               \
+                    Q15(SMC_KSLPF_(ts, irp, fspd))), /* emf_gain */                                \
+            (q15_t)(SMC_CHECK(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_128,                      \
+                              SMC_EMFG_(ke, wfs, vfs) >= 0.0 && SMC_EMFG_(ke, wfs, vfs) < 128.0) + \
+                    SMC_MANT_OF(SMC_EMFG_(ke, wfs, vfs))),                                         \
+            /* emf_shift */ (uint8_t)SMC_SHIFT_OF(SMC_EMFG_(ke, wfs, vfs))                         \
+    }
+
+/* ---- state --------------------------------------------------------------- */
+
+typedef struct {
+    const smc_params_t *p;
+    ab_q15_t i_est; /* model current, Q15 of I_FS */
+    ab_q15_t z;     /* sliding-mode correction, Q15 of V_FS */
+    lpf_t e_alpha;  /* first stage e, Q31 of V_FS */
+    lpf_t e_beta;
+    lpf_t ef_alpha; /* second stage e_final, Q31 of V_FS */
+    lpf_t ef_beta;
+    lpf_t omega_lpf;       /* filtered speed, Q31 of omega_fs */
+    int32_t dtheta_sum;    /* sum of theta_raw steps this window, angle counts */
+    uint16_t count;        /* periods in this window, 0..irp_percalc-1 */
+    angle_q15_t theta_raw; /* atan2 of ef, uncompensated */
+    angle_q15_t theta;     /* compensated: the rotor angle at t_n */
+    angle_q15_t comp;      /* compensation added to theta_raw (incl. pi if omega < 0) */
+    q15_t omega_raw;       /* last unfiltered window speed, Q15 of omega_fs */
+    q15_t omega;           /* filtered speed, Q15 of omega_fs, signed */
+    q15_t k;               /* Kslf in use, Q15 */
+    q15_t emf_mag;         /* |ef| (Q15 of V_FS), refreshed every window */
+    q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
+    bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
+} smc_t;
+
+/* Band of emf_ratio (Q12) inside which the back-EMF counts as consistent
+ * with the speed: 0.5 .. 2.0 of the expected amplitude. */
+#define SMC_EMF_RATIO_ONE 4096
+#define SMC_EMF_RATIO_LO  2048
+#define SMC_EMF_RATIO_HI  8192
+
+/* ---- API ----------------------------------------------------------------- */
+
+/* Bind the parameters (kept by pointer: they must outlive s) and reset. */
+void smc_init(smc_t *s, const smc_params_t *p);
+
+/* All state to zero: model currents, corrections and filters 0, speed 0
+ * (so K starts at its floor), window empty, theta 0, not valid. */
+void smc_reset(smc_t *s);
+
+/* Preset the speed (Q15 of omega_fs, signed) at a hand-off from open loop:
+ * the speed filter, K and the compensation take the value at once; the
+ * window restarts. The back-EMF filters are left as they are (the observer
+ * runs during the open-loop start-up and has already converged). */
+void smc_preset_speed(smc_t *s, q15_t omega);
+
+/* One PWM period: see the timing contract above. Scaling and overflow:
+ * model and correction in 32-bit products rounded to Q15 and saturated
+ * (|v - e - z| saturates at full scale before the multiply by G); filters
+ * with 32-bit states (foc/lpf.h); the angle-step sum is 32 bits, so no
+ * speed below the Nyquist limit (|delta theta| < pi per period) wraps; the
+ * speed saturates at +-omega_fs. No division in the per-period path. */
+void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
+
+/* Read-outs. */
+static inline angle_q15_t smc_theta(const smc_t *s)
+{
+    return s->theta;
+}
+static inline angle_q15_t smc_theta_raw(const smc_t *s)
+{
+    return s->theta_raw;
+}
+static inline q15_t smc_omega(const smc_t *s)
+{
+    return s->omega;
+}
+static inline bool smc_valid(const smc_t *s)
+{
+    return s->valid;
+}
+static inline q15_t smc_emf_amplitude(const smc_t *s)
+{
+    return s->emf_mag;
+}
+static inline q15_t smc_emf_ratio(const smc_t *s)
+{
+    return s->emf_ratio;
+}
+static inline ab_q15_t smc_e_final(const smc_t *s)
+{
+    ab_q15_t ef;
+    ef.alpha = lpf_output(&s->ef_alpha);
+    ef.beta = lpf_output(&s->ef_beta);
+    return ef;
+}
+
+/*
+ * Notes
+ *
+ * 1. Timing. (to be completed: the derivation of the compensation.)
+ */
+
+#endif /* SMC_H */
