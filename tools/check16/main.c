@@ -13,6 +13,9 @@
  * sources are present.
  */
 #include "check16_modules.h"
+#ifndef CHECK16_MODULES
+#define CHECK16_MODULES /* only for tools that read this file without the runner */
+#endif
 
 #if defined(__AVR__)
 

@@ -193,22 +193,20 @@ static void vec_divsd(void)
     vec_seed(0x57U);
     while (k < 1000U) {
         /* Only inside the contract: den != 0 and the quotient fits int16. */
-        int16_t den = vec_rand_i16();
         int16_t q = vec_rand_i16();
+        uint16_t mag; /* |den|, 1..32767 */
+        int16_t den;
         int32_t rem;
         int32_t num;
-        if (den == 0 || den == -32768) {
-            continue;
-        }
         if ((k & 3U) == 0U) {
-            den = (int16_t)vec_rand_between(-8, 8);
-            if (den == 0) {
-                continue;
-            }
+            mag = (uint16_t)(1U + vec_rand_u16() % 8U);
+        } else {
+            mag = (uint16_t)(1U + vec_rand_u16() % 32767U);
         }
+        den = ((vec_rand_u16() & 1U) != 0U) ? (int16_t) - (int16_t)mag : (int16_t)mag;
         /* num = q * den + rem with |rem| < |den| and rem of num's sign. */
         num = (int32_t)q * den;
-        rem = (int32_t)(vec_rand_u16() % (uint16_t)((den < 0) ? -den : den));
+        rem = (int32_t)(vec_rand_u16() % mag);
         if (num < 0 || (num == 0 && (k & 1U) != 0U)) {
             rem = -rem;
         }
