@@ -8,10 +8,19 @@
  * clarke_forward(ia, ib): amplitude-invariant Clarke with ic = -ia - ib.
  *   alpha = ia
  *   beta  = (ia + 2 ib) / sqrt(3)
- *   Inputs and outputs Q15 of the same full scale. ia + 2 ib is formed in
- *   32 bits, multiplied by Q15(1/sqrt(3)), rounded to nearest and saturated
- *   (beta can exceed full scale only when |ia + 2 ib| > sqrt(3), i.e. for
- *   inputs that are not a balanced three-phase set).
+ *   Inputs and outputs Q15 of the same full scale, any int16 values.
+ *   Scaling/overflow: u = ia + 2 ib is formed in 32 bits (|u| <= 98,304),
+ *   clamped to the range whose beta fits Q15 ([-56,756, 56,755]), then
+ *   multiplied by 1/sqrt(3) in Q16 (37,837) and rounded to nearest (ties
+ *   up). beta therefore saturates exactly where the rounded result leaves
+ *   Q15, i.e. only for |ia + 2 ib| > sqrt(3) full scale (inputs that are
+ *   not a balanced three-phase set); it never wraps.
+ *   Accuracy (test/foc/test_clarke_park.c, 3.9e7 input pairs plus every
+ *   edge row): alpha exact; |beta - (ia + 2 ib)/sqrt(3)| <= 0.7 LSB
+ *   (0.5 rounding + 0.2 from the constant; measured 0.694 LSB); saturated
+ *   cases equal the clamped exact value. On a rounded balanced set of any
+ *   amplitude, beta is within 1.49 LSB of A sin(theta) (bound 1.57 LSB).
+ *   Cost: one 32 x 16 multiply, no division.
  */
 ab_q15_t clarke_forward(q15_t ia, q15_t ib);
 

@@ -11,10 +11,22 @@
  * park_inverse(dq, sc):
  *   alpha = d cos - q sin
  *   beta  = d sin + q cos
- *   sc: sin/cos of the rotor angle (sincos_compute). Each output is the sum
- *   of two Q15 products formed in a 32-bit accumulator, rounded once to
- *   nearest and saturated (|d| or |q| can reach sqrt(2) of full scale only
- *   for a vector outside the unit circle). Error <= 0.5 LSB + the error of sc.
+ *   sc: sin/cos of the rotor angle (sincos_compute), Q15; all inputs any
+ *   int16 values.
+ *   Scaling/overflow: each output is the sum of two Q15 x Q15 products in a
+ *   Q31 accumulator (q31_mul_q15, q31_mac_sat / q31_sub_sat: the dsPIC MAC
+ *   with SATA = 1), rounded once to nearest (ties up) and saturated by
+ *   q15_from_q31. |d| or |q| can reach sqrt(2) of full scale for a vector
+ *   outside the unit circle: the result then saturates to the correct side,
+ *   never wraps (also with -32768 in sc, where -1 x -1 saturates).
+ *   Accuracy (test/foc/test_clarke_park.c, all 65,536 angles x 70 vectors):
+ *   <= 0.5 LSB against the exact value with the same sc (measured 0.5000);
+ *   against the true angle, inside the unit circle, <= 0.5 + sqrt(2) x 1.5
+ *   = 2.62 LSB (measured 2.05 forward, 2.16 inverse). Round trip
+ *   park_inverse(park_forward(v)) is within |v_k| 4.25 / 32768 + 1.21 LSB of
+ *   each component v_k (measured max 4.0 LSB), the 4.25 coming from
+ *   sin^2 + cos^2 != 1 in sincos_compute.
+ *   Cost: four 16 x 16 multiplies per call, no division.
  */
 dq_q15_t park_forward(ab_q15_t ab, sincos_q15_t sc);
 ab_q15_t park_inverse(dq_q15_t dq, sincos_q15_t sc);
