@@ -1,0 +1,304 @@
+/* test_sim_bench.c - inverter, ADC and the period timing of the simulator's bench. */
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "sim_adc.h"
+#include "sim_inverter.h"
+#include "sim_profiles.h"
+#include "sim_rig.h"
+
+static sim_inverter_params_t mclv_inv(void)
+{
+    sim_inverter_params_t p = {24.0, 0.0, 0.0, 2e-6, 20000.0, 2000.0, 0.05};
+    return p;
+}
+
+static void test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_current_sign(void **state)
+{
+    sim_inverter_params_t prm = mclv_inv();
+    sim_inverter_t inv;
+    uint16_t d;
+    err_stats_t e;
+    (void)state;
+    err_stats_init(&e);
+    sim_inverter_init(&inv, &prm, 1.92e-3);
+    for (d = 0; d <= 2000; d++) {
+        uint16_t duty[3] = {d, d, d};
+        double i[3] = {1.0, -1.0, 0.0};
+        double v[3], df = (double)d / 2000.0;
+        double e_plus, e_minus;
+        sim_inverter_latch(&inv, duty, true);
+        sim_inverter_pins(&inv, 24.0, i, v);
+        if (d == 0) {
+            e_plus = 0.0;
+            e_minus = 0.0;
+        } else if (d == 2000) {
+            e_plus = 24.0;
+            e_minus = 24.0;
+        } else {
+            /* Td/Ts = 2 us * 20 kHz = 0.04 of the bus, clamped to the rails */
+            e_plus = fmax(0.0, (df - 0.04) * 24.0);
+            e_minus = fmin(24.0, (df + 0.04) * 24.0);
+        }
+        err_stats_add(&e, v[0] - e_plus, df);
+        err_stats_add(&e, v[1] - e_minus, df);
+        err_stats_add(&e, v[2] - df * 24.0, df);
+    }
+    err_stats_print("pin voltage vs (d -+ Td/Ts) Vbus", &e, "V");
+    assert_true(e.max_abs < 1e-12);
+    {
+        /* inside the band the error is proportional to the current */
+        uint16_t duty[3] = {1000, 1000, 1000};
+        double i[3] = {0.025, -0.0125, -0.0125}, v[3];
+        sim_inverter_latch(&inv, duty, true);
+        sim_inverter_pins(&inv, 24.0, i, v);
+        assert_true(fabs(v[0] - (0.5 - 0.04 * 0.5) * 24.0) < 1e-12);
+        assert_true(fabs(v[1] - (0.5 + 0.04 * 0.25) * 24.0) < 1e-12);
+    }
+    /* automatic band = Vbus / (12 L fpwm) */
+    prm.i_band_a = 0.0;
+    sim_inverter_init(&inv, &prm, 1.92e-3);
+    printf("measured: automatic dead-time band for the Hurst on 24 V = %.4f A\n", inv.i_band_a);
+    assert_true(fabs(inv.i_band_a - 24.0 / (12.0 * 1.92e-3 * 20000.0)) < 1e-12);
+}
+
+static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **state)
+{
+    sim_inverter_params_t prm = mclv_inv();
+    sim_inverter_t inv;
+    double v[3] = {10.0, 10.0, 10.0}, va, vb, sum = 0.0, vmax = 0.0, vmin = 100.0;
+    int k;
+    (void)state;
+    sim_pins_to_ab(v, &va, &vb);
+    assert_true(fabs(va) < 1e-12 && fabs(vb) < 1e-12);
+    /* pins 12 + A cos(th - k 120): alpha-beta amplitude A, angle th */
+    for (k = 0; k < 3; k++) {
+        v[k] = 12.0 + 5.0 * cos(0.7 - (double)k * 2.0 * M_PI / 3.0);
+    }
+    sim_pins_to_ab(v, &va, &vb);
+    assert_true(fabs(va - 5.0 * cos(0.7)) < 1e-12);
+    assert_true(fabs(vb - 5.0 * sin(0.7)) < 1e-12);
+
+    prm.ripple_v = 2.0;
+    prm.ripple_hz = 100.0;
+    sim_inverter_init(&inv, &prm, 1.92e-3);
+    for (k = 0; k < 2000; k++) {
+        double x = sim_inverter_vbus(&inv, (double)k * 1e-5);
+        sum += x;
+        vmax = fmax(vmax, x);
+        vmin = fmin(vmin, x);
+    }
+    printf("measured: bus with 2 V ripple: mean %.4f, max %.4f, min %.4f V\n", sum / 2000.0, vmax,
+           vmin);
+    assert_true(fabs(sum / 2000.0 - 24.0) < 1e-9);
+    assert_true(fabs(vmax - 26.0) < 1e-3 && fabs(vmin - 22.0) < 1e-3);
+}
+
+static sim_adc_params_t mclv_adc(double noise)
+{
+    sim_adc_params_t a = {4.4, 52.8, 10, 0.0, 0.0, noise, 12345u};
+    return a;
+}
+
+static void test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale(void **state)
+{
+    sim_adc_params_t prm = mclv_adc(0.0);
+    sim_adc_t adc;
+    err_stats_t e;
+    double x;
+    (void)state;
+    err_stats_init(&e);
+    sim_adc_init(&adc, &prm);
+    for (x = -4.39; x < 4.39; x += 0.0007) {
+        int16_t q = sim_adc_bipolar(&adc, x / 4.4, 0.0);
+        assert_true(q % 64 == 0);
+        err_stats_add(&e, (double)q - x / 4.4 * 32768.0, x);
+    }
+    err_stats_print("bipolar ADC vs 32768 x / fs", &e, "Q15 LSB");
+    assert_true(e.max_abs <= 32.0 + 1e-9);
+    assert_int_equal(sim_adc_bipolar(&adc, 6.0 / 4.4, 0.0), 32704);
+    assert_int_equal(sim_adc_bipolar(&adc, -6.0 / 4.4, 0.0), -32768);
+    assert_int_equal(sim_adc_bipolar(&adc, 0.0, 6.0), 384);
+    assert_int_equal(sim_adc_bipolar(&adc, 0.0, -4.0), -256);
+    err_stats_init(&e);
+    for (x = 0.0; x < 52.7; x += 0.01) {
+        int16_t q = sim_adc_unipolar(&adc, x / 52.8);
+        assert_true(q % 32 == 0 && q >= 0);
+        err_stats_add(&e, (double)q - x / 52.8 * 32768.0, x);
+    }
+    err_stats_print("unipolar ADC vs 32768 v / fs", &e, "Q15 LSB");
+    assert_true(e.max_abs <= 16.0 + 1e-9);
+    assert_int_equal(sim_adc_unipolar(&adc, 2.0), 32736);
+    assert_int_equal(sim_adc_unipolar(&adc, -1.0), 0);
+}
+
+static void test_adc_noise_should_have_the_requested_sigma_and_zero_mean(void **state)
+{
+    sim_adc_params_t prm = mclv_adc(1.5);
+    sim_adc_t adc;
+    double s = 0.0, s2 = 0.0, sd;
+    int n, N = 200000;
+    (void)state;
+    sim_adc_init(&adc, &prm);
+    for (n = 0; n < N; n++) {
+        /* half a code above a transition so the rounding adds no bias */
+        double c = (double)sim_adc_bipolar(&adc, 0.0, 0.0) / 64.0;
+        s += c;
+        s2 += c * c;
+    }
+    sd = sqrt(s2 / N - (s / N) * (s / N));
+    printf("measured: ADC noise mean %.4f codes, sigma %.4f codes (requested 1.5, plus "
+           "quantisation 0.29)\n",
+           s / N, sd);
+    /* sigma of round(1.5 N(0,1)) is sqrt(1.5^2 + 1/12) = 1.527 */
+    assert_true(fabs(sd - sqrt(1.5 * 1.5 + 1.0 / 12.0)) < 0.02);
+    assert_true(fabs(s / N) < 0.02);
+}
+
+static sim_rig_params_t hurst_rig(void)
+{
+    sim_rig_params_t r;
+    sim_motor_params_from_profile(sim_motor_profile("hurst"), &r.motor);
+    r.inv = mclv_inv();
+    r.inv.i_band_a = 0.0;
+    r.adc = mclv_adc(0.0);
+    r.substeps = 4;
+    r.theta_e0 = 0.0;
+    r.omega0_m = 0.0;
+    r.fan_rated_rpm = 2700.0;
+    return r;
+}
+
+static void test_rig_should_apply_the_duties_from_the_next_period(void **state)
+{
+    sim_rig_params_t prm = hurst_rig();
+    sim_rig_t rig;
+    sim_adc_frame_t f;
+    uint16_t d[3] = {1400, 600, 1000};
+    (void)state;
+    prm.motor.coulomb_nm = 1.0; /* keep the rotor still */
+    sim_rig_init(&rig, &prm);
+    sim_rig_sample(&rig, &f);
+    sim_rig_advance(&rig, d, true); /* period 0 runs with outputs off */
+    sim_rig_sample(&rig, &f);
+    assert_true(fabs(rig.i_abc[0]) < 1e-12);
+    assert_int_equal(f.ia, 0);
+    sim_rig_advance(&rig, d, true); /* period 1 applies d */
+    sim_rig_sample(&rig, &f);
+    printf("measured: phase A current after one period of +9.6 V: %.4f A\n", rig.i_abc[0]);
+    assert_true(rig.i_abc[0] > 0.1);
+    assert_true(rig.i_abc[1] < -0.1);
+    assert_true(f.ia > 0 && f.ib < 0);
+    assert_true(fabs(rig.t - 2.0 * 50e-6) < 1e-15);
+    assert_int_equal(rig.period, 2);
+}
+
+static void
+test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off(void **state)
+{
+    sim_rig_params_t prm = hurst_rig();
+    sim_rig_t rig;
+    sim_adc_frame_t f;
+    uint16_t d[3] = {1300, 700, 1000}, off[3] = {1000, 1000, 1000};
+    int n;
+    double e0;
+    (void)state;
+    prm.motor.j_kgm2 = 1.0; /* speed nearly constant */
+    prm.omega0_m = 1000.0 * 2.0 * M_PI / 60.0;
+    sim_rig_init(&rig, &prm);
+    for (n = 0; n < 40; n++) {
+        sim_rig_sample(&rig, &f);
+        sim_rig_advance(&rig, d, true);
+    }
+    assert_true(fabs(rig.i_abc[0]) + fabs(rig.i_abc[1]) > 0.2);
+    sim_rig_sample(&rig, &f);
+    sim_rig_advance(&rig, off, false); /* the last on period */
+    for (n = 0; n < 40; n++) {
+        sim_rig_sample(&rig, &f);
+        sim_rig_advance(&rig, off, false);
+    }
+    printf("measured: 2 ms after switch-off at 1000 rpm: ia %.2e ib %.2e A\n", rig.i_abc[0],
+           rig.i_abc[1]);
+    assert_true(fabs(rig.i_abc[0]) < 1e-9 && fabs(rig.i_abc[1]) < 1e-9);
+    assert_true(rig.floating[0] && rig.floating[1] && rig.floating[2]);
+    /* Above the bus (7.3 V/krpm: 24 V at 3288 rpm) the rectifier brakes the motor. */
+    prm.omega0_m = 5000.0 * 2.0 * M_PI / 60.0;
+    prm.motor.j_kgm2 = 1e-2;
+    sim_rig_init(&rig, &prm);
+    e0 = rig.plant.s.omega_m;
+    for (n = 0; n < 200; n++) {
+        sim_rig_sample(&rig, &f);
+        sim_rig_advance(&rig, off, false);
+    }
+    printf("measured: switched off at 5000 rpm: torque %.4f N m, |i| %.3f A\n",
+           sim_plant_torque(&rig.plant), hypot(rig.plant.s.id, rig.plant.s.iq));
+    assert_true(sim_plant_torque(&rig.plant) < -0.01);
+    assert_true(rig.plant.s.omega_m < e0);
+    prm.omega0_m = 3000.0 * 2.0 * M_PI / 60.0;
+    sim_rig_init(&rig, &prm);
+    for (n = 0; n < 200; n++) {
+        sim_rig_sample(&rig, &f);
+        sim_rig_advance(&rig, off, false);
+    }
+    assert_true(fabs(sim_plant_torque(&rig.plant)) < 1e-12);
+}
+
+static void test_rig_should_apply_plant_events_and_leave_controller_events(void **state)
+{
+    sim_rig_params_t prm = hurst_rig();
+    sim_rig_t rig;
+    sim_adc_frame_t f;
+    sim_event_t ev = {0.0, SIM_EV_LOAD, 0.05, 0.0};
+    uint16_t d[3] = {1000, 1000, 1000};
+    int n;
+    (void)state;
+    sim_rig_init(&rig, &prm);
+    assert_true(sim_rig_apply(&rig, &ev));
+    assert_true(rig.plant.load.passive_nm == 0.05);
+    ev.kind = SIM_EV_LOAD_FAN;
+    ev.v1 = 0.1;
+    assert_true(sim_rig_apply(&rig, &ev));
+    assert_true(fabs(rig.plant.load.fan_k * pow(2700.0 * M_PI / 30.0, 2.0) - 0.1) < 1e-12);
+    ev.kind = SIM_EV_CURRENT_SPIKE;
+    ev.v1 = 3.0;
+    ev.v2 = 0.0;
+    assert_true(sim_rig_apply(&rig, &ev));
+    sim_rig_sample(&rig, &f);
+    assert_int_equal(f.ia, (int16_t)(64 * 349)); /* round(3/4.4*512) = 349 codes */
+    sim_rig_sample(&rig, &f);
+    assert_int_equal(f.ia, 0);
+    ev.kind = SIM_EV_POT_RAMP;
+    ev.v1 = 1.0;
+    ev.v2 = 0.01; /* 200 periods */
+    assert_true(sim_rig_apply(&rig, &ev));
+    for (n = 0; n < 100; n++) {
+        sim_rig_advance(&rig, d, false);
+    }
+    assert_true(fabs(rig.pot - 0.5) < 1e-9);
+    for (n = 0; n < 150; n++) {
+        sim_rig_advance(&rig, d, false);
+    }
+    assert_true(rig.pot == 1.0);
+    ev.kind = SIM_EV_START;
+    assert_false(sim_rig_apply(&rig, &ev));
+    ev.kind = SIM_EV_HW_FAULT;
+    assert_false(sim_rig_apply(&rig, &ev));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(
+            test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_current_sign),
+        cmocka_unit_test(test_inverter_should_float_the_star_point_and_ripple_the_bus),
+        cmocka_unit_test(test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale),
+        cmocka_unit_test(test_adc_noise_should_have_the_requested_sigma_and_zero_mean),
+        cmocka_unit_test(test_rig_should_apply_the_duties_from_the_next_period),
+        cmocka_unit_test(
+            test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off),
+        cmocka_unit_test(test_rig_should_apply_plant_events_and_leave_controller_events),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,75 @@
+/* sim_profiles.c - parameter sets of the simulated motors and boards. */
+#include "sim_profiles.h"
+
+#include <string.h>
+
+/*
+ * Catalogue values are from facts/hardware.md (AN1078 UserParms for the
+ * Hurst075, Microchip's hurst300.h for the long Hurst). Inertia and friction
+ * are not published for either: the values below are assumptions for the
+ * bare motor with a small coupled load (docs/sim.md). The high-speed motor is
+ * defined here: the motor behind AN1078's "500 to 17,000 rpm" is not documented.
+ */
+static const sim_motor_profile_t MOTORS[] = {
+    {"hurst", "hurst075", "Hurst DMB0224C10002 (Hurst075, AC300020), 24 V", 2.67, 1.92e-3, 7.3, 5,
+     7.5e-6, 3.0e-6, 1.0e-3, 1.64, 2700.0, 5300.0},
+    {"hurst300", "hurst_long", "Hurst DMA0204024B101 (Hurst300, AC300022), 24 V", 0.40, 0.34e-3,
+     7.3, 5, 1.5e-5, 5.0e-6, 2.0e-3, 4.88, 2500.0, 3000.0},
+    {"hispeed", "hs2p", "2-pole-pair high-speed PMSM (assumed, see docs/sim.md), 320 V bus", 1.2,
+     4.0e-3, 10.0, 2, 2.0e-5, 2.0e-6, 2.0e-3, 2.5, 17000.0, 17000.0},
+};
+
+static const sim_board_profile_t BOARDS[] = {
+    {"mclv", "dsPICDEM MCLV (DM330021), 24 V bus, +-4.4 A", 24.0, 2.0e-6, 20000.0, 4.4, 52.8, 6.0,
+     -4.0, 1.0},
+    {"mchv", "dsPICDEM MCHV (DM330023), 320 V bus (230 V AC rectified)", 320.0, 2.0e-6, 20000.0,
+     8.0, 400.0, 6.0, -4.0, 1.0},
+};
+
+#define N_MOTORS (sizeof(MOTORS) / sizeof(MOTORS[0]))
+#define N_BOARDS (sizeof(BOARDS) / sizeof(BOARDS[0]))
+
+const sim_motor_profile_t *sim_motor_profile(const char *name)
+{
+    size_t i;
+    for (i = 0; i < N_MOTORS; i++) {
+        if (strcmp(MOTORS[i].name, name) == 0 ||
+            (MOTORS[i].alias != NULL && strcmp(MOTORS[i].alias, name) == 0)) {
+            return &MOTORS[i];
+        }
+    }
+    return NULL;
+}
+
+const sim_board_profile_t *sim_board_profile(const char *name)
+{
+    size_t i;
+    for (i = 0; i < N_BOARDS; i++) {
+        if (strcmp(BOARDS[i].name, name) == 0) {
+            return &BOARDS[i];
+        }
+    }
+    return NULL;
+}
+
+void sim_motor_params_from_profile(const sim_motor_profile_t *mp, sim_motor_params_t *m)
+{
+    m->rs_ohm = mp->rs_ohm;
+    m->ld_h = mp->l_h;
+    m->lq_h = mp->l_h;
+    m->psi_vs = sim_psi_from_ke(mp->ke_ll, mp->pole_pairs);
+    m->pole_pairs = mp->pole_pairs;
+    m->j_kgm2 = mp->j_kgm2;
+    m->b_nms = mp->b_nms;
+    m->coulomb_nm = mp->coulomb_nm;
+}
+
+double sim_motor_rated_torque(const sim_motor_profile_t *mp)
+{
+    return 1.5 * (double)mp->pole_pairs * sim_psi_from_ke(mp->ke_ll, mp->pole_pairs) * mp->rated_a;
+}
+
+const char *sim_profiles_list(void)
+{
+    return "motors: hurst (hurst075), hurst300 (hurst_long), hispeed (hs2p); boards: mclv, mchv";
+}

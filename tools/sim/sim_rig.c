@@ -1,0 +1,288 @@
+/* sim_rig.c - one PWM period of plant, inverter and ADC; the diode model with outputs off. */
+#include "sim_rig.h"
+
+#include <math.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
+{
+    int k;
+    double l = (prm->motor.ld_h < prm->motor.lq_h) ? prm->motor.ld_h : prm->motor.lq_h;
+    sim_plant_init(&r->plant, &prm->motor, prm->theta_e0);
+    r->plant.s.omega_m = prm->omega0_m;
+    r->plant.s.stuck = (prm->omega0_m == 0.0);
+    sim_inverter_init(&r->inv, &prm->inv, l);
+    sim_adc_init(&r->adc, &prm->adc);
+    r->substeps = (prm->substeps >= 1) ? prm->substeps : 1;
+    r->ts = 1.0 / prm->inv.pwm_hz;
+    r->t = 0.0;
+    r->period = 0;
+    r->pot = 0.0;
+    r->pot_target = 0.0;
+    r->pot_rate = 0.0;
+    r->spike_a = 0.0;
+    r->spike_left = 0;
+    for (k = 0; k < 3; k++) {
+        r->floating[k] = true;
+        r->i_abc[k] = 0.0;
+    }
+    r->was_on = false;
+    r->fan_rated_w = prm->fan_rated_rpm * 2.0 * M_PI / 60.0;
+    r->vbus_sampled = sim_inverter_vbus(&r->inv, 0.0);
+}
+
+void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
+{
+    double ia, ib, ic;
+    sim_plant_currents(&r->plant, &ia, &ib, &ic);
+    r->i_abc[0] = ia;
+    r->i_abc[1] = ib;
+    r->i_abc[2] = ic;
+    r->vbus_sampled = sim_inverter_vbus(&r->inv, r->t);
+    if (r->spike_left > 0) {
+        ia += r->spike_a;
+        ib -= r->spike_a;
+        r->spike_left--;
+    }
+    sim_adc_sample(&r->adc, ia, ib, r->vbus_sampled, r->pot, out);
+}
+
+static void phase_emfs(const sim_plant_t *p, double e[3])
+{
+    double we = (double)p->m.pole_pairs * p->s.omega_m;
+    double th = p->s.theta_e;
+    e[0] = -we * p->m.psi_vs * sin(th);
+    e[1] = -we * p->m.psi_vs * sin(th - 2.0 * M_PI / 3.0);
+    e[2] = -we * p->m.psi_vs * sin(th + 2.0 * M_PI / 3.0);
+}
+
+static double clamp_rail(double v, double vbus, bool *hit)
+{
+    if (v > vbus) {
+        *hit = true;
+        return vbus;
+    }
+    if (v < 0.0) {
+        *hit = true;
+        return 0.0;
+    }
+    *hit = false;
+    return v;
+}
+
+/* Forces the floating phases' currents to zero (the other two carry +-i). */
+static void project_floating(sim_rig_t *r)
+{
+    double i[3];
+    int nf = 0, k, fk = -1;
+    for (k = 0; k < 3; k++) {
+        if (r->floating[k]) {
+            nf++;
+            fk = k;
+        }
+    }
+    if (nf == 0) {
+        return;
+    }
+    if (nf >= 2) {
+        r->plant.s.id = 0.0;
+        r->plant.s.iq = 0.0;
+        r->floating[0] = r->floating[1] = r->floating[2] = true;
+        return;
+    }
+    sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
+    {
+        int j = (fk + 1) % 3, l = (fk + 2) % 3;
+        double ij = 0.5 * (i[j] - i[l]);
+        double ial, ibe, cs, sn;
+        i[fk] = 0.0;
+        i[j] = ij;
+        i[l] = -ij;
+        ial = i[0];
+        ibe = (i[0] + 2.0 * i[1]) / sqrt(3.0);
+        cs = cos(r->plant.s.theta_e);
+        sn = sin(r->plant.s.theta_e);
+        r->plant.s.id = ial * cs + ibe * sn;
+        r->plant.s.iq = -ial * sn + ibe * cs;
+    }
+}
+
+/* One sub-step with all six switches off (note 1). */
+static void diode_step(sim_rig_t *r, double vbus, double h)
+{
+    double i[3], e[3], v[3], inew[3];
+    double va, vb;
+    bool started[3] = {false, false, false};
+    int k, ncond = 0;
+
+    sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
+    phase_emfs(&r->plant, e);
+    for (k = 0; k < 3; k++) {
+        if (!r->floating[k]) {
+            ncond++;
+            v[k] = (i[k] > 0.0) ? 0.0 : vbus;
+        }
+    }
+    if (ncond == 3) {
+        /* all pins set by their diodes */
+    } else if (ncond == 2) {
+        int fk = r->floating[0] ? 0 : (r->floating[1] ? 1 : 2);
+        int j = (fk + 1) % 3, l = (fk + 2) % 3;
+        double vn = 0.5 * (v[j] + v[l]) - 0.5 * (e[j] + e[l]);
+        bool hit;
+        v[fk] = clamp_rail(vn + e[fk], vbus, &hit);
+        if (hit) {
+            r->floating[fk] = false;
+            started[fk] = true;
+        }
+    } else {
+        double emax = e[0], emin = e[0], vn;
+        bool any = false;
+        for (k = 1; k < 3; k++) {
+            emax = (e[k] > emax) ? e[k] : emax;
+            emin = (e[k] < emin) ? e[k] : emin;
+        }
+        vn = 0.5 * vbus - 0.5 * (emax + emin);
+        for (k = 0; k < 3; k++) {
+            bool hit;
+            v[k] = clamp_rail(vn + e[k], vbus, &hit);
+            if (hit) {
+                any = true;
+                r->floating[k] = false;
+                started[k] = true;
+            }
+        }
+        if (!any) {
+            r->floating[0] = r->floating[1] = r->floating[2] = true;
+            sim_plant_step(&r->plant, 0.0, 0.0, h, true);
+            return;
+        }
+    }
+    sim_pins_to_ab(v, &va, &vb);
+    sim_plant_step(&r->plant, va, vb, h, false);
+    sim_plant_currents(&r->plant, &inew[0], &inew[1], &inew[2]);
+    for (k = 0; k < 3; k++) {
+        if (!r->floating[k] && !started[k] && inew[k] * i[k] <= 0.0) {
+            r->floating[k] = true; /* the current died out: its diode blocks */
+        }
+    }
+    project_floating(r);
+}
+
+void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
+{
+    double h = r->ts / (double)r->substeps;
+    int s, k;
+    for (s = 0; s < r->substeps; s++) {
+        double vbus = sim_inverter_vbus(&r->inv, r->t + ((double)s + 0.5) * h);
+        double i[3], v[3], va, vb;
+        sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
+        if (r->inv.on) {
+            sim_inverter_pins(&r->inv, vbus, i, v);
+            sim_pins_to_ab(v, &va, &vb);
+            sim_plant_step(&r->plant, va, vb, h, false);
+            r->was_on = true;
+        } else {
+            if (r->was_on) {
+                for (k = 0; k < 3; k++) {
+                    r->floating[k] = (fabs(i[k]) < 1e-9);
+                }
+                r->was_on = false;
+                project_floating(r);
+            }
+            diode_step(r, vbus, h);
+        }
+    }
+    if (r->pot_rate > 0.0) {
+        double step = r->pot_rate * r->ts;
+        if (fabs(r->pot_target - r->pot) <= step) {
+            r->pot = r->pot_target;
+            r->pot_rate = 0.0;
+        } else {
+            r->pot += (r->pot_target > r->pot) ? step : -step;
+        }
+    }
+    r->t += r->ts;
+    r->period++;
+    sim_inverter_latch(&r->inv, duty, on);
+}
+
+static double clamp01(double x)
+{
+    return (x < 0.0) ? 0.0 : ((x > 1.0) ? 1.0 : x);
+}
+
+bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
+{
+    switch (ev->kind) {
+        case SIM_EV_POT:
+            r->pot = clamp01(ev->v1);
+            r->pot_rate = 0.0;
+            return true;
+        case SIM_EV_POT_RAMP:
+            r->pot_target = clamp01(ev->v1);
+            if (ev->v2 > 0.0) {
+                r->pot_rate = fabs(r->pot_target - r->pot) / ev->v2;
+            }
+            if (ev->v2 <= 0.0 || r->pot_rate <= 0.0) {
+                r->pot = r->pot_target;
+                r->pot_rate = 0.0;
+            }
+            return true;
+        case SIM_EV_LOAD:
+            r->plant.load.passive_nm = fabs(ev->v1);
+            return true;
+        case SIM_EV_LOAD_ACTIVE:
+            r->plant.load.active_nm = ev->v1;
+            return true;
+        case SIM_EV_LOAD_FAN:
+            r->plant.load.fan_k =
+                (r->fan_rated_w > 0.0) ? fabs(ev->v1) / (r->fan_rated_w * r->fan_rated_w) : 0.0;
+            return true;
+        case SIM_EV_VBUS:
+            r->inv.prm.vbus_v = ev->v1;
+            return true;
+        case SIM_EV_VBUS_RIPPLE:
+            r->inv.prm.ripple_v = ev->v1;
+            r->inv.prm.ripple_hz = ev->v2;
+            return true;
+        case SIM_EV_LOCK_ROTOR:
+            r->plant.s.locked = true;
+            r->plant.s.omega_m = 0.0;
+            return true;
+        case SIM_EV_UNLOCK_ROTOR:
+            r->plant.s.locked = false;
+            r->plant.s.stuck = true;
+            return true;
+        case SIM_EV_CURRENT_SPIKE:
+            r->spike_a = ev->v1;
+            r->spike_left = (ev->v2 >= 1.0) ? (long)ev->v2 : 1;
+            return true;
+        case SIM_EV_DEADTIME:
+            r->inv.prm.deadtime_s = ev->v1 * 1e-6;
+            return true;
+        case SIM_EV_NOISE:
+            r->adc.prm.noise_codes = ev->v1;
+            return true;
+        default:
+            return false;
+    }
+}
+
+/*
+ * Notes
+ * 1. Outputs off. A phase whose current is non-zero conducts through the
+ *    diode of the rail its current flows into (current into the motor comes
+ *    from the negative rail's diode: pin at 0 V; out of the motor: pin at
+ *    Vbus). A phase whose current has reached zero floats: its pin follows its
+ *    own back-EMF above the star point (computed from the two conducting
+ *    phases), until that would pass a rail, when its diode starts to conduct.
+ *    With no phase conducting the star point sits mid-way and the stator is
+ *    open until the line-to-line back-EMF exceeds the bus (the uncontrolled
+ *    rectifier then brakes the motor). Zero crossings are caught at the end of
+ *    a sub-step and the crossing current is projected to zero; the error is one
+ *    sub-step of di/dt, which decays with the rest of the current.
+ */

@@ -1,0 +1,68 @@
+/* sim_rig.h - the test bench: plant + inverter + ADC stepped once per PWM period. */
+#ifndef SIM_RIG_H
+#define SIM_RIG_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "sim_adc.h"
+#include "sim_inverter.h"
+#include "sim_plant.h"
+#include "sim_scenario.h"
+
+/*
+ * Timing (the firmware's contract): at the start of period n the ADC samples
+ * the plant (sim_rig_sample); the controller computes duties D(n); the plant
+ * then runs through period n with the duties latched before, D(n-1), and D(n)
+ * is latched at its end (sim_rig_advance). Each period is integrated in
+ * `substeps` RK4 steps, the inverter re-evaluated (dead time, bus ripple) at
+ * each. With the outputs off the phases are held by the free-wheeling diodes:
+ * a conducting phase sits at the rail its current flows into, a phase whose
+ * current has died out floats at its back-EMF, and a stator whose line-to-line
+ * back-EMF stays below the bus is open (no current).
+ */
+
+typedef struct {
+    sim_motor_params_t motor;
+    sim_inverter_params_t inv;
+    sim_adc_params_t adc;
+    int substeps;         /* RK4 steps per PWM period (>= 1) */
+    double theta_e0;      /* initial electrical angle, rad */
+    double omega0_m;      /* initial mechanical speed, rad/s */
+    double fan_rated_rpm; /* speed at which load_fan gives its nominal torque, rpm */
+} sim_rig_params_t;
+
+typedef struct {
+    sim_plant_t plant;
+    sim_inverter_t inv;
+    sim_adc_t adc;
+    int substeps;
+    double ts;         /* PWM period, s */
+    double t;          /* time of the present period start, s */
+    long period;       /* periods completed */
+    double pot;        /* potentiometer, 0..1 */
+    double pot_target; /* ramp end, 0..1 */
+    double pot_rate;   /* ramp rate, 1/s (0 = no ramp) */
+    double spike_a;    /* current added to the phase-A reading (B: subtracted), A */
+    long spike_left;   /* periods of spike still to come */
+    bool floating[3];  /* outputs off: phase not conducting */
+    bool was_on;
+    double fan_rated_w;  /* rad/s */
+    double i_abc[3];     /* phase currents at the last sample, A */
+    double vbus_sampled; /* V */
+} sim_rig_t;
+
+void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm);
+
+/* ADC conversion at the present period start. */
+void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out);
+
+/* Runs one PWM period with the latched duties, then latches these. */
+void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on);
+
+/* Applies a plant-side event (load, bus, rotor lock, spike, pot, dead time,
+ * noise). Returns false for controller-side events (start, stop, button,
+ * speed, speed_ramp, hw_fault, end), which the caller handles. */
+bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev);
+
+#endif /* SIM_RIG_H */
