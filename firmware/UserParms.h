@@ -1,0 +1,156 @@
+/* UserParms.h - the one file a user tunes: board and motor selection plus application settings. */
+#ifndef USERPARMS_H
+#define USERPARMS_H
+
+/*
+ * Engineering units only, the unit in every name. docs/tuning.md says what
+ * each parameter does and which symptom it fixes. The derived-constants
+ * header (mc_derived.h) turns these into Q15 and stops the build, naming the
+ * parameter, when a value cannot work.
+ *
+ * Board and motor are chosen at build time, never by editing this file:
+ *   make BOARD=mclv MOTOR=hurst      (the defaults)
+ *   make BOARD=mchv MOTOR=hispeed
+ * CMake turns BOARD/MOTOR into MC_BOARD_<BOARD> / MC_MOTOR_<MOTOR>
+ * definitions; with neither, MCLV + Hurst075.
+ * Every setting below is wrapped in #ifndef so it can also be overridden
+ * with -D on the compiler command line.
+ */
+
+/* ---- board profile ------------------------------------------------------- */
+#if defined(MC_BOARD_MCHV)
+#include "boards/board_mchv.h"
+#else /* MC_BOARD_MCLV, the default */
+#include "boards/board_mclv.h"
+#endif
+
+/* ---- motor profile ------------------------------------------------------- */
+#if defined(MC_MOTOR_HURST300)
+#include "motors/motor_hurst300.h"
+#elif defined(MC_MOTOR_HISPEED)
+#include "motors/motor_hispeed.h"
+#else /* MC_MOTOR_HURST, the default */
+#include "motors/motor_hurst.h"
+#endif
+
+/* ---- operating mode -------------------------------------------------------- */
+
+/* TORQUEMODE: the pot (or mc_set_reference) sets the Iq reference directly,
+ * 0..MOTOR_CURRENT_MAX_A; the speed loop is bypassed (AN1078 "Torque Mode").
+ * Leave undefined for speed mode. */
+/* #define TORQUEMODE */
+
+/* ENVOLTRIPPLE: compensate Vd and Vq for DC-bus ripple (AN1078 Equation 8). */
+#ifndef MC_NO_VOLTRIPPLE
+#define ENVOLTRIPPLE
+#endif
+
+/* MC_DEADTIME_COMP: add the dead-time voltage back by the sign of each phase
+ * current, and feed the estimator the voltage actually applied. 1 = on. */
+#ifndef MC_DEADTIME_COMP
+#define MC_DEADTIME_COMP 1
+#endif
+
+/* ---- PWM and loop timing --------------------------------------------------- */
+#ifndef PWM_FREQUENCY_HZ
+#define PWM_FREQUENCY_HZ 20000L /* PWM and current-loop rate */
+#endif
+#ifndef PWM_DEADTIME_NS
+#define PWM_DEADTIME_NS BOARD_DEADTIME_NS /* what the HAL programs and the core compensates */
+#endif
+#ifndef MC_SPEED_LOOP_HZ
+#define MC_SPEED_LOOP_HZ 1000L /* speed loop rate; IRP_PERCALC = PWM_FREQUENCY_HZ / this */
+#endif
+/* Band of phase current around zero in which the dead-time correction is
+ * scaled linearly instead of switching sign (stops chattering at zero
+ * crossings). */
+#ifndef MC_DEADTIME_BAND_A
+#define MC_DEADTIME_BAND_A 0.1
+#endif
+/* Largest voltage vector, fraction of the SVGen circle: leaves room in every
+ * period for the low-side shunt sampling (AN1078 uses 0.95). */
+#ifndef MC_VOLTAGE_LIMIT_FRACTION
+#define MC_VOLTAGE_LIMIT_FRACTION 0.95
+#endif
+
+/* ---- speed reference --------------------------------------------------------- */
+#ifndef SPEED_REF_MIN_RPM
+#define SPEED_REF_MIN_RPM MOTOR_SPEED_MIN_RPM /* pot at 0 */
+#endif
+#ifndef SPEED_REF_MAX_RPM
+#define SPEED_REF_MAX_RPM MOTOR_SPEED_FW_MAX_RPM /* pot at full travel */
+#endif
+#ifndef MC_SPEED_FULLSCALE_RPM
+#define MC_SPEED_FULLSCALE_RPM MOTOR_SPEED_FULLSCALE_RPM
+#endif
+#ifndef MC_SPEED_RAMP_RPM_PER_S
+#define MC_SPEED_RAMP_RPM_PER_S 1000.0 /* slew of the speed reference */
+#endif
+
+/* ---- start-up ------------------------------------------------------------------ */
+#ifndef MC_OFFSET_CALIB_TIME_S
+#define MC_OFFSET_CALIB_TIME_S 0.0128 /* current-offset averaging (256 periods at 20 kHz) */
+#endif
+#ifndef MC_RETRY_COAST_S
+#define MC_RETRY_COAST_S 0.5 /* outputs off before a retry, so the rotor stops */
+#endif
+#ifndef MC_START_RETRIES
+#define MC_START_RETRIES 3 /* failed starts retried before FAULT START_FAILED */
+#endif
+/* Angle difference at hand-off is bled off at this rate (AN1078: 0.05 deg
+ * per period = 1000 deg/s at 20 kHz). */
+#ifndef MC_HANDOFF_BLEED_DEG_PER_S
+#define MC_HANDOFF_BLEED_DEG_PER_S 1000.0
+#endif
+
+/* ---- estimator ------------------------------------------------------------------ */
+/* Lowest speed the estimator is trusted at (its filter floor and validity
+ * threshold); below the hand-off speed so a start is judged with margin. */
+#ifndef MC_ESTIMATOR_MIN_RPM
+#define MC_ESTIMATOR_MIN_RPM (0.8 * MOTOR_RAMP_END_RPM)
+#endif
+/* Cut-off of the estimated-speed filter (the speed loop's feedback). */
+#ifndef MC_SPEED_FILTER_HZ
+#define MC_SPEED_FILTER_HZ 80.0
+#endif
+
+/* ---- protections ------------------------------------------------------------------- */
+#ifndef MC_OVERCURRENT_A
+#define MC_OVERCURRENT_A MOTOR_OVERCURRENT_A /* any phase, one sample */
+#endif
+#ifndef MC_VBUS_UNDERVOLTAGE_V
+#define MC_VBUS_UNDERVOLTAGE_V BOARD_VBUS_UNDERVOLTAGE_V /* while the outputs are on */
+#endif
+#ifndef MC_VBUS_OVERVOLTAGE_V
+#define MC_VBUS_OVERVOLTAGE_V BOARD_VBUS_OVERVOLTAGE_V /* in any state but FAULT */
+#endif
+#ifndef MC_OFFSET_MAX_A
+#define MC_OFFSET_MAX_A 0.5 /* current offset at calibration above this: amplifier fault */
+#endif
+/* Stall / loss of synchronisation in closed loop. Each condition must
+ * persist for MC_STALL_TIME_S (checked at the speed-loop rate). */
+#ifndef MC_STALL_TIME_S
+#define MC_STALL_TIME_S 0.02
+#endif
+#ifndef MC_STALL_SPEED_MIN_RPM
+#define MC_STALL_SPEED_MIN_RPM (0.5 * MOTOR_SPEED_MIN_RPM) /* estimated speed below this */
+#endif
+/* Estimated back-EMF outside [low, high] times the back-EMF Ke predicts at
+ * the estimated speed (a locked rotor reads a back-EMF far too small for
+ * the speed the estimator claims). */
+#ifndef MC_STALL_BEMF_LOW_FRACTION
+#define MC_STALL_BEMF_LOW_FRACTION 0.4
+#endif
+#ifndef MC_STALL_BEMF_HIGH_FRACTION
+#define MC_STALL_BEMF_HIGH_FRACTION 2.5
+#endif
+/* |speed reference - estimated speed| above this for MC_STALL_TRACK_TIME_S
+ * while the speed PI is saturated. */
+#ifndef MC_STALL_SPEED_ERROR_RPM
+#define MC_STALL_SPEED_ERROR_RPM 1500.0
+#endif
+#ifndef MC_STALL_TRACK_TIME_S
+#define MC_STALL_TRACK_TIME_S 0.04
+#endif
+
+#endif /* USERPARMS_H */

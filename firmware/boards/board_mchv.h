@@ -1,0 +1,48 @@
+/* board_mchv.h - dsPICDEM MCHV (DM330023): scalings and limits (ASSUMED, see below). */
+#ifndef BOARD_MCHV_H
+#define BOARD_MCHV_H
+
+/*
+ * ASSUMED VALUES. The MCHV's PIM, shunt, amplifier gain and DC-bus divider
+ * were not found (hardware.md 2.3). Every scaling below is a placeholder of
+ * the right order for a 230 Vac rectified bus, marked ASSUMED; measure or
+ * read the board's user's guide and override them (-D or edit here) before
+ * running a real motor. Microchip's later MCHV code also reverses the
+ * current sign: the HAL must deliver currents "+ = into the motor".
+ */
+
+#define BOARD_NAME "MCHV"
+
+#ifndef BOARD_FCY_HZ
+#define BOARD_FCY_HZ 40000000L
+#endif
+
+/* ASSUMED: current that reads as Q15 full scale. */
+#ifndef BOARD_I_FULLSCALE_A
+#define BOARD_I_FULLSCALE_A 8.0
+#endif
+
+/* ASSUMED: DC-bus voltage that reads as 32767 (a 400 V full-scale divider). */
+#ifndef BOARD_VBUS_FULLSCALE_V
+#define BOARD_VBUS_FULLSCALE_V 400.0
+#endif
+
+/* ASSUMED: 230 Vac rectified. */
+#ifndef BOARD_VBUS_NOMINAL_V
+#define BOARD_VBUS_NOMINAL_V 320.0
+#endif
+
+/* ASSUMED protection window. */
+#ifndef BOARD_VBUS_UNDERVOLTAGE_V
+#define BOARD_VBUS_UNDERVOLTAGE_V 200.0
+#endif
+#ifndef BOARD_VBUS_OVERVOLTAGE_V
+#define BOARD_VBUS_OVERVOLTAGE_V 385.0
+#endif
+
+/* Dead time as on the MCLV (AN1078's 2 us). */
+#ifndef BOARD_DEADTIME_NS
+#define BOARD_DEADTIME_NS 2000L
+#endif
+
+#endif /* BOARD_MCHV_H */

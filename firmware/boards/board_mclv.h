@@ -1,0 +1,53 @@
+/* board_mclv.h - dsPICDEM MCLV (DM330021) with the dsPIC33FJ32MC204 PIM: scalings and limits. */
+#ifndef BOARD_MCLV_H
+#define BOARD_MCLV_H
+
+/*
+ * Every value here is a fact about the board (hardware.md section 2); the
+ * application settings that use them are in UserParms.h. Each macro may be
+ * overridden with -D on the command line.
+ */
+
+#define BOARD_NAME "MCLV"
+
+/* Instruction clock: 8 MHz crystal, PLL to 40 MIPS (hardware.md 1.2). */
+#ifndef BOARD_FCY_HZ
+#define BOARD_FCY_HZ 40000000L
+#endif
+
+/* Current that reads as Q15 full scale: Rshunt 0.005 ohm, amplifier gain 75,
+ * VDD/2 = 1.65 V -> +-4.4 A (AN1078 UserParms, hardware.md 2.1). */
+#ifndef BOARD_I_FULLSCALE_A
+#define BOARD_I_FULLSCALE_A 4.4
+#endif
+
+/* DC-bus voltage that reads as 32767.
+ * UNCHECKED ASSUMPTION: the original MCLV's VBUS divider was not found; this
+ * is the MCLV-2 figure (3.3 V x 16 = 52.8 V, hardware.md 2.2). Check the
+ * board schematic (DS70331) before trusting the bus protections or the
+ * ripple compensation. It is the only place this number lives. */
+#ifndef BOARD_VBUS_FULLSCALE_V
+#define BOARD_VBUS_FULLSCALE_V 52.8
+#endif
+
+/* Nominal DC bus: the 24 V supply of the kit. It sets the SVGen voltage
+ * full scale (MC_VOLTAGE_FULLSCALE_V = nominal / sqrt(3)) and the target of
+ * the ripple compensation. */
+#ifndef BOARD_VBUS_NOMINAL_V
+#define BOARD_VBUS_NOMINAL_V 24.0
+#endif
+
+/* Default bus protection window for a 24 V kit; override in UserParms.h. */
+#ifndef BOARD_VBUS_UNDERVOLTAGE_V
+#define BOARD_VBUS_UNDERVOLTAGE_V 15.0
+#endif
+#ifndef BOARD_VBUS_OVERVOLTAGE_V
+#define BOARD_VBUS_OVERVOLTAGE_V 32.0
+#endif
+
+/* Power-stage dead time (AN1078: 2 us, DTCON1 = 0x40 | 40). */
+#ifndef BOARD_DEADTIME_NS
+#define BOARD_DEADTIME_NS 2000L
+#endif
+
+#endif /* BOARD_MCLV_H */

@@ -1,0 +1,2 @@
+/* mc.c - placeholder while the core is written. */
+#include "mc.h"

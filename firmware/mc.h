@@ -1,0 +1,233 @@
+/* mc.h - the motor-control core: one object, one step per PWM period, no hardware access. */
+#ifndef MC_H
+#define MC_H
+
+/*
+ * The core seam (DESIGN.md "The core seam"). Everything a program needs to
+ * drive the core is reachable from this header alone:
+ *
+ *   - the scale macros, in engineering units (from UserParms.h and the board
+ *     and motor profiles it selects at build time):
+ *       BOARD_I_FULLSCALE_A     current that reads as Q15 full scale (A)
+ *       BOARD_VBUS_FULLSCALE_V  DC-bus voltage that reads as 32767 (V)
+ *       PWM_FREQUENCY_HZ        PWM and control-loop frequency (Hz)
+ *       PWM_DUTY_MAX            duty counts for 100 % (PDCx units)
+ *       MOTOR_POLE_PAIRS        pole pairs of the selected motor
+ *       MC_SPEED_FULLSCALE_RPM  mechanical speed that reads as Q15 full scale
+ *       SPEED_REF_MIN_RPM       speed reference at pot = 0 (speed mode)
+ *       SPEED_REF_MAX_RPM       speed reference at pot = 32767 (speed mode)
+ *     plus MC_VOLTAGE_FULLSCALE_V, the voltage scale of vd/vq (the SVGen full
+ *     scale: the nominal bus over sqrt(3), a phase-voltage amplitude);
+ *   - the types and the four entry points below, and mc_t as a complete type
+ *     so the caller allocates it (normally one static instance owned by the
+ *     ADC interrupt).
+ *
+ * Timing contract: mc_step() is called once per PWM period with the frame
+ * sampled at the start of that period; the duties it returns take effect at
+ * the start of the next period (the dsPIC loads PDCx at the period boundary).
+ *
+ * Concurrency: mc_step() runs in the ADC interrupt. mc_request() and
+ * mc_set_reference() may be called from the main loop (or any other
+ * context) while mc_step() runs: they only post into a mailbox that
+ * mc_step() reads at its next call, each field of which has exactly one
+ * writer (see note 1). mc_status() takes a snapshot; called outside the
+ * interrupt it may mix fields of two consecutive periods.
+ *
+ * Extensions beyond DESIGN.md's minimum (added, nothing renamed):
+ *   MC_REQUEST_START, MC_REQUEST_STOP       unambiguous start / stop for a
+ *                                           remote interface (START_STOP is
+ *                                           the S2 button's toggle);
+ *   MC_REQUEST_REF_POT                      return to the pot after
+ *                                           mc_set_reference();
+ *   mc_set_reference()                      remote speed reference (speed
+ *                                           mode) or Iq reference (TORQUEMODE);
+ *   MC_STATE_CALIBRATE, MC_STATE_LOCK,
+ *   MC_STATE_OPEN_LOOP                      the start-up states;
+ *   MC_FAULT_* codes                        below, readable in mc_status_t;
+ *   mc_status_t fields after vq             Vbus, start-up retry count,
+ *                                           references, estimator validity,
+ *                                           back-EMF, duties.
+ */
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "UserParms.h"
+#include "mc_derived.h"
+
+#include "fieldweak.h"
+#include "frames.h"
+#include "lpf.h"
+#include "pi.h"
+#include "smc.h"
+
+/* ---- input and output of one period ------------------------------------ */
+
+typedef struct {    /* one ADC conversion set, taken at the PWM period start */
+    int16_t ia, ib; /* phase currents, Q15 of BOARD_I_FULLSCALE_A, + = into the motor,
+                       still carrying the amplifier offset (the core calibrates it) */
+    int16_t vbus;   /* DC bus, Q15 of BOARD_VBUS_FULLSCALE_V (0..32767) */
+    int16_t pot;    /* potentiometer, 0..32767 = 0..100 % of travel */
+} mc_adc_frame_t;
+
+typedef struct {
+    uint16_t duty[3]; /* PDC1..PDC3, 0..PWM_DUTY_MAX; phase k mean voltage vs the
+                         negative rail = duty[k] / PWM_DUTY_MAX * Vbus */
+    bool outputs_on;  /* false: all six switches off */
+} mc_pwm_out_t;
+
+/* ---- requests ----------------------------------------------------------- */
+
+typedef enum {
+    MC_REQUEST_START_STOP, /* the S2 button: start when stopped or faulted, stop when running */
+    MC_REQUEST_HW_FAULT,   /* the FLTA pin latched: FAULT with MC_FAULT_HARDWARE */
+    MC_REQUEST_START,      /* start (also leaves FAULT once the cause is gone); no-op if running */
+    MC_REQUEST_STOP,       /* stop: outputs off, STOPPED; no-op if stopped; FAULT stays FAULT */
+    MC_REQUEST_REF_POT,    /* take the reference from the pot again (undoes mc_set_reference) */
+    MC_REQUEST_COUNT       /* number of requests, not a request */
+} mc_request_t;
+
+/* ---- states -------------------------------------------------------------- */
+
+typedef enum {
+    MC_STATE_STOPPED,     /* outputs off, duties 50 %, waiting for START */
+    MC_STATE_CALIBRATE,   /* outputs off, averaging the current-amplifier offsets */
+    MC_STATE_LOCK,        /* outputs on, rotor aligned at a fixed angle with controlled current */
+    MC_STATE_OPEN_LOOP,   /* forced angle at constant acceleration, d/q current loops running */
+    MC_STATE_CLOSED_LOOP, /* sensorless: angle and speed from the estimator, speed loop running */
+    MC_STATE_FAULT /* outputs off, duties 50 %; left only by a START once the cause is gone */
+} mc_state_t;
+
+/* ---- fault codes (mc_status_t.fault) ------------------------------------ *
+ * The code of the first fault that tripped; it stays until a START clears
+ * it (a START is refused while the cause is still present: over/under-voltage
+ * still measured, or the FLTA pin still reported). */
+#define MC_FAULT_NONE         0U /* no fault */
+#define MC_FAULT_OVERCURRENT  1U /* |ia|, |ib| or |ic| above MC_OVERCURRENT_A in one sample */
+#define MC_FAULT_UNDERVOLTAGE 2U /* Vbus below MC_VBUS_UNDERVOLTAGE_V while running */
+#define MC_FAULT_OVERVOLTAGE  3U /* Vbus above MC_VBUS_OVERVOLTAGE_V (any state) */
+#define MC_FAULT_HARDWARE     4U /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
+#define MC_FAULT_START_FAILED 5U /* no valid estimate at the end of the ramp, retries used up */
+#define MC_FAULT_STALL_SPEED  6U /* closed loop: estimated speed below the minimum */
+#define MC_FAULT_STALL_BEMF   7U /* closed loop: estimated back-EMF inconsistent with speed */
+#define MC_FAULT_STALL_TRACK  8U /* closed loop: speed error persisting (loss of sync) */
+#define MC_FAULT_OFFSET       9U /* current offset out of range at calibration (amplifier) */
+
+/* ---- status ---------------------------------------------------------------- */
+
+typedef struct {
+    mc_state_t state;
+    uint16_t fault;    /* 0 = none; MC_FAULT_* above */
+    int16_t theta_est; /* electrical angle used by the Park transforms, Q15: -32768..32767 =
+                          -pi..pi (the estimator's in CLOSED_LOOP, the forced one before) */
+    int16_t speed_est; /* mechanical speed, Q15 of MC_SPEED_FULLSCALE_RPM */
+    int16_t speed_ref; /* same scale (the ramped reference the speed loop follows) */
+    int16_t id, iq;    /* Q15 of BOARD_I_FULLSCALE_A */
+    int16_t vd, vq;    /* Q15 of the SVGen full scale (MC_VOLTAGE_FULLSCALE_V) */
+    /* additions */
+    int16_t vbus;           /* DC bus, Q15 of BOARD_VBUS_FULLSCALE_V (last sample) */
+    uint8_t start_retries;  /* failed start-up attempts since the last START request */
+    bool estimator_valid;   /* the estimator reports a usable angle */
+    int16_t id_ref, iq_ref; /* current references, Q15 of BOARD_I_FULLSCALE_A */
+    int16_t speed_target;   /* speed reference before the ramp, Q15 of MC_SPEED_FULLSCALE_RPM */
+    int16_t theta_forced;   /* open-loop angle, Q15 binary angle */
+    int16_t bemf;           /* estimated back-EMF magnitude, Q15 of the SVGen full scale */
+    int16_t ia, ib;         /* offset-corrected phase currents, Q15 of BOARD_I_FULLSCALE_A */
+    uint16_t duty[3];       /* duties of the last step (what the next period applies) */
+    bool outputs_on;        /* as in the last mc_pwm_out_t */
+} mc_status_t;
+
+/* ---- the instance ------------------------------------------------------- *
+ * Complete so the caller can allocate it; its members are private to the
+ * core and may change between versions (read them through mc_status()). */
+typedef struct {
+    /* mailbox (note 1): posted[] written only by mc_request, taken[] only by mc_step */
+    volatile uint8_t req_posted[MC_REQUEST_COUNT];
+    uint8_t req_taken[MC_REQUEST_COUNT];
+    volatile int16_t ref_remote;     /* remote reference (speed or Iq), Q15 */
+    volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference */
+    uint8_t ref_remote_seen;
+    bool ref_from_remote;
+
+    mc_state_t state;
+    uint16_t fault;
+    uint16_t timer;     /* periods spent in the current state (saturates) */
+    uint8_t retries;    /* failed starts since START */
+    uint8_t speed_div;  /* counts periods up to MC_SPEED_LOOP_DIV */
+    bool hw_fault_seen; /* FLTA reported since the last START */
+
+    /* current offsets, Q15 */
+    int32_t offset_acc_a, offset_acc_b;
+    int16_t offset_a, offset_b;
+
+    /* measurements of this period */
+    int16_t ia, ib, vbus, pot;
+    dq_q15_t i_dq;
+
+    /* current and speed control */
+    pi_t pi_d, pi_q, pi_w;
+    fieldweak_t fw;
+    dq_q15_t i_ref;
+    dq_q15_t v_dq;         /* after the circle limit and ripple compensation */
+    int16_t speed_target;  /* unramped reference, Q15 speed */
+    int16_t speed_ref;     /* ramped reference, Q15 speed */
+    int16_t speed_meas;    /* Q15 speed used by the speed loop */
+    int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE */
+
+    /* angle */
+    angle_q15_t theta;     /* angle the transforms use this period */
+    uint32_t ol_angle;     /* open-loop angle, 32-bit binary angle */
+    uint32_t ol_step;      /* open-loop angle increment per period, 32-bit binary angle */
+    int16_t theta_offset;  /* theta_forced - theta_est at hand-off, bled to 0 */
+    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
+
+    /* estimator and the voltage it is fed (note 2) */
+    smc_t smc;
+    uint16_t duty_hist[2][3]; /* [0]: duties computed last step, [1]: the step before */
+    int16_t vbus_hist[2];
+    ab_q15_t v_applied;
+
+    /* outputs */
+    uint16_t duty[3];
+    bool outputs_on;
+} mc_t;
+
+/* Reset everything, outputs off, MC_STATE_STOPPED. */
+void mc_init(mc_t *mc);
+
+/* One PWM period: in = the frame sampled at this period's start; out = the
+ * duties for the next period (timing contract above). Every path writes
+ * *out; in STOPPED, CALIBRATE and FAULT the duties are PWM_DUTY_MAX / 2 and
+ * outputs_on is false. Protections run first, in every state. */
+void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
+
+/* Post a request; mc_step() acts on it at its next call. */
+void mc_request(mc_t *mc, mc_request_t r);
+
+/* Remote reference, replacing the pot until MC_REQUEST_REF_POT:
+ * speed mode: mechanical speed, Q15 of MC_SPEED_FULLSCALE_RPM, clamped to
+ * [SPEED_REF_MIN_RPM, SPEED_REF_MAX_RPM]; TORQUEMODE: Iq reference, Q15 of
+ * BOARD_I_FULLSCALE_A, clamped to +-MOTOR_CURRENT_MAX_A. */
+void mc_set_reference(mc_t *mc, int16_t ref);
+
+/* Snapshot of the state for display, logging and tests. */
+void mc_status(const mc_t *mc, mc_status_t *st);
+
+/*
+ * Notes
+ *
+ * 1. The mailbox. A request r is pending while req_posted[r] != req_taken[r]
+ *    (both uint8_t, compared modulo 256). mc_request() increments
+ *    req_posted[r] and nothing else; mc_step() copies it into req_taken[r]
+ *    once it has acted. Each byte has one writer and byte writes are atomic
+ *    on the dsPIC, so no interrupt masking is needed; a request posted twice
+ *    before the step sees it counts once.
+ *
+ * 2. The estimator is fed the voltage the inverter actually applied while
+ *    the measured current evolved: reconstructed from the duties of two
+ *    steps ago (they were applied during the period that ends at this
+ *    sample) and the bus voltage then, so dead-time compensation, duty
+ *    clamping and bus ripple are all seen by the model.
+ */
+
+#endif /* MC_H */

@@ -1,0 +1,335 @@
+/* mc_derived.h - UserParms.h and the profiles turned into Q15 constants, with named range checks.
+ */
+#ifndef MC_DERIVED_H
+#define MC_DERIVED_H
+
+/*
+ * Nothing here is tuned: every constant is computed from UserParms.h and the
+ * board and motor profiles. Each check stops the build with a message that
+ * starts with the parameter to change (Q15_STATIC_ASSERT); the Q15()
+ * conversions that follow carry their own range check.
+ *
+ * Scales used by the core (DESIGN.md):
+ *   current  Q15 of BOARD_I_FULLSCALE_A (A)
+ *   voltage  Q15 of MC_VOLTAGE_FULLSCALE_V = BOARD_VBUS_NOMINAL_V / sqrt(3)
+ *            (the SVGen full scale at the nominal bus, a phase amplitude)
+ *   bus      Q15 of BOARD_VBUS_FULLSCALE_V (V)
+ *   speed    mechanical, Q15 of MC_SPEED_FULLSCALE_RPM (rpm); the estimator's
+ *            electrical Q15 speed uses omega_fs = MC_SPEED_FULLSCALE_RPM *
+ *            MOTOR_POLE_PAIRS / 60 Hz so the two Q15 numbers are equal.
+ *   angle    binary, one electrical turn = 2^16 (open loop: 2^32).
+ *
+ * Constants that become integers are computed in double and rounded once;
+ * avr-gcc and XC16 evaluate them with a 32-bit double, so each is kept well
+ * away from a .5 boundary or built from small exact integers (note 1).
+ */
+
+#include "q15.h"
+#include "smc.h"
+#include "UserParms.h"
+
+/* ---- timing ------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(PWM_FREQUENCY_HZ >= 4000L && PWM_FREQUENCY_HZ <= 40000L,
+                  "PWM_FREQUENCY_HZ: must be in 4000..40000 Hz");
+Q15_STATIC_ASSERT(BOARD_FCY_HZ % PWM_FREQUENCY_HZ == 0,
+                  "PWM_FREQUENCY_HZ: BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be an integer "
+                  "(it is the duty full scale)");
+Q15_STATIC_ASSERT(BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
+                  "PWM_FREQUENCY_HZ: duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
+                  "<= 32767 counts");
+
+/* Duty counts for 100 % (AN1078 LOOPINTCY, PDCx units: 2000 at 40 MIPS, 20 kHz). */
+#define PWM_DUTY_MAX ((uint16_t)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ))
+#define MC_TS_S      (1.0 / (double)PWM_FREQUENCY_HZ)
+
+Q15_STATIC_ASSERT(MC_SPEED_LOOP_HZ > 0 && PWM_FREQUENCY_HZ % MC_SPEED_LOOP_HZ == 0,
+                  "MC_SPEED_LOOP_HZ: must divide PWM_FREQUENCY_HZ");
+Q15_STATIC_ASSERT(PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ >= 1 &&
+                      PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ <= 256,
+                  "MC_SPEED_LOOP_HZ: IRP_PERCALC = PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ must be "
+                  "in 1..256");
+/* PWM periods per speed-loop run (AN1078 IRP_PERCALC). */
+#define IRP_PERCALC ((uint16_t)(PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ))
+
+/* ---- scales -------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(BOARD_I_FULLSCALE_A > 0.0, "BOARD_I_FULLSCALE_A: must be > 0");
+Q15_STATIC_ASSERT(BOARD_VBUS_FULLSCALE_V > 0.0, "BOARD_VBUS_FULLSCALE_V: must be > 0");
+Q15_STATIC_ASSERT(BOARD_VBUS_NOMINAL_V > 0.0 && BOARD_VBUS_NOMINAL_V < BOARD_VBUS_FULLSCALE_V,
+                  "BOARD_VBUS_NOMINAL_V: must be in (0, BOARD_VBUS_FULLSCALE_V)");
+Q15_STATIC_ASSERT(MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32,
+                  "MOTOR_POLE_PAIRS: must be in 1..32");
+Q15_STATIC_ASSERT(MC_SPEED_FULLSCALE_RPM > 0.0, "MC_SPEED_FULLSCALE_RPM: must be > 0");
+
+/* SVGen full scale: the largest linear phase amplitude at the nominal bus. */
+#define MC_VOLTAGE_FULLSCALE_V (BOARD_VBUS_NOMINAL_V / 1.7320508075688772)
+/* Electrical frequency of Q15 full-scale speed (the estimator's omega_fs). */
+#define MC_OMEGA_FS_HZ ((double)MC_SPEED_FULLSCALE_RPM * (double)MOTOR_POLE_PAIRS / 60.0)
+
+#define MC_Q15_AMPS(a)  Q15_SCALED((a), BOARD_I_FULLSCALE_A)
+#define MC_Q15_VOLTS(v) Q15_SCALED((v), MC_VOLTAGE_FULLSCALE_V)
+#define MC_Q15_VBUS(v)  Q15_SCALED((v), BOARD_VBUS_FULLSCALE_V)
+#define MC_Q15_RPM(r)   Q15_SCALED((r), MC_SPEED_FULLSCALE_RPM)
+
+/* Coefficients >= 1: Q15 mantissa and shift, value = mant * 2^shift / 32768. */
+#define MC_SHIFT_OF(x)                                                                             \
+    ((x) < 1.0    ? 0                                                                              \
+     : (x) < 2.0  ? 1                                                                              \
+     : (x) < 4.0  ? 2                                                                              \
+     : (x) < 8.0  ? 3                                                                              \
+     : (x) < 16.0 ? 4                                                                              \
+     : (x) < 32.0 ? 5                                                                              \
+     : (x) < 64.0 ? 6                                                                              \
+                  : 7)
+#define MC_MANT_OF(x) Q15((double)(x) / (double)(1L << MC_SHIFT_OF(x)))
+
+/* ---- speeds --------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MOTOR_SPEED_MIN_RPM > 0.0 && MOTOR_SPEED_MIN_RPM < MOTOR_SPEED_NOMINAL_RPM,
+                  "MOTOR_SPEED_MIN_RPM: must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
+Q15_STATIC_ASSERT(MOTOR_SPEED_FW_MAX_RPM >= MOTOR_SPEED_NOMINAL_RPM,
+                  "MOTOR_SPEED_FW_MAX_RPM: must be >= MOTOR_SPEED_NOMINAL_RPM (equal: no field "
+                  "weakening)");
+Q15_STATIC_ASSERT(MOTOR_SPEED_FW_MAX_RPM <= 0.95 * MC_SPEED_FULLSCALE_RPM,
+                  "MC_SPEED_FULLSCALE_RPM: must be >= MOTOR_SPEED_FW_MAX_RPM / 0.95 "
+                  "(room for overshoot)");
+Q15_STATIC_ASSERT(SPEED_REF_MIN_RPM > 0.0 && SPEED_REF_MIN_RPM < SPEED_REF_MAX_RPM,
+                  "SPEED_REF_MIN_RPM: must be in (0, SPEED_REF_MAX_RPM)");
+Q15_STATIC_ASSERT(SPEED_REF_MAX_RPM <= MOTOR_SPEED_FW_MAX_RPM,
+                  "SPEED_REF_MAX_RPM: must be <= MOTOR_SPEED_FW_MAX_RPM");
+Q15_STATIC_ASSERT(MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RAMP_END_RPM,
+                  "MC_ESTIMATOR_MIN_RPM: must be in (0, MOTOR_RAMP_END_RPM]");
+
+#define MC_SPEED_REF_MIN_Q15 MC_Q15_RPM(SPEED_REF_MIN_RPM)
+#define MC_SPEED_REF_MAX_Q15 MC_Q15_RPM(SPEED_REF_MAX_RPM)
+/* Speed reference slew per speed-loop run, Q15 speed. */
+#define MC_SPEED_RAMP_STEP_                                                                        \
+    ((double)MC_SPEED_RAMP_RPM_PER_S / (double)MC_SPEED_LOOP_HZ / (double)MC_SPEED_FULLSCALE_RPM * \
+     32768.0)
+Q15_STATIC_ASSERT(MC_SPEED_RAMP_STEP_ >= 1.0 && MC_SPEED_RAMP_STEP_ < 32767.0,
+                  "MC_SPEED_RAMP_RPM_PER_S: must give 1..32767 Q15 counts per speed-loop run");
+#define MC_SPEED_RAMP_STEP ((q15_t)(MC_SPEED_RAMP_STEP_ + 0.5))
+
+/* ---- currents -------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MOTOR_CURRENT_MAX_A > 0.0 && MOTOR_CURRENT_MAX_A < BOARD_I_FULLSCALE_A,
+                  "MOTOR_CURRENT_MAX_A: must be in (0, BOARD_I_FULLSCALE_A)");
+Q15_STATIC_ASSERT(MC_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MC_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
+                  "MC_OVERCURRENT_A: must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
+Q15_STATIC_ASSERT(MOTOR_LOCK_CURRENT_A > 0.0 && MOTOR_LOCK_CURRENT_A < MC_OVERCURRENT_A,
+                  "MOTOR_LOCK_CURRENT_A: must be in (0, MC_OVERCURRENT_A)");
+Q15_STATIC_ASSERT(MOTOR_RAMP_CURRENT_A > 0.0 && MOTOR_RAMP_CURRENT_A <= MOTOR_CURRENT_MAX_A,
+                  "MOTOR_RAMP_CURRENT_A: must be in (0, MOTOR_CURRENT_MAX_A]");
+Q15_STATIC_ASSERT(MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A,
+                  "MC_OFFSET_MAX_A: must be in (0, BOARD_I_FULLSCALE_A)");
+
+#define MC_IQ_MAX_Q15       MC_Q15_AMPS(MOTOR_CURRENT_MAX_A)
+#define MC_OVERCURRENT_Q15  MC_Q15_AMPS(MC_OVERCURRENT_A)
+#define MC_LOCK_CURRENT_Q15 MC_Q15_AMPS(MOTOR_LOCK_CURRENT_A)
+#define MC_RAMP_CURRENT_Q15 MC_Q15_AMPS(MOTOR_RAMP_CURRENT_A)
+#define MC_OFFSET_MAX_Q15   MC_Q15_AMPS(MC_OFFSET_MAX_A)
+
+/* ---- DC bus ---------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MC_VBUS_UNDERVOLTAGE_V > 0.0 && MC_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
+                  "MC_VBUS_UNDERVOLTAGE_V: must be in (0, BOARD_VBUS_NOMINAL_V)");
+Q15_STATIC_ASSERT(MC_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V &&
+                      MC_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
+                  "MC_VBUS_OVERVOLTAGE_V: must be in (BOARD_VBUS_NOMINAL_V, "
+                  "BOARD_VBUS_FULLSCALE_V)");
+#define MC_VBUS_UV_Q15      MC_Q15_VBUS(MC_VBUS_UNDERVOLTAGE_V)
+#define MC_VBUS_OV_Q15      MC_Q15_VBUS(MC_VBUS_OVERVOLTAGE_V)
+#define MC_VBUS_NOMINAL_Q15 MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V)
+
+/* ---- voltage limit ----------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MC_VOLTAGE_LIMIT_FRACTION > 0.5 && MC_VOLTAGE_LIMIT_FRACTION <= 1.0,
+                  "MC_VOLTAGE_LIMIT_FRACTION: must be in (0.5, 1]");
+#define MC_VMAX_Q15 Q15(MC_VOLTAGE_LIMIT_FRACTION)
+
+/* ---- current PI (d and q): gains in V/A and V/(A s) to Q15 of V_FS per I_FS ---- */
+
+#define MC_CUR_KP_ ((double)MOTOR_CURRENT_KP_V_PER_A * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
+#define MC_CUR_KI_                                                                                 \
+    ((double)MOTOR_CURRENT_KI_V_PER_AS * MC_TS_S * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
+Q15_STATIC_ASSERT(MC_CUR_KP_ >= 0.0 && MC_CUR_KP_ < 128.0,
+                  "MOTOR_CURRENT_KP_V_PER_A: Kp * I_FS / V_FS must be in [0, 128)");
+Q15_STATIC_ASSERT(MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
+                  "MOTOR_CURRENT_KI_V_PER_AS: Ki * Ts * I_FS / V_FS must be in [0, 1)");
+#define MC_CUR_KP       MC_MANT_OF(MC_CUR_KP_)
+#define MC_CUR_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_CUR_KP_))
+#define MC_CUR_KI       Q15(MC_CUR_KI_)
+
+/* ---- speed PI: A/rpm and A/(rpm s) to Q15 current per Q15 speed ------------------ */
+
+#define MC_SPD_KP_ ((double)MOTOR_SPEED_KP_A_PER_RPM * MC_SPEED_FULLSCALE_RPM / BOARD_I_FULLSCALE_A)
+#define MC_SPD_KI_                                                                                 \
+    ((double)MOTOR_SPEED_KI_A_PER_RPM_S / (double)MC_SPEED_LOOP_HZ * MC_SPEED_FULLSCALE_RPM /      \
+     BOARD_I_FULLSCALE_A)
+Q15_STATIC_ASSERT(MC_SPD_KP_ >= 0.0 && MC_SPD_KP_ < 128.0,
+                  "MOTOR_SPEED_KP_A_PER_RPM: Kp * speed FS / I_FS must be in [0, 128)");
+Q15_STATIC_ASSERT(MC_SPD_KI_ >= 0.0 && MC_SPD_KI_ < 1.0,
+                  "MOTOR_SPEED_KI_A_PER_RPM_S: Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be "
+                  "in [0, 1)");
+#define MC_SPD_KP       MC_MANT_OF(MC_SPD_KP_)
+#define MC_SPD_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_SPD_KP_))
+#define MC_SPD_KI       Q15(MC_SPD_KI_)
+
+/* Anti-windup gain of every loop: 1 - 2^-15 removes the whole excess each
+ * call (AN1078's 0.99999). */
+#define MC_PI_KC ((q15_t)32767)
+
+/* ---- start-up -------------------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MOTOR_LOCK_TIME_S *PWM_FREQUENCY_HZ >= 1.0 &&
+                      MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
+                  "MOTOR_LOCK_TIME_S: must be 1..65000 PWM periods");
+#define MC_LOCK_PERIODS ((uint16_t)(MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ + 0.5))
+
+Q15_STATIC_ASSERT(MC_OFFSET_CALIB_TIME_S *PWM_FREQUENCY_HZ >= 16.0 &&
+                      MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
+                  "MC_OFFSET_CALIB_TIME_S: must be 16..65000 PWM periods");
+#define MC_CALIB_PERIODS ((uint16_t)(MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ + 0.5))
+
+Q15_STATIC_ASSERT(MC_RETRY_COAST_S *PWM_FREQUENCY_HZ >= 0.0 &&
+                      MC_RETRY_COAST_S * PWM_FREQUENCY_HZ <= 65000.0,
+                  "MC_RETRY_COAST_S: must be 0..65000 PWM periods");
+#define MC_COAST_PERIODS ((uint16_t)(MC_RETRY_COAST_S * PWM_FREQUENCY_HZ + 0.5))
+
+Q15_STATIC_ASSERT(MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250,
+                  "MC_START_RETRIES: must be in 0..250");
+
+/* Open-loop ramp, constant acceleration: the 32-bit angle step grows by
+ * MC_RAMP_STEP_INC each period; the ramp ends when the step reaches
+ * MC_RAMP_STEP_END = MC_RAMP_STEP_INC * ramp periods (built from integers so
+ * the 16-bit build gets the same numbers). */
+#define MC_RAMP_PERIODS_ ((double)MOTOR_RAMP_TIME_S * (double)PWM_FREQUENCY_HZ)
+#define MC_RAMP_STEP_INC_                                                                          \
+    ((double)MOTOR_RAMP_END_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0 /               \
+     MC_RAMP_PERIODS_)
+Q15_STATIC_ASSERT(MOTOR_RAMP_END_RPM >= MC_ESTIMATOR_MIN_RPM &&
+                      MOTOR_RAMP_END_RPM < MOTOR_SPEED_NOMINAL_RPM,
+                  "MOTOR_RAMP_END_RPM: must be in [MC_ESTIMATOR_MIN_RPM, MOTOR_SPEED_NOMINAL_RPM)");
+Q15_STATIC_ASSERT(MC_RAMP_PERIODS_ >= 100.0 && MC_RAMP_PERIODS_ <= 4.0e6,
+                  "MOTOR_RAMP_TIME_S: must be 100..4e6 PWM periods");
+Q15_STATIC_ASSERT(MC_RAMP_STEP_INC_ >= 8.0,
+                  "MOTOR_RAMP_TIME_S: ramp too slow for the 32-bit angle (step increment < 8)");
+#define MC_RAMP_STEP_INC ((uint32_t)(MC_RAMP_STEP_INC_ + 0.5))
+#define MC_RAMP_STEP_END (MC_RAMP_STEP_INC * (uint32_t)(MC_RAMP_PERIODS_ + 0.5))
+/* Ramp end speed (mechanical Q15) = step end * fpwm * 60 / (2^32 pp FS). */
+#define MC_RAMP_END_Q15 MC_Q15_RPM(MOTOR_RAMP_END_RPM)
+
+/* Hand-off angle bleed per period, binary angle counts. */
+#define MC_BLEED_STEP_                                                                             \
+    ((double)MC_HANDOFF_BLEED_DEG_PER_S / (double)PWM_FREQUENCY_HZ * 65536.0 / 360.0)
+Q15_STATIC_ASSERT(MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 4096.0,
+                  "MC_HANDOFF_BLEED_DEG_PER_S: must give 1..4096 angle counts per period");
+#define MC_BLEED_STEP ((int16_t)(MC_BLEED_STEP_ + 0.5))
+
+/* ---- dead time ---------------------------------------------------------------------- */
+
+/* Dead time in duty counts: Td / Ts * PWM_DUTY_MAX = Td * Fcy (80 on the MCLV). */
+#define MC_DT_COUNTS_ ((double)PWM_DEADTIME_NS * 1e-9 * (double)BOARD_FCY_HZ)
+Q15_STATIC_ASSERT(MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
+                  "PWM_DEADTIME_NS: must be below 10 % of the PWM period");
+#define MC_DT_COUNTS ((int16_t)(MC_DT_COUNTS_ + 0.5))
+Q15_STATIC_ASSERT(MC_DEADTIME_BAND_A > 0.0 && MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
+                  "MC_DEADTIME_BAND_A: must be in (0, BOARD_I_FULLSCALE_A / 4)");
+#define MC_DT_BAND_Q15 MC_Q15_AMPS(MC_DEADTIME_BAND_A)
+/* Inside the band the correction is i * MC_DT_COUNTS / band = (i * MC_DT_SLOPE) >> 15. */
+#define MC_DT_SLOPE_ ((double)MC_DT_COUNTS * 32768.0 / (double)MC_DT_BAND_Q15)
+Q15_STATIC_ASSERT(MC_DT_SLOPE_ < 32767.0,
+                  "MC_DEADTIME_BAND_A: too narrow for the dead-time counts (slope >= 1)");
+#define MC_DT_SLOPE ((q15_t)(MC_DT_SLOPE_ + 0.5))
+
+/* Applied voltage from duties (note 2 of mc.h): v_alpha = (2 da - db - dc) *
+ * g >> 10 with g = vbus * MC_VAPP_K >> 15, MC_VAPP_K = sqrt(3) / (3
+ * PWM_DUTY_MAX) * VBUS_FS / VBUS_NOMINAL * 2^25. */
+#define MC_VAPP_K_                                                                                 \
+    (1.7320508075688772 / (3.0 * (double)PWM_DUTY_MAX) * (double)BOARD_VBUS_FULLSCALE_V /          \
+     (double)BOARD_VBUS_NOMINAL_V * 33554432.0)
+Q15_STATIC_ASSERT(MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
+                  "BOARD_VBUS_FULLSCALE_V: VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
+                  "range of the applied-voltage scaling");
+#define MC_VAPP_K ((q15_t)(MC_VAPP_K_ + 0.5))
+
+/* ---- protections ------------------------------------------------------------------------ */
+
+#define MC_STALL_TICKS_ ((double)MC_STALL_TIME_S * (double)MC_SPEED_LOOP_HZ)
+Q15_STATIC_ASSERT(MC_STALL_TICKS_ >= 2.0 && MC_STALL_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
+                  "MC_STALL_TIME_S: must be 2 speed-loop runs .. 50 ms");
+#define MC_STALL_TICKS        ((uint16_t)(MC_STALL_TICKS_ + 0.5))
+#define MC_STALL_TRACK_TICKS_ ((double)MC_STALL_TRACK_TIME_S * (double)MC_SPEED_LOOP_HZ)
+Q15_STATIC_ASSERT(MC_STALL_TRACK_TICKS_ >= 2.0 && MC_STALL_TRACK_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
+                  "MC_STALL_TRACK_TIME_S: must be 2 speed-loop runs .. 50 ms");
+#define MC_STALL_TRACK_TICKS ((uint16_t)(MC_STALL_TRACK_TICKS_ + 0.5))
+Q15_STATIC_ASSERT(MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,
+                  "MC_STALL_SPEED_MIN_RPM: must be in (0, MC_ESTIMATOR_MIN_RPM)");
+#define MC_STALL_SPEED_Q15 MC_Q15_RPM(MC_STALL_SPEED_MIN_RPM)
+Q15_STATIC_ASSERT(MC_STALL_SPEED_ERROR_RPM > 0.0 &&
+                      MC_STALL_SPEED_ERROR_RPM < MC_SPEED_FULLSCALE_RPM,
+                  "MC_STALL_SPEED_ERROR_RPM: must be in (0, MC_SPEED_FULLSCALE_RPM)");
+#define MC_STALL_SPEED_ERR_Q15 MC_Q15_RPM(MC_STALL_SPEED_ERROR_RPM)
+Q15_STATIC_ASSERT(MC_STALL_BEMF_LOW_FRACTION >= 0.0 && MC_STALL_BEMF_LOW_FRACTION < 1.0,
+                  "MC_STALL_BEMF_LOW_FRACTION: must be in [0, 1)");
+Q15_STATIC_ASSERT(MC_STALL_BEMF_HIGH_FRACTION > 1.0 && MC_STALL_BEMF_HIGH_FRACTION < 7.9,
+                  "MC_STALL_BEMF_HIGH_FRACTION: must be in (1, 7.9)");
+/* In the estimator's Q12 ratio format (4096 = as expected). */
+#define MC_STALL_BEMF_LO_Q12 ((int16_t)(MC_STALL_BEMF_LOW_FRACTION * 4096.0 + 0.5))
+#define MC_STALL_BEMF_HI_Q12 ((int16_t)(MC_STALL_BEMF_HIGH_FRACTION * 4096.0 + 0.5))
+
+/* ---- motor model and estimator -------------------------------------------------------- */
+
+Q15_STATIC_ASSERT(MOTOR_RS_OHM > 0.0, "MOTOR_RS_OHM: must be > 0");
+Q15_STATIC_ASSERT(MOTOR_LS_H > 0.0, "MOTOR_LS_H: must be > 0");
+Q15_STATIC_ASSERT(MC_TS_S *MOTOR_RS_OHM / MOTOR_LS_H < 1.0,
+                  "MOTOR_LS_H: F = 1 - Ts R / L must be > 0 (L too small for MOTOR_RS_OHM)");
+Q15_STATIC_ASSERT(MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A < 1.0,
+                  "MOTOR_LS_H: G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
+                  "scales)");
+Q15_STATIC_ASSERT(MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "MOTOR_KE_VPK_LL_PER_KRPM: must be > 0");
+Q15_STATIC_ASSERT(MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < MC_VOLTAGE_FULLSCALE_V,
+                  "MOTOR_SMC_GAIN_V: Kslide must be in (0, V_FS = BOARD_VBUS_NOMINAL_V / sqrt 3)");
+Q15_STATIC_ASSERT(MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
+                      MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,
+                  "MOTOR_SMC_LINEAR_BAND_A: must be in (1 LSB, BOARD_I_FULLSCALE_A)");
+Q15_STATIC_ASSERT(MC_SPEED_FILTER_HZ > 0.0 &&
+                      6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ < 1.0,
+                  "MC_SPEED_FILTER_HZ: 2 pi fc / MC_SPEED_LOOP_HZ must be in (0, 1)");
+
+/* Back-EMF, phase peak volts per electrical Hz. */
+#define MC_KE_V_PER_HZ                                                                             \
+    ((double)MOTOR_KE_VPK_LL_PER_KRPM / 1.7320508075688772 / (1000.0 * MOTOR_POLE_PAIRS / 60.0))
+
+#define MC_SMC_PARAMS_INIT                                                                         \
+    SMC_PARAMS_INIT(MOTOR_RS_OHM, MOTOR_LS_H, MC_TS_S, MC_VOLTAGE_FULLSCALE_V,                     \
+                    BOARD_I_FULLSCALE_A, (double)MOTOR_SMC_GAIN_V / MC_VOLTAGE_FULLSCALE_V,        \
+                    (double)MOTOR_SMC_LINEAR_BAND_A / BOARD_I_FULLSCALE_A, MC_OMEGA_FS_HZ,         \
+                    (double)MC_ESTIMATOR_MIN_RPM * MOTOR_POLE_PAIRS / 60.0, IRP_PERCALC,           \
+                    MC_SPEED_FILTER_HZ, MC_KE_V_PER_HZ)
+
+/* ---- field weakening ------------------------------------------------------------------- */
+
+#define MC_FW_COUNT_(a) +1
+Q15_STATIC_ASSERT((0 MOTOR_FW_ID_TABLE_A(MC_FW_COUNT_)) == 16,
+                  "MOTOR_FW_ID_TABLE_A: must have exactly 16 entries");
+#define MC_FW_NONPOS_(a) &&((a) <= 0.0 && (a) > -BOARD_I_FULLSCALE_A)
+Q15_STATIC_ASSERT((1 MOTOR_FW_ID_TABLE_A(MC_FW_NONPOS_)),
+                  "MOTOR_FW_ID_TABLE_A: every entry must be in (-BOARD_I_FULLSCALE_A, 0] amps");
+#define MC_FW_Q15_(a) MC_Q15_AMPS(a),
+#define MC_FW_TABLE_Q15                                                                            \
+    {                                                                                              \
+        MOTOR_FW_ID_TABLE_A(MC_FW_Q15_)                                                            \
+    }
+
+/*
+ * Notes
+ *
+ * 1. Every double above is rounded once to an integer whose exact value is
+ *    not near a half: the 16-bit build (32-bit double) must produce the same
+ *    integers, and make check-16bit compares the resulting mc_step outputs
+ *    bit for bit.
+ */
+
+#endif /* MC_DERIVED_H */

@@ -1,0 +1,112 @@
+/* motor_hispeed.h - a 2-pole-pair high-speed PMSM for the MCHV (320 V bus): ASSUMED data. */
+#ifndef MOTOR_HISPEED_H
+#define MOTOR_HISPEED_H
+
+/*
+ * ASSUMED DATA: the motor behind AN1078's "17 000 rpm" MCHV claim was not
+ * found (hardware.md 3.1). These are plausible values for a small 2-pole-pair
+ * high-speed PMSM on a 320 V bus, to exercise the build and the simulator;
+ * replace every electrical value with your motor's before running it.
+ * Tuning that depends on the motor. Every macro can be overridden with -D or by
+ * defining it before UserParms.h includes this file. Units are in every
+ * name; per-phase values are half the line-to-line meter reading.
+ */
+
+#define MOTOR_NAME "high-speed 2pp (assumed)"
+
+/* ---- electrical data -------------------------------------------------- */
+#ifndef MOTOR_POLE_PAIRS
+#define MOTOR_POLE_PAIRS 2
+#endif
+#ifndef MOTOR_RS_OHM
+#define MOTOR_RS_OHM 1.2 /* per phase, ASSUMED */
+#endif
+#ifndef MOTOR_LS_H
+#define MOTOR_LS_H 4.0e-3 /* per phase, ASSUMED */
+#endif
+#ifndef MOTOR_KE_VPK_LL_PER_KRPM
+#define MOTOR_KE_VPK_LL_PER_KRPM                                                                   \
+    10.0 /* ASSUMED */ /* back-EMF, peak line-to-line volts per 1000 rpm */
+#endif
+
+/* ---- speeds ------------------------------------------------------------- */
+#ifndef MOTOR_SPEED_NOMINAL_RPM
+#define MOTOR_SPEED_NOMINAL_RPM 17000.0 /* = FW max: no field weakening */
+#endif
+#ifndef MOTOR_SPEED_FW_MAX_RPM
+#define MOTOR_SPEED_FW_MAX_RPM 17000.0 /* top speed */
+#endif
+#ifndef MOTOR_SPEED_MIN_RPM
+#define MOTOR_SPEED_MIN_RPM 2000.0 /* lowest closed-loop speed */
+#endif
+#ifndef MOTOR_SPEED_FULLSCALE_RPM
+#define MOTOR_SPEED_FULLSCALE_RPM 24000.0 /* Q15 full scale of every speed in the core */
+#endif
+
+/* ---- currents ----------------------------------------------------------- */
+#ifndef MOTOR_CURRENT_MAX_A
+#define MOTOR_CURRENT_MAX_A 2.0 /* |Iq| limit of the speed loop */
+#endif
+#ifndef MOTOR_OVERCURRENT_A
+#define MOTOR_OVERCURRENT_A 4.0 /* software trip, any phase */
+#endif
+
+/* ---- start-up (AN1078 "Motor start-up") ------------------------------------ */
+#ifndef MOTOR_LOCK_TIME_S
+#define MOTOR_LOCK_TIME_S 0.25 /* rotor alignment at a fixed angle */
+#endif
+#ifndef MOTOR_LOCK_CURRENT_A
+#define MOTOR_LOCK_CURRENT_A 1.0 /* Iq during the lock (AN1078 INITIALTORQUE) */
+#endif
+#ifndef MOTOR_RAMP_TIME_S
+#define MOTOR_RAMP_TIME_S 1.0 /* open-loop ramp 0 -> MOTOR_RAMP_END_RPM */
+#endif
+#ifndef MOTOR_RAMP_END_RPM
+#define MOTOR_RAMP_END_RPM 2000.0 /* speed at the hand-off to closed loop */
+#endif
+#ifndef MOTOR_RAMP_CURRENT_A
+#define MOTOR_RAMP_CURRENT_A 1.0 /* Iq during the open-loop ramp */
+#endif
+
+/* ---- sliding-mode observer ------------------------------------------------ */
+#ifndef MOTOR_SMC_GAIN_V
+#define MOTOR_SMC_GAIN_V 170.0 /* Kslide: must exceed the largest back-EMF the observer sees */
+#endif
+#ifndef MOTOR_SMC_LINEAR_BAND_A
+#define MOTOR_SMC_LINEAR_BAND_A 0.08 /* MaxSMCError: linear band of the switching function */
+#endif
+
+/* ---- current PI (d and q): Kp = L * wc, Ki = R * wc cancels the winding pole,
+ * giving a first-order current loop of bandwidth wc. ------------------------ */
+#ifndef MOTOR_CURRENT_LOOP_BW_RAD_S
+#define MOTOR_CURRENT_LOOP_BW_RAD_S 2000.0
+#endif
+#ifndef MOTOR_CURRENT_KP_V_PER_A
+#define MOTOR_CURRENT_KP_V_PER_A (MOTOR_LS_H * MOTOR_CURRENT_LOOP_BW_RAD_S)
+#endif
+#ifndef MOTOR_CURRENT_KI_V_PER_AS
+#define MOTOR_CURRENT_KI_V_PER_AS (MOTOR_RS_OHM * MOTOR_CURRENT_LOOP_BW_RAD_S)
+#endif
+
+/* ---- speed PI ---------------------------------------------------------------- */
+#ifndef MOTOR_SPEED_KP_A_PER_RPM
+#define MOTOR_SPEED_KP_A_PER_RPM 0.0005
+#endif
+#ifndef MOTOR_SPEED_KI_A_PER_RPM_S
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.005
+#endif
+
+/* ---- field weakening: Id (A) at 16 speeds evenly spaced from
+ * MOTOR_SPEED_NOMINAL_RPM (entry 0) to MOTOR_SPEED_FW_MAX_RPM (entry 15).
+ * At 17 000 rpm the assumed back-EMF (170 V peak line to line) is well inside
+ * a 320 V bus, so no field weakening: the table is all zeros and nominal
+ * speed = FW max speed, as AN1078 says to disable it. ------------------------ */
+#ifndef MOTOR_FW_ID_TABLE_A
+/* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
+#define MOTOR_FW_ID_TABLE_A(X)                                                                     \
+    X(0.0)                                                                                         \
+    X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0)     \
+        X(0.0) X(0.0)
+#endif
+
+#endif /* MOTOR_HISPEED_H */

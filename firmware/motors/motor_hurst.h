@@ -1,0 +1,113 @@
+/* motor_hurst.h - Hurst075 "short Hurst" DMB0224C10002 (AC300020), 24 V: data and tuning. */
+#ifndef MOTOR_HURST_H
+#define MOTOR_HURST_H
+
+/*
+ * Motor data (hardware.md 3.1, AN1078's Hurst build) and the tuning that
+ * depends on the motor. Every macro can be overridden with -D or by
+ * defining it before UserParms.h includes this file. Units are in every
+ * name; per-phase values are half the line-to-line meter reading.
+ */
+
+#define MOTOR_NAME "Hurst075 DMB0224C10002"
+
+/* ---- electrical data -------------------------------------------------- */
+#ifndef MOTOR_POLE_PAIRS
+#define MOTOR_POLE_PAIRS 5
+#endif
+#ifndef MOTOR_RS_OHM
+#define MOTOR_RS_OHM 2.67 /* per phase (5.34 ohm line to line) */
+#endif
+#ifndef MOTOR_LS_H
+#define MOTOR_LS_H 1.92e-3 /* per phase (3.84 mH line to line) */
+#endif
+#ifndef MOTOR_KE_VPK_LL_PER_KRPM
+#define MOTOR_KE_VPK_LL_PER_KRPM 7.3 /* back-EMF, peak line-to-line volts per 1000 rpm */
+#endif
+
+/* ---- speeds ------------------------------------------------------------- */
+#ifndef MOTOR_SPEED_NOMINAL_RPM
+#define MOTOR_SPEED_NOMINAL_RPM 2700.0 /* field weakening starts above this */
+#endif
+#ifndef MOTOR_SPEED_FW_MAX_RPM
+#define MOTOR_SPEED_FW_MAX_RPM 5300.0 /* top of the field-weakening table */
+#endif
+#ifndef MOTOR_SPEED_MIN_RPM
+#define MOTOR_SPEED_MIN_RPM 500.0 /* lowest closed-loop speed (AN1078 MINSPEEDINRPM) */
+#endif
+#ifndef MOTOR_SPEED_FULLSCALE_RPM
+#define MOTOR_SPEED_FULLSCALE_RPM 8000.0 /* Q15 full scale of every speed in the core */
+#endif
+
+/* ---- currents ----------------------------------------------------------- */
+#ifndef MOTOR_CURRENT_MAX_A
+#define MOTOR_CURRENT_MAX_A 2.0 /* |Iq| limit of the speed loop (rated 1.64 A peak) */
+#endif
+#ifndef MOTOR_OVERCURRENT_A
+#define MOTOR_OVERCURRENT_A 3.5 /* software trip, any phase (AN1299's Hurst value) */
+#endif
+
+/* ---- start-up (AN1078 "Motor start-up") ------------------------------------ */
+#ifndef MOTOR_LOCK_TIME_S
+#define MOTOR_LOCK_TIME_S 0.25 /* rotor alignment at a fixed angle */
+#endif
+#ifndef MOTOR_LOCK_CURRENT_A
+#define MOTOR_LOCK_CURRENT_A 1.0 /* Iq during the lock (AN1078 INITIALTORQUE) */
+#endif
+#ifndef MOTOR_RAMP_TIME_S
+#define MOTOR_RAMP_TIME_S                                                                          \
+    1.0 /* open-loop ramp 0 -> MOTOR_RAMP_END_RPM (AN1078: 5 s with a brake) */
+#endif
+#ifndef MOTOR_RAMP_END_RPM
+#define MOTOR_RAMP_END_RPM 500.0 /* speed at the hand-off to closed loop */
+#endif
+#ifndef MOTOR_RAMP_CURRENT_A
+#define MOTOR_RAMP_CURRENT_A 1.0 /* Iq during the open-loop ramp */
+#endif
+
+/* ---- sliding-mode observer ------------------------------------------------ */
+#ifndef MOTOR_SMC_GAIN_V
+#define MOTOR_SMC_GAIN_V 12.0 /* Kslide: must exceed the largest back-EMF the observer sees */
+#endif
+#ifndef MOTOR_SMC_LINEAR_BAND_A
+#define MOTOR_SMC_LINEAR_BAND_A 0.044 /* MaxSMCError: linear band of the switching function */
+#endif
+
+/* ---- current PI (d and q): Kp = L * wc, Ki = R * wc cancels the winding pole,
+ * giving a first-order current loop of bandwidth wc. ------------------------ */
+#ifndef MOTOR_CURRENT_LOOP_BW_RAD_S
+#define MOTOR_CURRENT_LOOP_BW_RAD_S 2000.0
+#endif
+#ifndef MOTOR_CURRENT_KP_V_PER_A
+#define MOTOR_CURRENT_KP_V_PER_A (MOTOR_LS_H * MOTOR_CURRENT_LOOP_BW_RAD_S)
+#endif
+#ifndef MOTOR_CURRENT_KI_V_PER_AS
+#define MOTOR_CURRENT_KI_V_PER_AS (MOTOR_RS_OHM * MOTOR_CURRENT_LOOP_BW_RAD_S)
+#endif
+
+/* ---- speed PI ---------------------------------------------------------------- */
+#ifndef MOTOR_SPEED_KP_A_PER_RPM
+#define MOTOR_SPEED_KP_A_PER_RPM 0.002
+#endif
+#ifndef MOTOR_SPEED_KI_A_PER_RPM_S
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.02
+#endif
+
+/* ---- field weakening: Id (A) at 16 speeds evenly spaced from
+ * MOTOR_SPEED_NOMINAL_RPM (entry 0) to MOTOR_SPEED_FW_MAX_RPM (entry 15).
+ * Derived, not copied: the smallest |Id| that keeps the steady-state
+ * voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within 92 %
+ * of the 0.95 circle at 24 V (headroom for the current loops), with
+ * psi = Ke / sqrt(3) / w_e(1 krpm) = 8.05 mWb and a light load Iq = 0.3 A.
+ * Above about 4100 rpm |Id| exceeds the rated 1.64 A peak: the top of the
+ * range is for short bursts. Entry 0 is set to 0 (computed -0.039 A) so the
+ * reference is continuous at the nominal speed. (AN1078 reaches -2.1 A.) - */
+#ifndef MOTOR_FW_ID_TABLE_A
+/* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
+#define MOTOR_FW_ID_TABLE_A(X)                                                                     \
+    X(0.000)                                                                                       \
+    X(-0.320) X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) X(-1.852) X(-2.021)      \
+        X(-2.181) X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
+#endif
+
+#endif /* MOTOR_HURST_H */
