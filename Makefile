@@ -56,7 +56,7 @@ coverage:
 	tools/coverage_gate $(COV_DIR)
 
 check-16bit:
-	@tools/check16/run $(BUILD)/check16
+	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/check16/run $(BUILD)/check16
 
 lint:
 	@tools/lint

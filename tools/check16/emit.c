@@ -136,3 +136,12 @@ int16_t vec_edge_or_rand(uint32_t k)
 {
     return (k < VEC_N_EDGES) ? vec_edges[k] : vec_rand_i16();
 }
+
+int16_t vec_rom_i16(const int16_t *p)
+{
+#if defined(__AVR__)
+    return (int16_t)pgm_read_word(p);
+#else
+    return *p;
+#endif
+}

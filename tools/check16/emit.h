@@ -52,6 +52,21 @@ int16_t vec_rand_between(int16_t lo, int16_t hi);
 extern const int16_t vec_edges[VEC_N_EDGES];
 int16_t vec_edge_or_rand(uint32_t k);
 
+/*
+ * Recorded input tables (e.g. an ADC frame sequence for vec_mc.c) must not
+ * live in RAM on the AVR (8 KB; avr-gcc copies const data to RAM). Declare
+ * them `static const int16_t name[] VEC_ROM = {...};` and read each element
+ * with vec_rom_i16(&name[k]): flash (PROGMEM) on the AVR, plain const on the
+ * PC. Keep one table under 32 KB (16-bit flash pointers on the AVR).
+ */
+#if defined(__AVR__)
+#include <avr/pgmspace.h>
+#define VEC_ROM PROGMEM
+#else
+#define VEC_ROM
+#endif
+int16_t vec_rom_i16(const int16_t *p);
+
 /* Provided by main.c: one output character (UART on the AVR, stdout on the PC). */
 void emit_putc(char c);
 
