@@ -47,11 +47,11 @@ typedef int16_t angle_q15_t;
  * as an extension); elsewhere a negative-size array whose name carries the
  * line number, so older XC16 still stops the build. */
 #define Q15_CAT_(a, b) a##b
-#define Q15_CAT(a, b) Q15_CAT_(a, b)
+#define Q15_CAT(a, b)  Q15_CAT_(a, b)
 #if defined(__GNUC__) && ((__GNUC__ > 4) || (__GNUC__ == 4 && __GNUC_MINOR__ >= 6))
 #define Q15_STATIC_ASSERT(cond, msg) _Static_assert(cond, msg)
 #else
-#define Q15_STATIC_ASSERT(cond, msg) \
+#define Q15_STATIC_ASSERT(cond, msg)                                                               \
     typedef char Q15_CAT(static_assert_failed_line_, __LINE__)[(cond) ? 1 : -1]
 #endif
 
@@ -62,9 +62,8 @@ typedef int16_t angle_q15_t;
 
 /* Raw value of x * 32768 rounded half away from zero, 1.0 saturating to
  * 32767; only for x already range-checked. */
-#define Q15_ROUND_(x)                                 \
-    ((x) * 32768.0 >= 32767.5 ? 32767L                \
-                              : (long)((x) * 32768.0 + ((x) >= 0 ? 0.5 : -0.5)))
+#define Q15_ROUND_(x)                                                                              \
+    ((x)*32768.0 >= 32767.5 ? 32767L : (long)((x)*32768.0 + ((x) >= 0 ? 0.5 : -0.5)))
 
 /* Q15(x): a compile-time Q15 constant from a real number in [-1, 1].
  * Scales symmetrically by 32768 and rounds to nearest; 1.0 (and anything
@@ -75,8 +74,10 @@ typedef int16_t angle_q15_t;
 #define Q15_SCALED(x, fullscale) Q15((double)(x) / (double)(fullscale))
 
 /* Binary angle of a value in degrees, any real (wraps). 180 -> -32768. */
-#define ANGLE_Q15_DEG(deg) \
-    ((angle_q15_t)(int16_t)(uint16_t)((unsigned long)((long)((deg) * 65536.0 / 360.0 + ((deg) >= 0 ? 0.5 : -0.5))) & 0xFFFFUL))
+#define ANGLE_Q15_DEG(deg)                                                                         \
+    ((angle_q15_t)(int16_t)(uint16_t)((unsigned long)((long)((deg)*65536.0 / 360.0 +               \
+                                                             ((deg) >= 0 ? 0.5 : -0.5))) &         \
+                                      0xFFFFUL))
 
 /* ---- saturation --------------------------------------------------------- */
 
