@@ -20,8 +20,9 @@
  * the interpolation (0.5). Exact at 0, 90, 180, 270 degrees (0 and +-32767);
  * |output| <= 32767 always, so negating it never saturates.
  *
- * Cost: per output one 16 x 16 multiply (difference x fraction, <= 402 x 127,
- * fits 16 bits but formed in 32 to be portable), no division, no float.
+ * Cost: per output two table reads and one 16 x 16 multiply (difference x
+ * fraction, <= 402 x 127 = 51,054, formed in 32 bits because it exceeds
+ * int16_t), no division, no float.
  */
 
 #define SINCOS_INDEX_BITS 7U /* 128 intervals per quarter turn */

@@ -19,7 +19,7 @@
  *   4.4e-5 of full scale); exact at 0, 90, 180 and 270 degrees (0, +-32767);
  *   32768 |sin^2 + cos^2 - 1| <= 4.25 LSB (measured 3.56). The original AN1078 table (128
  *   entries per turn) gives about 10 LSB.
- *   Cost: two table look-ups and two 16 x 16 multiplies, no division.
+ *   Cost: four table reads and two 16 x 16 multiplies, no division.
  */
 sincos_q15_t sincos_compute(angle_q15_t theta);
 
