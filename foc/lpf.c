@@ -23,7 +23,7 @@
  * Resolution: the update is exact to 2^-30, so with K = 1 LSB (2^-15) the
  * filter still moves while |x - y| > 2^-16 (half a Q15 LSB); a 16-bit state
  * with truncating products stops moving once |x - y| < 1 / K LSB (32,768 LSB
- * at K = 1 LSB, 333 LSB at K = Q15(0.003)) and loses a small signal entirely.
+ * at K = 1 LSB, 334 LSB at K = Q15(0.003)) and loses a small signal entirely.
  */
 
 void lpf_reset(lpf_t *f, q15_t y0)
