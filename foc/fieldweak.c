@@ -58,7 +58,7 @@ q15_t fieldweak_id_ref(const fieldweak_t *fw, q15_t speed)
 
     /* Fraction within the segment, r / span as Q16, rounded: < 1 Q16 LSB
      * of error, <= 65534 (note 2). */
-    uint32_t round_add = (fw->shift > 0U) ? ((uint32_t)1UL << (fw->shift - 1U)) : 0UL;
+    uint32_t round_add = (fw->shift > 0U) ? ((uint32_t)1U << (fw->shift - 1U)) : (uint32_t)0U;
     uint32_t frac = ((uint32_t)r * fw->recip + round_add) >> fw->shift;
 
     /* Id = t[i] + frac (t[i+1] - t[i]) / 2^16, rounded to nearest, ties up. */
