@@ -30,6 +30,7 @@ static const ev_desc_t EVENTS[] = {
     {"hw_fault", SIM_EV_HW_FAULT, 0, 0},
     {"deadtime", SIM_EV_DEADTIME, 1, 1},
     {"noise", SIM_EV_NOISE, 1, 1},
+    {"zoom", SIM_EV_ZOOM, 0, 1},
     {"end", SIM_EV_END, 0, 0},
 };
 

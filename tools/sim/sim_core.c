@@ -1,0 +1,477 @@
+/* sim_core.c - one PWM period of core + bench, metrics, CSV and the summary table. */
+#include "sim_core.h"
+
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define Q15_TO(x, fs) ((double)(x) / 32768.0 * (double)(fs))
+#define RAD_TO_DEG    (180.0 / M_PI)
+
+/* Angle-error window: skip this long after entering closed loop (the
+ * hand-off bleeds the forced-angle offset away). */
+#define SIMCORE_SETTLE_S 0.1
+
+void simcore_cfg_default(simcore_cfg_t *cfg)
+{
+    cfg->motor = "hurst";
+    cfg->board = "mclv";
+    cfg->rs_scale = 1.0;
+    cfg->l_scale = 1.0;
+    cfg->ke_scale = 1.0;
+    cfg->j_scale = 1.0;
+    cfg->theta0_rad = 0.0;
+    cfg->deadtime_s = -1.0;
+    cfg->noise_codes = -1.0;
+    cfg->vbus_v = -1.0;
+    cfg->seed = 1u;
+    cfg->substeps = 4;
+    cfg->csv_decim = 10;
+    cfg->csv = NULL;
+    cfg->progress = false;
+}
+
+const char *simcore_state_name(int state)
+{
+    switch (state) {
+        case MC_STATE_STOPPED:
+            return "STOPPED";
+        case MC_STATE_CALIBRATE:
+            return "CALIBRATE";
+        case MC_STATE_LOCK:
+            return "LOCK";
+        case MC_STATE_OPEN_LOOP:
+            return "OPEN_LOOP";
+        case MC_STATE_CLOSED_LOOP:
+            return "CLOSED_LOOP";
+        case MC_STATE_FAULT:
+            return "FAULT";
+        default:
+            return "?";
+    }
+}
+
+const char *simcore_fault_name(unsigned fault)
+{
+    static const char *const names[] = {
+        "none",         "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE",
+        "START_FAILED", "STALL_SPEED", "STALL_BEMF",   "STALL_TRACK", "OFFSET"};
+    return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
+}
+
+double simcore_pot_for_rpm(double rpm)
+{
+    double span = (double)SPEED_REF_MAX_RPM - (double)SPEED_REF_MIN_RPM;
+    double pot;
+    if (rpm == SIM_SPEED_MAX) {
+        return 1.0;
+    }
+    if (rpm == SIM_SPEED_MIN) {
+        return 0.0;
+    }
+    pot = (span > 0.0) ? (rpm - (double)SPEED_REF_MIN_RPM) / span : 0.0;
+    if (pot < 0.0 || pot > 1.0) {
+        fprintf(stderr, "sim: speed %.0f rpm outside the pot range %.0f..%.0f rpm, clamped\n", rpm,
+                (double)SPEED_REF_MIN_RPM, (double)SPEED_REF_MAX_RPM);
+        pot = (pot < 0.0) ? 0.0 : 1.0;
+    }
+    /* The pot is read by a 10-bit ADC: aim at the middle of a code. */
+    return pot;
+}
+
+int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
+{
+    sim_rig_params_t rp;
+    memset(s, 0, sizeof(*s));
+    s->cfg = *cfg;
+    s->mp = sim_motor_profile(cfg->motor);
+    s->bp = sim_board_profile(cfg->board);
+    if (s->mp == NULL || s->bp == NULL) {
+        fprintf(stderr, "sim: unknown %s '%s' (%s)\n", (s->mp == NULL) ? "motor" : "board",
+                (s->mp == NULL) ? cfg->motor : cfg->board, sim_profiles_list());
+        return -1;
+    }
+    if (s->mp->pole_pairs != (int)MOTOR_POLE_PAIRS) {
+        fprintf(stderr,
+                "sim: the simulated motor '%s' has %d pole pairs but the core was built for %d "
+                "(MOTOR=%s?): rebuild with the same MOTOR\n",
+                s->mp->name, s->mp->pole_pairs, (int)MOTOR_POLE_PAIRS, s->mp->name);
+        return -1;
+    }
+    sim_motor_params_from_profile(s->mp, &rp.motor);
+    rp.motor.rs_ohm *= cfg->rs_scale;
+    rp.motor.ld_h *= cfg->l_scale;
+    rp.motor.lq_h *= cfg->l_scale;
+    rp.motor.psi_vs *= cfg->ke_scale;
+    rp.motor.j_kgm2 *= cfg->j_scale;
+    rp.inv.vbus_v = (cfg->vbus_v >= 0.0) ? cfg->vbus_v : s->bp->vbus_v;
+    rp.inv.ripple_v = 0.0;
+    rp.inv.ripple_hz = 0.0;
+    rp.inv.deadtime_s = (cfg->deadtime_s >= 0.0) ? cfg->deadtime_s : s->bp->deadtime_s;
+    rp.inv.pwm_hz = (double)PWM_FREQUENCY_HZ;
+    rp.inv.duty_max = (double)PWM_DUTY_MAX;
+    rp.inv.i_band_a = 0.0;
+    rp.adc.i_fs_a = (double)BOARD_I_FULLSCALE_A;
+    rp.adc.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
+    rp.adc.bits = 10;
+    rp.adc.offset_a_codes = s->bp->offset_a_codes;
+    rp.adc.offset_b_codes = s->bp->offset_b_codes;
+    rp.adc.noise_codes = (cfg->noise_codes >= 0.0) ? cfg->noise_codes : s->bp->noise_codes;
+    rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
+    rp.substeps = cfg->substeps;
+    rp.theta_e0 = cfg->theta0_rad;
+    rp.omega0_m = 0.0;
+    rp.fan_rated_rpm = s->mp->rated_rpm;
+    sim_rig_init(&s->rig, &rp);
+    mc_init(&s->mc);
+    mc_status(&s->mc, &s->st);
+    s->rated_nm = sim_motor_rated_torque(s->mp);
+    s->t_start_s = -1.0;
+    s->t_closed_s = -1.0;
+    s->t_enter_closed_s = -1.0;
+    s->prev_state = (int)s->st.state;
+    s->last_event_s = 0.0;
+    strcpy(s->last_event, "-");
+    return 0;
+}
+
+void simcore_request(simcore_t *s, mc_request_t r)
+{
+    if ((r == MC_REQUEST_START || r == MC_REQUEST_START_STOP) && s->t_start_s < 0.0) {
+        s->t_start_s = s->rig.t;
+    }
+    mc_request(&s->mc, r);
+}
+
+void simcore_set_speed(simcore_t *s, double rpm)
+{
+    sim_event_t ev = {0.0, SIM_EV_POT, 0.0, 0.0};
+    ev.v1 = simcore_pot_for_rpm(rpm);
+    sim_rig_apply(&s->rig, &ev);
+}
+
+void simcore_event(simcore_t *s, const sim_event_t *ev)
+{
+    sim_event_t e = *ev;
+    snprintf(s->last_event, sizeof(s->last_event), "%s", sim_event_name(ev->kind));
+    s->last_event_s = s->rig.t;
+    switch (ev->kind) {
+        case SIM_EV_START:
+            if (s->st.state == MC_STATE_STOPPED || s->st.state == MC_STATE_FAULT) {
+                simcore_request(s, MC_REQUEST_START);
+            }
+            return;
+        case SIM_EV_STOP:
+            if (s->st.state != MC_STATE_STOPPED && s->st.state != MC_STATE_FAULT) {
+                simcore_request(s, MC_REQUEST_STOP);
+            }
+            return;
+        case SIM_EV_BUTTON:
+            simcore_request(s, MC_REQUEST_START_STOP);
+            return;
+        case SIM_EV_HW_FAULT:
+            simcore_request(s, MC_REQUEST_HW_FAULT);
+            return;
+        case SIM_EV_ZOOM:
+            s->zoom_until_s = s->rig.t + ((ev->v1 > 0.0) ? ev->v1 : 0.02);
+            return;
+        case SIM_EV_SPEED:
+            e.kind = SIM_EV_POT;
+            e.v1 = simcore_pot_for_rpm(ev->v1);
+            break;
+        case SIM_EV_SPEED_RAMP:
+            e.kind = SIM_EV_POT_RAMP;
+            e.v1 = simcore_pot_for_rpm(ev->v1);
+            break;
+        default:
+            break;
+    }
+    (void)sim_rig_apply(&s->rig, &e);
+}
+
+static double wrap_deg(double d)
+{
+    d = fmod(d, 360.0);
+    if (d >= 180.0) {
+        d -= 360.0;
+    } else if (d < -180.0) {
+        d += 360.0;
+    }
+    return d;
+}
+
+static void log_transition(simcore_t *s, int from, int to)
+{
+    if (s->n_log < SIMCORE_MAX_LOG) {
+        s->log[s->n_log].t_s = s->now.t_s;
+        s->log[s->n_log].from = from;
+        s->log[s->n_log].to = to;
+        s->log[s->n_log].fault = s->now.fault;
+        s->n_log++;
+    }
+}
+
+static void csv_row(const simcore_t *s)
+{
+    const simcore_sample_t *n = &s->now;
+    fprintf(s->cfg.csv,
+            "%.6f,%d,%u,%.2f,%.2f,%.2f,%.2f,%.3f,%.3f,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,"
+            "%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.5f,%.5f,%.3f,%.3f,%d,%d\n",
+            n->t_s, n->state, n->fault, n->speed_target_rpm, n->speed_ref_rpm, n->speed_est_rpm,
+            n->speed_rpm, n->theta_est_deg, n->theta_deg, n->theta_err_deg, n->id_ref_a, n->id_a,
+            n->iq_ref_a, n->iq_a, n->id_true_a, n->iq_true_a, n->ia_a, n->ib_a, n->ic_a, n->duty[0],
+            n->duty[1], n->duty[2], n->outputs_on ? 1 : 0, n->vbus_v, n->load_nm, n->torque_nm,
+            n->vd_v, n->vq_v, n->estimator_valid ? 1 : 0, (n->t_s < s->zoom_until_s) ? 1 : 0);
+}
+
+void simcore_csv_header(FILE *f)
+{
+    fprintf(f, "t_s,state,fault,speed_target_rpm,speed_ref_rpm,speed_est_rpm,speed_rpm,"
+               "theta_est_deg,theta_deg,theta_err_deg,id_ref_A,id_A,iq_ref_A,iq_A,id_true_A,"
+               "iq_true_A,ia_A,ib_A,ic_A,duty_a,duty_b,duty_c,outputs_on,vbus_V,load_Nm,"
+               "torque_Nm,vd_V,vq_V,estimator_valid,zoom\n");
+}
+
+static void update_metrics(simcore_t *s)
+{
+    const simcore_sample_t *n = &s->now;
+    double ipk = fmax(fabs(n->ia_a), fmax(fabs(n->ib_a), fabs(n->ic_a)));
+    int k;
+    if (ipk > s->i_peak_a) {
+        s->i_peak_a = ipk;
+        s->t_i_peak_s = n->t_s;
+    }
+    if (n->state != s->prev_state) {
+        log_transition(s, s->prev_state, n->state);
+        if (n->state == MC_STATE_CLOSED_LOOP) {
+            s->t_enter_closed_s = n->t_s;
+            if (s->t_closed_s < 0.0) {
+                s->t_closed_s = n->t_s;
+            }
+        }
+        s->prev_state = n->state;
+    }
+    for (k = 0; k < s->n_seg; k++) {
+        simcore_segment_t *g = &s->seg[k];
+        if (n->t_s >= g->win_s && n->t_s < g->t1_s) {
+            g->n_all++;
+            g->state_end = n->state;
+            g->fault_end = n->fault;
+            if (n->state == MC_STATE_CLOSED_LOOP &&
+                n->t_s >= s->t_enter_closed_s + SIMCORE_SETTLE_S) {
+                g->n++;
+                g->ref_sum += n->speed_ref_rpm;
+                g->spd_sum += n->speed_rpm;
+                g->est_sum += n->speed_est_rpm;
+                g->iq_sum += n->iq_true_a;
+                g->ang_sum += n->theta_err_deg;
+                g->ang_sum2 += n->theta_err_deg * n->theta_err_deg;
+                g->ang_max = fmax(g->ang_max, fabs(n->theta_err_deg));
+            }
+        }
+    }
+}
+
+void simcore_step(simcore_t *s)
+{
+    sim_adc_frame_t f;
+    mc_adc_frame_t in;
+    mc_pwm_out_t out;
+    simcore_sample_t *n = &s->now;
+    const sim_plant_t *p = &s->rig.plant;
+    double theta_true;
+
+    sim_rig_sample(&s->rig, &f);
+    in.ia = f.ia;
+    in.ib = f.ib;
+    in.vbus = f.vbus;
+    in.pot = f.pot;
+    theta_true = p->s.theta_e;
+    n->t_s = s->rig.t;
+    n->speed_rpm = sim_plant_rpm(p);
+    n->id_true_a = p->s.id;
+    n->iq_true_a = p->s.iq;
+    n->ia_a = s->rig.i_abc[0];
+    n->ib_a = s->rig.i_abc[1];
+    n->ic_a = s->rig.i_abc[2];
+    n->vbus_v = s->rig.vbus_sampled;
+    n->load_nm =
+        p->load.passive_nm + p->load.active_nm + p->load.fan_k * p->s.omega_m * fabs(p->s.omega_m);
+    n->torque_nm = sim_plant_torque(p);
+
+    mc_step(&s->mc, &in, &out);
+    mc_status(&s->mc, &s->st);
+
+    n->state = (int)s->st.state;
+    n->fault = s->st.fault;
+    n->speed_target_rpm = Q15_TO(s->st.speed_target, MC_SPEED_FULLSCALE_RPM);
+    n->speed_ref_rpm = Q15_TO(s->st.speed_ref, MC_SPEED_FULLSCALE_RPM);
+    n->speed_est_rpm = Q15_TO(s->st.speed_est, MC_SPEED_FULLSCALE_RPM);
+    n->theta_est_deg = (double)s->st.theta_est / 32768.0 * 180.0;
+    n->theta_deg = theta_true * RAD_TO_DEG;
+    n->theta_err_deg = wrap_deg(n->theta_est_deg - n->theta_deg);
+    n->id_ref_a = Q15_TO(s->st.id_ref, BOARD_I_FULLSCALE_A);
+    n->iq_ref_a = Q15_TO(s->st.iq_ref, BOARD_I_FULLSCALE_A);
+    n->id_a = Q15_TO(s->st.id, BOARD_I_FULLSCALE_A);
+    n->iq_a = Q15_TO(s->st.iq, BOARD_I_FULLSCALE_A);
+    n->vd_v = Q15_TO(s->st.vd, MC_VOLTAGE_FULLSCALE_V);
+    n->vq_v = Q15_TO(s->st.vq, MC_VOLTAGE_FULLSCALE_V);
+    n->duty[0] = (double)out.duty[0] / (double)PWM_DUTY_MAX;
+    n->duty[1] = (double)out.duty[1] / (double)PWM_DUTY_MAX;
+    n->duty[2] = (double)out.duty[2] / (double)PWM_DUTY_MAX;
+    n->outputs_on = out.outputs_on;
+    n->estimator_valid = s->st.estimator_valid;
+
+    sim_rig_advance(&s->rig, out.duty, out.outputs_on);
+    update_metrics(s);
+    if (s->cfg.csv != NULL && s->cfg.csv_decim > 0 &&
+        ((s->rig.period - 1) % s->cfg.csv_decim == 0 || n->t_s < s->zoom_until_s)) {
+        csv_row(s);
+    }
+}
+
+void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name)
+{
+    int next = 0, k;
+    long periods = (long)floor(sc->end_s * (double)PWM_FREQUENCY_HZ + 0.5);
+    clock_t c0 = clock();
+    double last_report = 0.0;
+    bool reported = false;
+
+    /* Segments between events (events at the same time share one). */
+    s->n_seg = 0;
+    for (k = 0; k < sc->n && s->n_seg < SIMCORE_MAX_SEG; k++) {
+        const sim_event_t *e = &sc->ev[k];
+        simcore_segment_t *g;
+        if (e->kind == SIM_EV_END) {
+            break;
+        }
+        if (e->kind == SIM_EV_ZOOM || e->kind == SIM_EV_NOISE || e->kind == SIM_EV_DEADTIME) {
+            continue; /* not a change of operating point */
+        }
+        if (s->n_seg > 0 && s->seg[s->n_seg - 1].t0_s == e->t_s) {
+            g = &s->seg[s->n_seg - 1];
+            if (strlen(g->label) + strlen(sim_event_name(e->kind)) + 2 < sizeof(g->label)) {
+                strcat(g->label, "+");
+                strcat(g->label, sim_event_name(e->kind));
+            }
+            continue;
+        }
+        g = &s->seg[s->n_seg++];
+        memset(g, 0, sizeof(*g));
+        g->t0_s = e->t_s;
+        snprintf(g->label, sizeof(g->label), "%s", sim_event_name(e->kind));
+        if (e->kind == SIM_EV_SPEED || e->kind == SIM_EV_SPEED_RAMP) {
+            if (e->v1 == SIM_SPEED_MAX) {
+                snprintf(g->label, sizeof(g->label), "%s max", sim_event_name(e->kind));
+            } else {
+                snprintf(g->label, sizeof(g->label), "%s %.0f", sim_event_name(e->kind), e->v1);
+            }
+        } else if (e->kind == SIM_EV_LOAD || e->kind == SIM_EV_LOAD_FAN || e->kind == SIM_EV_VBUS) {
+            snprintf(g->label, sizeof(g->label), "%s %.3g", sim_event_name(e->kind), e->v1);
+        }
+    }
+    for (k = 0; k < s->n_seg; k++) {
+        s->seg[k].t1_s = (k + 1 < s->n_seg) ? s->seg[k + 1].t0_s : sc->end_s;
+        s->seg[k].win_s = s->seg[k].t0_s + 0.5 * (s->seg[k].t1_s - s->seg[k].t0_s);
+    }
+
+    while (s->rig.period < periods) {
+        double t = s->rig.t;
+        while (next < sc->n && sc->ev[next].t_s <= t + 0.5 / (double)PWM_FREQUENCY_HZ) {
+            if (sc->ev[next].kind != SIM_EV_END) {
+                simcore_event(s, &sc->ev[next]);
+            }
+            next++;
+        }
+        simcore_step(s);
+        if (s->cfg.progress && (s->rig.period & 4095) == 0) {
+            double wall = (double)(clock() - c0) / CLOCKS_PER_SEC;
+            if (wall > 2.0 && wall - last_report >= 1.0) {
+                fprintf(stderr, "\rsim %s: %.2f / %.2f s simulated (%3.0f %%), %.0f s wall", name,
+                        s->rig.t, sc->end_s, 100.0 * s->rig.t / sc->end_s, wall);
+                last_report = wall;
+                reported = true;
+            }
+        }
+    }
+    if (reported) {
+        fprintf(stderr, "\n");
+    }
+}
+
+void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
+{
+    int k;
+    double ang_sum = 0.0, ang_sum2 = 0.0, ang_max = 0.0;
+    long ang_n = 0;
+    int n_fault = 0;
+
+    fprintf(f,
+            "\n== sim: scenario %s | motor %s (%s) | board %s, Vbus %.1f V, dead time %.1f us, "
+            "ADC noise %.1f LSB\n",
+            name, s->mp->name, s->mp->desc, s->bp->name, s->bp->vbus_v,
+            s->rig.inv.prm.deadtime_s * 1e6, s->rig.adc.prm.noise_codes);
+    if (s->cfg.rs_scale != 1.0 || s->cfg.l_scale != 1.0 || s->cfg.ke_scale != 1.0) {
+        fprintf(f, "   plant mismatch vs UserParms.h: R x%.2f, L x%.2f, Ke x%.2f\n",
+                s->cfg.rs_scale, s->cfg.l_scale, s->cfg.ke_scale);
+    }
+    for (k = 0; k < s->n_seg; k++) {
+        ang_sum += s->seg[k].ang_sum;
+        ang_sum2 += s->seg[k].ang_sum2;
+        ang_max = fmax(ang_max, s->seg[k].ang_max);
+        ang_n += s->seg[k].n;
+    }
+    if (s->t_closed_s >= 0.0 && s->t_start_s >= 0.0) {
+        fprintf(f, "   time to closed loop       %.3f s (START at %.3f s)\n",
+                s->t_closed_s - s->t_start_s, s->t_start_s);
+    } else {
+        fprintf(f, "   time to closed loop       never\n");
+    }
+    if (ang_n > 0) {
+        double mean = ang_sum / (double)ang_n;
+        fprintf(f,
+                "   angle error (est - true)  mean %+.2f deg, rms %.2f deg, max |.| %.2f deg "
+                "(settled closed loop, 2nd half of each segment)\n",
+                mean, sqrt(ang_sum2 / (double)ang_n), ang_max);
+    }
+    fprintf(f,
+            "   peak phase current        %.2f A at %.3f s (rated %.2f A, ADC full scale %.2f A)\n",
+            s->i_peak_a, s->t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
+    for (k = 0; k < s->n_log; k++) {
+        if (s->log[k].to == MC_STATE_FAULT) {
+            n_fault++;
+        }
+    }
+    fprintf(f, "   faults                    %d", n_fault);
+    for (k = 0; k < s->n_log; k++) {
+        if (s->log[k].to == MC_STATE_FAULT) {
+            fprintf(f, "%s%s at %.4f s", (n_fault > 0) ? "  " : "",
+                    simcore_fault_name(s->log[k].fault), s->log[k].t_s);
+        }
+    }
+    fprintf(f, "\n   states                   ");
+    for (k = 0; k < s->n_log && k < 24; k++) {
+        fprintf(f, " %.3f:%s", s->log[k].t_s, simcore_state_name(s->log[k].to));
+    }
+    fprintf(f, "\n   %-20s %7s %7s %-11s %8s %8s %8s %7s %7s %7s %6s\n", "segment (event)",
+            "from_s", "to_s", "state_end", "ref_rpm", "true_rpm", "est_rpm", "spd_err%", "ang_avg",
+            "ang_max", "iq_A");
+    for (k = 0; k < s->n_seg; k++) {
+        const simcore_segment_t *g = &s->seg[k];
+        fprintf(f, "   %-20s %7.3f %7.3f %-11s", g->label, g->t0_s, g->t1_s,
+                (g->n_all > 0) ? simcore_state_name(g->state_end) : "-");
+        if (g->n > 0) {
+            double ref = g->ref_sum / (double)g->n, spd = g->spd_sum / (double)g->n;
+            fprintf(f, " %8.1f %8.1f %8.1f %7.2f%% %+7.2f %7.2f %6.3f\n", ref, spd,
+                    g->est_sum / (double)g->n, (ref != 0.0) ? 100.0 * (spd - ref) / ref : 0.0,
+                    g->ang_sum / (double)g->n, g->ang_max, g->iq_sum / (double)g->n);
+        } else {
+            fprintf(f, " %8s %8s %8s %8s %7s %7s %6s\n", "-", "-", "-", "-", "-", "-", "-");
+        }
+    }
+}
