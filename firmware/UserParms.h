@@ -25,7 +25,13 @@
 #endif
 
 /* ---- motor profile ------------------------------------------------------- */
-#if defined(MC_MOTOR_HURST300)
+/* The build passes MC_MOTOR_HEADER="motors/motor_<MOTOR>.h", so any profile
+ * dropped into firmware/motors/ (e.g. one written by tools/tune) is selected
+ * with make MOTOR=<name>; the list below serves builds that pass only the
+ * MC_MOTOR_<NAME> definition. */
+#if defined(MC_MOTOR_HEADER)
+#include MC_MOTOR_HEADER
+#elif defined(MC_MOTOR_HURST300)
 #include "motors/motor_hurst300.h"
 #elif defined(MC_MOTOR_HISPEED)
 #include "motors/motor_hispeed.h"
