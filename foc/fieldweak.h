@@ -36,8 +36,11 @@
  * and rounded once (nearest, ties up). The result lies between the two
  * bracketing table entries, so it cannot overflow.
  * Accuracy: |Id_ref - exact interpolation| <= 0.5 LSB + |step| / 65536 LSB
- * (step = difference of the bracketing entries); at table points exact.
- * Measured figures: note 1 in fieldweak.c, test/foc/test_fieldweak.c.
+ * (step = difference of the bracketing entries); at table points, below
+ * nominal and above max exact. Measured over every speed -32768..32767
+ * (test/foc/test_fieldweak.c): 0.55 LSB max for an AN1078-like falling
+ * table (0 to -0.7) on 12 spans; 1.15 LSB for tables alternating between
+ * +-full scale (step 65535), never above the bound.
  */
 #define FIELDWEAK_TABLE_SIZE 16
 

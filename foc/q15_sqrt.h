@@ -15,8 +15,11 @@
  *   x <= 0 gives 0 (the square root of a negative value is not defined;
  *   0 is the nearest non-negative answer). x = 32767 gives 32767.
  *   Scaling and overflow: x * 2^15 < 2^30 fits 32 bits; the result is
- *   < 32767.5, so it always fits q15_t. Error <= 0.5 LSB (exhaustively
- *   measured over all 32,768 non-negative inputs in test/foc/test_vlimit.c).
+ *   < 32767.5, so it always fits q15_t. Error <= 0.5 LSB: measured over all
+ *   32,768 non-negative inputs, max 0.49999 LSB (at 32767), mean 0.25
+ *   (test/foc/test_vlimit.c). q15_isqrt_u32 equals round(sqrt(n)) on all
+ *   2.4 million inputs tested (every n < 2^20, every k^2 - 1 .. k^2 + k + 1,
+ *   10^6 random).
  */
 uint32_t q15_isqrt_u32(uint32_t n);
 q15_t q15_sqrt(q15_t x);

@@ -26,8 +26,10 @@
  *                      -32768 for Vpi < 0, 0 for Vpi = 0 (saturated; the
  *                      caller's voltage limit and SVGen clamp follow).
  *   small vbus:        V saturates as soon as |Vpi| Target / DCbus >= 1.
- * Accuracy: |V - Equation 8| <= 0.5 LSB wherever it is not saturated
- * (measured: note 1 in ripple.c, test/foc/test_ripple.c).
+ * Accuracy: |V - Equation 8 (saturated)| <= 0.5 LSB: the correctly rounded
+ * value. Measured 0.5000 LSB max (exact ties), 0.16 mean, over 6.9 million
+ * DCbus x Target x Vpi grid points, 32 % of them saturated
+ * (test/foc/test_ripple.c).
  */
 
 /* One component. */
