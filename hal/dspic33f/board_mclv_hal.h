@@ -1,0 +1,43 @@
+/* board_mclv_hal.h - HAL-side facts of the dsPICDEM MCLV with the dsPIC33FJ32MC204 PIM. */
+#ifndef BOARD_MCLV_HAL_H
+#define BOARD_MCLV_HAL_H
+
+/*
+ * What the HAL needs beyond the core's board profile (firmware/boards/
+ * board_mclv.h): the sign of the current amplifiers and the pins the facts
+ * sheet could not name. Each may be overridden with -D.
+ */
+
+/* Sign from the ADC reading to "+ = into the motor": +1 passes the signed
+ * fractional result through, -1 negates it (saturating).
+ * [NOT FOUND] for the original MCLV (hardware.md 2.1-2.2: MCLV-2 is reversed,
+ * AN1078's MCLV code gives no sign). Check on the bench: in the LOCK state
+ * (a positive current into phase A), status ia must read positive. */
+#ifndef HAL_BOARD_I_SIGN
+#define HAL_BOARD_I_SIGN 1
+#endif
+
+/* LEDs: port (HAL_PORT_A/B/C, or HAL_PORT_NONE) and bit.
+ * [NOT FOUND] which MCLV LEDs the 32MC204 PIM reaches (hardware.md 1.8), so
+ * no pin is driven until these are set (e.g. -DHAL_LED_RUN_PORT=HAL_PORT_B
+ * -DHAL_LED_RUN_BIT=9). Driving a guessed pin could fight another driver. */
+#ifndef HAL_LED_RUN_PORT
+#define HAL_LED_RUN_PORT HAL_PORT_NONE
+#define HAL_LED_RUN_BIT  0u
+#endif
+#ifndef HAL_LED_FAULT_PORT
+#define HAL_LED_FAULT_PORT HAL_PORT_NONE
+#define HAL_LED_FAULT_BIT  0u
+#endif
+
+/* UART1 on remappable pins: RPn numbers, or HAL_RP_NONE.
+ * [NOT FOUND] the MCLV's UART pins for the 32MC204 PIM (hardware.md 1.8):
+ * UART1 runs but is not routed to a pin until these are set. */
+#ifndef HAL_UART_RX_RP
+#define HAL_UART_RX_RP HAL_RP_NONE
+#endif
+#ifndef HAL_UART_TX_RP
+#define HAL_UART_TX_RP HAL_RP_NONE
+#endif
+
+#endif /* BOARD_MCLV_HAL_H */

@@ -1,0 +1,328 @@
+/* hal_dspic33f.c - hal.h for the dsPIC33FJ32MC204: clock, MCPWM1, ADC1, fault, pins, UART1, tick.
+ */
+#include <xc.h>
+
+#include "hal_dspic33f.h"
+
+/* ---- init ------------------------------------------------------------------ */
+
+/* 40 MIPS: the configuration starts the chip on the FRC; set the PLL
+ * dividers, then switch to the crystal through the PLL and wait for the
+ * switch and the lock (hardware.md 1.2, AN1078's sequence). */
+static void clock_init(void)
+{
+    PLLFBD = HAL_PLLFBD;
+    CLKDIVbits.PLLPRE = HAL_CLKDIV_PLLPRE;
+    CLKDIVbits.PLLPOST = HAL_CLKDIV_PLLPOST;
+
+    __builtin_write_OSCCONH(HAL_OSC_PRIPLL);            /* NOSC = primary + PLL */
+    __builtin_write_OSCCONL((uint8_t)(OSCCON | 0x01u)); /* OSWEN: request the switch */
+    while (OSCCONbits.COSC != HAL_OSC_PRIPLL) {
+    }
+    while (OSCCONbits.LOCK != 1u) {
+    }
+}
+
+/* See HAL_CORCON_SET in hal_dspic33f.h for what each bit is for. */
+static void corcon_init(void)
+{
+    CORCON = (uint16_t)(((unsigned)CORCON & ~HAL_CORCON_CLEAR) | HAL_CORCON_SET);
+}
+
+static volatile uint16_t *rpor_word(unsigned rp)
+{
+    static volatile uint16_t *const words[13] = {&RPOR0,  &RPOR1,  &RPOR2, &RPOR3, &RPOR4,
+                                                 &RPOR5,  &RPOR6,  &RPOR7, &RPOR8, &RPOR9,
+                                                 &RPOR10, &RPOR11, &RPOR12};
+    return words[rp / 2u];
+}
+
+/* Output function fn on pin RPrp: RPORn holds RP(2n) in bits 0-4 and
+ * RP(2n+1) in bits 8-12. */
+static void pps_output(unsigned rp, unsigned fn)
+{
+    volatile uint16_t *w = rpor_word(rp);
+    unsigned shift = (rp & 1u) ? 8u : 0u;
+    *w = (uint16_t)(((unsigned)*w & ~(0x1Fu << shift)) | ((fn & 0x1Fu) << shift));
+}
+
+static volatile uint16_t *lat_of(unsigned port)
+{
+    return port == HAL_PORT_A ? &LATA : port == HAL_PORT_B ? &LATB : &LATC;
+}
+
+static volatile uint16_t *tris_of(unsigned port)
+{
+    return port == HAL_PORT_A ? &TRISA : port == HAL_PORT_B ? &TRISB : &TRISC;
+}
+
+static void led_pin_init(unsigned port, unsigned bit)
+{
+    if (port != HAL_PORT_NONE) {
+        *lat_of(port) = (uint16_t)((unsigned)*lat_of(port) & ~(1u << bit));
+        *tris_of(port) = (uint16_t)((unsigned)*tris_of(port) & ~(1u << bit));
+    }
+}
+
+static void pins_init(void)
+{
+    /* AN0, AN1, AN2, AN8 analog; every other ANx pin digital. */
+    AD1PCFGL = HAL_AD1PCFGL_ANALOG;
+
+    /* Buttons and the fault pin are inputs (they are after reset; say so). */
+    TRISA = (uint16_t)(TRISA | (1u << HAL_S2_PORTA_BIT));
+    TRISB = (uint16_t)(TRISB | (1u << HAL_S3_PORTB_BIT) | (1u << HAL_FLTA1_PORTB_BIT));
+
+    led_pin_init(HAL_LED_RUN_PORT, HAL_LED_RUN_BIT);
+    led_pin_init(HAL_LED_FAULT_PORT, HAL_LED_FAULT_BIT);
+
+    /* Peripheral pin select: unlock, map, lock. FLTA1 must be on its pin
+     * before P1FLTACON enables the fault (hardware.md 5). */
+    __builtin_write_OSCCONL((uint8_t)(OSCCON & ~HAL_OSCCON_IOLOCK));
+    RPINR12bits.FLTA1R = HAL_FLTA1_RP;
+#if HAL_UART_RX_RP != HAL_RP_NONE
+    RPINR18bits.U1RXR = HAL_UART_RX_RP;
+#endif
+#if HAL_UART_TX_RP != HAL_RP_NONE
+    pps_output(HAL_UART_TX_RP, HAL_PPS_FN_U1TX);
+#else
+    (void)pps_output;
+#endif
+    __builtin_write_OSCCONL((uint8_t)(OSCCON | HAL_OSCCON_IOLOCK));
+}
+
+/* AN1078's order (hardware.md 1.6), with the fault latched instead of off
+ * and the outputs overridden off until the core turns them on. */
+static void pwm_init(void)
+{
+    P1TCONbits.PTEN = 0;
+    P1OVDCON = HAL_P1OVDCON_OFF;
+    P1DC1 = PWM_DUTY_MAX / 2u;
+    P1DC2 = PWM_DUTY_MAX / 2u;
+    P1DC3 = PWM_DUTY_MAX / 2u;
+    P1TPER = HAL_PTPER;
+    PWM1CON1 = HAL_PWM1CON1_COMPL_ALL;
+    PWM1CON2 = HAL_PWM1CON2_SYNC;
+    P1DTCON1 = HAL_P1DTCON1;
+    P1DTCON2 = 0x0000u; /* dead-time unit A on every edge */
+    P1FLTACON = HAL_P1FLTACON_LATCHED;
+    IEC3bits.FLTA1IE = 0; /* the latch is polled: hal_fault_latched() */
+    IFS3bits.FLTA1IF = 0;
+    IEC3bits.PWM1IE = 0; /* the ADC interrupt is the control tick */
+    IFS3bits.PWM1IF = 0;
+    P1SECMP = HAL_P1SECMP;
+    P1TCON = HAL_P1TCON_PTEN_UPDOWN;
+}
+
+static void adc_init(void)
+{
+    AD1CON1 = 0x0000u; /* ADON = 0 while configuring */
+    AD1CON1bits.FORM = HAL_AD1_FORM_SFRACT;
+    AD1CON1bits.SSRC = HAL_AD1_SSRC_PWM;
+    AD1CON1bits.SIMSAM = 1;
+    AD1CON1bits.ASAM = 1;
+    AD1CON1bits.AD12B = 0;
+
+    AD1CON2 = 0x0000u; /* VCFG = AVDD/AVSS, no scan, SMPI = 0, one buffer */
+    AD1CON2bits.CHPS = HAL_AD1_CHPS_4CH;
+
+    AD1CON3 = 0x0000u; /* ADRC = 0: TAD from Tcy */
+    AD1CON3bits.ADCS = HAL_AD1_ADCS;
+
+    AD1CHS0 = 0x0000u; /* negative inputs VREF- */
+    AD1CHS0bits.CH0SA = HAL_AD1_CH0SA_POT;
+    AD1CHS123 = 0x0000u;
+    AD1CHS123bits.CH123SA = HAL_AD1_CH123SA_IAB;
+    AD1CSSL = 0x0000u;
+
+    IEC0bits.AD1IE = 0; /* hal_motor_start() enables it */
+    IFS0bits.AD1IF = 0;
+    IPC3bits.AD1IP = HAL_ADC_IRQ_PRIORITY;
+    AD1CON1bits.ADON = 1;
+}
+
+static void uart_init(void)
+{
+    U1MODE = 0x0000u; /* 8N1, BRGH = 0, UEN = 00 (RX/TX only) */
+    U1STA = 0x0000u;
+    U1BRG = HAL_U1BRG;
+    IEC0bits.U1RXIE = 0;
+    IEC0bits.U1TXIE = 0;
+    U1MODEbits.UARTEN = 1;
+    U1STAbits.UTXEN = 1; /* after UARTEN, as the module requires */
+}
+
+static void tick_init(void)
+{
+    T1CON = 0x0000u;
+    TMR1 = 0u;
+    PR1 = HAL_PR1;
+    T1CONbits.TCKPS = HAL_T1_TCKPS_8;
+    IEC0bits.T1IE = 0; /* polled */
+    IFS0bits.T1IF = 0;
+    T1CONbits.TON = 1;
+}
+
+void hal_init(void)
+{
+    clock_init();
+    corcon_init();
+    pins_init();
+    pwm_init();
+    adc_init();
+    uart_init();
+    tick_init();
+}
+
+/* ---- ADC --------------------------------------------------------------------- */
+
+/* A signed fractional result (sddd dddd dd00 0000) as the int16_t it encodes,
+ * without relying on an implementation-defined unsigned-to-signed cast. */
+static int16_t adc_signed(uint16_t raw)
+{
+    return (int16_t)((int32_t)raw - ((raw & 0x8000u) ? 65536L : 0L));
+}
+
+/* A unipolar input (0 V .. AVDD) as 0..32767: the signed fractional result
+ * offset by half scale, halved. 10-bit code n gives 32 n = Q15 of n / 1024. */
+static int16_t adc_unipolar(uint16_t raw)
+{
+    return (int16_t)((uint16_t)(raw ^ 0x8000u) >> 1);
+}
+
+/* The board's amplifier sign; -32768 negates to 32767 (saturating). */
+static int16_t adc_current(uint16_t raw)
+{
+    int16_t x = adc_signed(raw);
+#if HAL_BOARD_I_SIGN < 0
+    return q15_neg_sat(x);
+#else
+    return x;
+#endif
+}
+
+void hal_adc_read(mc_adc_frame_t *frame)
+{
+    frame->pot = adc_unipolar(ADC1BUF0);  /* CH0 = AN8 */
+    frame->ia = adc_current(ADC1BUF1);    /* CH1 = AN0 */
+    frame->ib = adc_current(ADC1BUF2);    /* CH2 = AN1 */
+    frame->vbus = adc_unipolar(ADC1BUF3); /* CH3 = AN2 */
+}
+
+int16_t hal_pot_read(void)
+{
+    return adc_unipolar(ADC1BUF0);
+}
+
+/* ---- PWM --------------------------------------------------------------------- */
+
+static uint16_t duty_clamp(uint16_t d)
+{
+    return d > PWM_DUTY_MAX ? (uint16_t)PWM_DUTY_MAX : d;
+}
+
+void hal_pwm_write(const mc_pwm_out_t *out)
+{
+    P1DC1 = duty_clamp(out->duty[0]);
+    P1DC2 = duty_clamp(out->duty[1]);
+    P1DC3 = duty_clamp(out->duty[2]);
+    P1OVDCON = out->outputs_on ? HAL_P1OVDCON_PWM : HAL_P1OVDCON_OFF;
+}
+
+/* ---- fault --------------------------------------------------------------------- */
+
+bool hal_fault_latched(void)
+{
+    return IFS3bits.FLTA1IF != 0u;
+}
+
+static bool fault_pin_asserted(void)
+{
+    return (PORTB & (1u << HAL_FLTA1_PORTB_BIT)) == 0u; /* active low */
+}
+
+/* In latched mode the outputs resume once the pin is released and FLTA1IF
+ * is clear (hardware.md 5): override them off first, and keep the flag
+ * while the pin is still low so the latch cannot end behind our back. */
+bool hal_fault_clear(void)
+{
+    P1OVDCON = HAL_P1OVDCON_OFF;
+    if (fault_pin_asserted()) {
+        return false;
+    }
+    IFS3bits.FLTA1IF = 0;
+    return true;
+}
+
+/* ---- buttons, LEDs --------------------------------------------------------------- */
+
+bool hal_button_pressed(hal_button_t button)
+{
+    if (button == HAL_BUTTON_S2) {
+        return (PORTA & (1u << HAL_S2_PORTA_BIT)) == 0u;
+    }
+    return (PORTB & (1u << HAL_S3_PORTB_BIT)) == 0u;
+}
+
+static void led_pin_write(unsigned port, unsigned bit, bool on)
+{
+    if (port != HAL_PORT_NONE) {
+        volatile uint16_t *lat = lat_of(port);
+        *lat = (uint16_t)(on ? ((unsigned)*lat | (1u << bit)) : ((unsigned)*lat & ~(1u << bit)));
+    }
+}
+
+void hal_led_set(hal_led_t led, bool on)
+{
+    if (led == HAL_LED_RUN) {
+        led_pin_write(HAL_LED_RUN_PORT, HAL_LED_RUN_BIT, on);
+    } else {
+        led_pin_write(HAL_LED_FAULT_PORT, HAL_LED_FAULT_BIT, on);
+    }
+}
+
+/* ---- UART ------------------------------------------------------------------------ */
+
+bool hal_uart_put(uint8_t byte)
+{
+    if (U1STAbits.UTXBF) {
+        return false;
+    }
+    U1TXREG = byte;
+    return true;
+}
+
+bool hal_uart_get(uint8_t *byte)
+{
+    if (U1STAbits.OERR) {
+        U1STAbits.OERR = 0; /* the receiver stops until this is cleared */
+    }
+    if (!U1STAbits.URXDA) {
+        return false;
+    }
+    *byte = (uint8_t)(U1RXREG & 0xFFu);
+    return true;
+}
+
+/* ---- tick, critical section --------------------------------------------------- */
+
+bool hal_tick_1ms(void)
+{
+    if (!IFS0bits.T1IF) {
+        return false;
+    }
+    IFS0bits.T1IF = 0;
+    return true;
+}
+
+hal_irq_state_t hal_critical_enter(void)
+{
+    hal_irq_state_t saved = (hal_irq_state_t)SRbits.IPL;
+    SRbits.IPL = 7;
+    return saved;
+}
+
+void hal_critical_exit(hal_irq_state_t saved)
+{
+    SRbits.IPL = (unsigned)(saved & 7u);
+}

@@ -1,0 +1,60 @@
+/* hal_isr.c - the ADC interrupt trampoline and the mailbox to the one running motor. */
+#include <xc.h>
+
+#include "hal_dspic33f.h"
+
+/*
+ * The one mc_t of the running motor. It belongs to the ADC interrupt, which
+ * steps it once per PWM period; the main loop reaches it only through the
+ * hal_motor_* functions below, each of which runs the core's call with the
+ * interrupt masked (hal_critical_enter: CPU priority 7), so a request never
+ * lands mid-step and a status is the snapshot of one period. The masked time
+ * is one short core call (a copy of mc_status_t at most), far below the
+ * ~17 us of slack the ISR has (HAL_AD1_ADCS in hal_dspic33f.h); a conversion
+ * that completes meanwhile keeps AD1IF set and is serviced on unmasking.
+ */
+static mc_t motor;
+
+/* Vector of the ADC: the four results are ready (SMPI = 0, one interrupt
+ * per special-event conversion set). Clearing the flag first means an
+ * overrun (a step longer than a period) re-enters at once instead of
+ * silently skipping a period. */
+void HAL_ISR _ADC1Interrupt(void)
+{
+    mc_adc_frame_t frame;
+    mc_pwm_out_t out;
+
+    IFS0bits.AD1IF = 0;
+    hal_adc_read(&frame);
+    mc_step(&motor, &frame, &out);
+    hal_pwm_write(&out);
+}
+
+void hal_motor_start(void)
+{
+    IEC0bits.AD1IE = 0;
+    mc_init(&motor);
+    IFS0bits.AD1IF = 0; /* a stale conversion is not a period of the new motor */
+    IEC0bits.AD1IE = 1;
+}
+
+void hal_motor_request(mc_request_t request)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_request(&motor, request);
+    hal_critical_exit(s);
+}
+
+void hal_motor_set_reference(int16_t ref)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_set_reference(&motor, ref);
+    hal_critical_exit(s);
+}
+
+void hal_motor_status(mc_status_t *status)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_status(&motor, status);
+    hal_critical_exit(s);
+}

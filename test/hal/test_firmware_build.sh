@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# test_firmware_build.sh - CTest checks of tools/firmware_build (make firmware).
+#   no-xc16 <root>  without XC16: exactly one line on stderr naming XC16_DIR and the
+#                   download page, nothing on stdout, exit status 2, no image;
+#                   the same when XC16_DIR points to a directory without xc16-gcc.
+#   print <root>    `make -n firmware` and `tools/firmware_build --print` print the
+#                   compile / link / bin2hex lines with the facts sheet's flags.
+#   fake <root>     with stand-in xc16-gcc / xc16-bin2hex that record their calls:
+#                   every source compiled, one link, one bin2hex, the .hex in place;
+#                   a compiler failure leaves no .hex behind.
+set -u
+mode=$1
+root=$2
+fail() { echo "FAIL: $*"; exit 1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+clean_env=(env -u XC16_DIR -u MAKEFLAGS -u MFLAGS -u MAKELEVEL)
+
+case "$mode" in
+no-xc16)
+  for variant in unset bogus; do
+    if [ $variant = unset ]; then
+      envset=("${clean_env[@]}" PATH=/usr/bin:/bin FIRMWARE_OUT="$tmp/out")
+    else
+      envset=("${clean_env[@]}" PATH=/usr/bin:/bin FIRMWARE_OUT="$tmp/out" XC16_DIR="$tmp/nowhere")
+    fi
+    "${envset[@]}" "$root/tools/firmware_build" mclv hurst >"$tmp/stdout" 2>"$tmp/stderr"
+    rc=$?
+    echo "measured: XC16_DIR $variant: exit $rc, stderr $(wc -l <"$tmp/stderr") line(s): $(cat "$tmp/stderr")"
+    [ $rc -eq 2 ] || fail "exit status $rc, expected 2"
+    [ "$(wc -l <"$tmp/stderr")" -eq 1 ] || fail "stderr is not one line"
+    [ ! -s "$tmp/stdout" ] || fail "stdout not empty"
+    grep -q "XC16 not found" "$tmp/stderr" || fail "no 'XC16 not found'"
+    grep -q "XC16_DIR" "$tmp/stderr" || fail "does not name XC16_DIR"
+    grep -q "https://www.microchip.com/mplab/compilers" "$tmp/stderr" || fail "no download address"
+    [ ! -e "$tmp/out/mclv.hex" ] || fail "an image was written"
+  done
+  # Through make, as CI runs it.
+  "${clean_env[@]}" PATH=/usr/bin:/bin make -s -C "$root" firmware BUILD="$tmp/b" >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  echo "measured: make firmware: exit $rc, stderr: $(head -1 "$tmp/stderr")"
+  [ $rc -ne 0 ] || fail "make firmware succeeded without XC16"
+  grep -q "XC16 not found" "$tmp/stderr" || fail "make firmware: no 'XC16 not found'"
+  ;;
+print)
+  check_lines() { # check_lines <file> <label>
+    local f=$1 n_cc n_src
+    n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+    n_cc=$(grep -c -- ' -c ' "$f")
+    echo "measured: $2: $n_cc compile lines for $n_src sources, $(grep -c 'xc16-bin2hex' "$f") bin2hex line(s)"
+    [ "$n_cc" -eq "$n_src" ] || fail "$2: $n_cc compile lines, $n_src sources"
+    [ "$(grep -- ' -c ' "$f" | grep -c -- '-mcpu=33FJ32MC204 -omf=elf -O1 -fno-short-double')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O1 -fno-short-double"
+    [ "$(grep -- ' -c ' "$f" | grep -c -- '-DMC_BOARD_MCLV -DMC_MOTOR_HURST')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks the board/motor defines"
+    grep -q -- 'xc16-gcc -c\| -c hal/dspic33f/hal_isr.c ' "$f" || fail "$2: hal_isr.c not compiled"
+    grep -- '--script=p33FJ32MC204.gld' "$f" | grep -q -- '-mcpu=33FJ32MC204 -omf=elf' ||
+      fail "$2: no link line with the device linker script"
+    grep -q -- 'xc16-bin2hex .*mclv.elf -a -omf=elf' "$f" || fail "$2: no xc16-bin2hex line"
+  }
+  "${clean_env[@]}" PATH=/usr/bin:/bin "$root/tools/firmware_build" --print mclv hurst >"$tmp/print" ||
+    fail "--print exited non-zero"
+  check_lines "$tmp/print" "firmware_build --print"
+  "${clean_env[@]}" PATH=/usr/bin:/bin make -s -n -C "$root" firmware >"$tmp/maken" 2>&1 ||
+    fail "make -n firmware exited non-zero"
+  check_lines "$tmp/maken" "make -n firmware"
+  [ ! -e "$root/build/firmware/mclv.tmp" ] || fail "--print created files"
+  ;;
+fake)
+  mkdir -p "$tmp/xc16/bin"
+  cat >"$tmp/xc16/bin/xc16-gcc" <<'EOS'
+#!/bin/sh
+echo "xc16-gcc $*" >>"$FAKE_LOG"
+out=""; prev=""
+for a in "$@"; do [ "$prev" = "-o" ] && out=$a; prev=$a; done
+case " $* " in *" $FAKE_FAIL_ON "*) exit 1 ;; esac
+[ -n "$out" ] && : >"$out"
+exit 0
+EOS
+  cat >"$tmp/xc16/bin/xc16-bin2hex" <<'EOS'
+#!/bin/sh
+echo "xc16-bin2hex $*" >>"$FAKE_LOG"
+echo ":00000001FF" >"${1%.elf}.hex"
+EOS
+  chmod +x "$tmp/xc16/bin/"*
+  run() {
+    "${clean_env[@]}" XC16_DIR="$tmp/xc16" FAKE_LOG="$tmp/log" FAKE_FAIL_ON="$1" \
+      FIRMWARE_OUT="$tmp/out" "$root/tools/firmware_build" mclv hurst >"$tmp/stdout" 2>&1
+  }
+  : >"$tmp/log"
+  run "no-such-file" || { cat "$tmp/stdout"; fail "fake build failed"; }
+  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+  echo "measured: fake XC16: $(grep -c ' -c ' "$tmp/log") compiles ($n_src sources), $(grep -c 'script=' "$tmp/log") link, $(grep -c bin2hex "$tmp/log") bin2hex"
+  [ "$(grep -c ' -c ' "$tmp/log")" -eq "$n_src" ] || fail "not every source compiled"
+  [ "$(grep -c 'script=p33FJ32MC204.gld' "$tmp/log")" -eq 1 ] || fail "not one link"
+  [ -s "$tmp/out/mclv.hex" ] || fail "no hex"
+  [ -z "$(ls -A "$tmp/out" | grep '^\.mclv')" ] || fail "scratch directory left behind"
+  # A compile failure: no image, not even the previous one.
+  : >"$tmp/log"
+  if run "hal/dspic33f/hal_isr.c"; then fail "build succeeded with a failing compile"; fi
+  [ ! -e "$tmp/out/mclv.hex" ] || fail "a hex survived a failed build"
+  grep -q "script=" "$tmp/log" && fail "linked after a failed compile"
+  echo "measured: failed compile -> exit non-zero, no mclv.hex"
+  ;;
+*) fail "unknown mode $mode" ;;
+esac
+echo "ok"

@@ -1,0 +1,181 @@
+/* test_hal_isr.c - the ADC trampoline and the motor mailbox, with the core mocked (cmocka). */
+#include "test_support.h"
+
+#include "sfr_standin.h"
+
+#include "hal_dspic33f.h"
+
+/*
+ * hal_isr.c is linked here against the mocks below instead of the core, so
+ * the test sees exactly what the trampoline hands to mc_step() and what it
+ * does with the answer, and in which order relative to the registers.
+ */
+
+static mc_t *seen_mc; /* the instance the first core call received */
+
+static void check_same_motor(mc_t *mc)
+{
+    if (seen_mc == NULL) {
+        seen_mc = mc;
+    }
+    assert_ptr_equal(mc, seen_mc);
+}
+
+void mc_init(mc_t *mc)
+{
+    function_called();
+    check_same_motor(mc);
+    assert_int_equal(IEC0bits.AD1IE, 0); /* not stepped while being reset */
+}
+
+void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+{
+    int ia = in->ia, ib = in->ib, vbus = in->vbus, pot = in->pot;
+
+    function_called();
+    check_same_motor(mc);
+    /* The flag is cleared before the step, the duties written after it. */
+    assert_int_equal(IFS0bits.AD1IF, 0);
+    assert_int_equal(P1DC1, 0xAAAA);
+    assert_int_equal(P1DC2, 0xAAAA);
+    assert_int_equal(P1DC3, 0xAAAA);
+    check_expected(ia);
+    check_expected(ib);
+    check_expected(vbus);
+    check_expected(pot);
+    out->duty[0] = (uint16_t)mock();
+    out->duty[1] = (uint16_t)mock();
+    out->duty[2] = (uint16_t)mock();
+    out->outputs_on = (bool)mock();
+}
+
+void mc_request(mc_t *mc, mc_request_t r)
+{
+    int request = (int)r;
+    check_same_motor(mc);
+    assert_int_equal(SRbits.IPL, 7);
+    check_expected(request);
+}
+
+void mc_set_reference(mc_t *mc, int16_t ref)
+{
+    int value = ref;
+    check_same_motor(mc);
+    assert_int_equal(SRbits.IPL, 7);
+    check_expected(value);
+}
+
+void mc_status(const mc_t *mc, mc_status_t *st)
+{
+    check_same_motor((mc_t *)(uintptr_t)mc);
+    assert_int_equal(SRbits.IPL, 7);
+    st->state = (mc_state_t)mock();
+    st->fault = (uint16_t)mock();
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    sfr_standin_reset();
+    P1DC1 = 0xAAAAu;
+    P1DC2 = 0xAAAAu;
+    P1DC3 = 0xAAAAu;
+    return 0;
+}
+
+static void expect_step(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
+                        bool on)
+{
+    expect_function_call(mc_step);
+    expect_value(mc_step, ia, ia);
+    expect_value(mc_step, ib, ib);
+    expect_value(mc_step, vbus, vbus);
+    expect_value(mc_step, pot, pot);
+    will_return(mc_step, d0);
+    will_return(mc_step, d1);
+    will_return(mc_step, d2);
+    will_return(mc_step, on);
+}
+
+static void
+test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties(
+    void **state)
+{
+    (void)state;
+    /* Buffers: CH0 pot (AN8), CH1 IA (AN0), CH2 IB (AN1), CH3 VBUS (AN2). */
+    ADC1BUF0 = 0x4000u; /* 3/4 of AVDD     -> pot 24576 */
+    ADC1BUF1 = 0x0040u; /* one code above mid -> ia  +/-64 */
+    ADC1BUF2 = 0xFF80u; /* two codes below    -> ib  -/+128 */
+    ADC1BUF3 = 0xC000u; /* 1/4 of AVDD     -> vbus 8192 */
+    IFS0bits.AD1IF = 1;
+    expect_step(64 * HAL_BOARD_I_SIGN, -128 * HAL_BOARD_I_SIGN, 8192, 24576, 11u, 1000u, 1999u,
+                true);
+
+    _ADC1Interrupt();
+
+    assert_int_equal(IFS0bits.AD1IF, 0);
+    assert_int_equal(P1DC1, 11);
+    assert_int_equal(P1DC2, 1000);
+    assert_int_equal(P1DC3, 1999);
+    assert_int_equal(P1OVDCON, 0x3F00);
+}
+
+static void test_adc_isr_should_override_the_outputs_off_when_the_core_says_off(void **state)
+{
+    (void)state;
+    P1OVDCON = 0x3F00u;
+    /* Buffers at 0 = mid-scale: zero current, half of vbus and pot. */
+    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    _ADC1Interrupt();
+    assert_int_equal(P1OVDCON, 0x0000);
+    assert_int_equal(P1DC1, 1000);
+}
+
+static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(void **state)
+{
+    (void)state;
+    IEC0bits.AD1IE = 1;
+    IFS0bits.AD1IF = 1;
+    expect_function_call(mc_init);
+    hal_motor_start();
+    assert_int_equal(IFS0bits.AD1IF, 0);
+    assert_int_equal(IEC0bits.AD1IE, 1);
+}
+
+static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void **state)
+{
+    (void)state;
+    mc_status_t st;
+
+    SRbits.IPL = 0;
+    expect_value(mc_request, request, MC_REQUEST_START_STOP);
+    hal_motor_request(MC_REQUEST_START_STOP);
+    assert_int_equal(SRbits.IPL, 0);
+
+    expect_value(mc_set_reference, value, -1234);
+    hal_motor_set_reference(-1234);
+    assert_int_equal(SRbits.IPL, 0);
+
+    will_return(mc_status, MC_STATE_FAULT);
+    will_return(mc_status, MC_FAULT_HARDWARE);
+    hal_motor_status(&st);
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_HARDWARE);
+    assert_int_equal(SRbits.IPL, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(
+            test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties,
+            setup),
+        cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
+                               setup),
+        cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
+                               setup),
+        cmocka_unit_test_setup(test_motor_mailbox_should_call_the_core_with_interrupts_masked,
+                               setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
