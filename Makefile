@@ -71,7 +71,7 @@ sim: bootstrap build
 	@tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD)
 
 firmware:
-	@tools/firmware_build $(BOARD) $(MOTOR)
+	@+FIRMWARE_OUT=$(BUILD)/firmware tools/firmware_build $(if $(findstring n,$(firstword -$(MAKEFLAGS))),--print) $(BOARD) $(MOTOR)
 
 # The plain suite runs last so the output closes on CTest's summary line.
 test: bootstrap
