@@ -178,9 +178,10 @@ void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
     int s, k;
     for (s = 0; s < r->substeps; s++) {
         double vbus = sim_inverter_vbus(&r->inv, r->t + ((double)s + 0.5) * h);
-        double i[3], v[3], va, vb;
+        double i[3];
         sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
         if (r->inv.on) {
+            double v[3], va, vb;
             sim_inverter_pins(&r->inv, vbus, i, v);
             sim_pins_to_ab(v, &va, &vb);
             sim_plant_step(&r->plant, va, vb, h, false);

@@ -66,7 +66,7 @@ static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double
 
 static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, size_t err_len)
 {
-    char *tok[5];
+    char *tok[5] = {NULL, NULL, NULL, NULL, NULL};
     int ntok = 0;
     char *save = line;
     char *t;

@@ -1,0 +1,92 @@
+/* test_cl_accuracy.c - steady-state angle and speed error of the sensorless loop. */
+#include "cl_helpers.h"
+
+/*
+ * At each speed: start at rest, pot at the speed, wait for closed loop at
+ * the speed (2 %, held 0.2 s), let it settle 0.5 s, then measure over 1 s:
+ *   speed error  = mean true speed vs mean reference   <= 1 %
+ *   angle error  = mean of (estimated - true) electrical angle  <= 2 deg
+ * (rms and worst sample printed). Default bench: 2 us dead time, ADC noise
+ * sigma 1 code, amplifier offsets, friction only (3e-6 N m s/rad + 1 mN m).
+ * The lowest speed is the lowest closed-loop speed the build claims,
+ * SPEED_REF_MIN_RPM (its ratio to SPEED_REF_MAX_RPM is printed).
+ */
+static void check_speed(double rpm, double load_nm)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    cl_window_t w;
+    double t_at;
+    simcore_cfg_default(&cfg);
+    cfg.theta0_rad = 1.0;
+    cl_setup(&s, &cfg, "hurst", "mclv");
+    simcore_set_speed(&s, rpm);
+    simcore_request(&s, MC_REQUEST_START);
+    t_at = cl_run_until_at_speed(&s, rpm, 2.0, 0.2, 10.0);
+    if (t_at < 0.0) {
+        fail_msg("%.0f rpm not reached: state %s, fault %s, true %.0f rpm", rpm,
+                 simcore_state_name(s.now.state), simcore_fault_name(s.now.fault), s.now.speed_rpm);
+    }
+    if (load_nm > 0.0) {
+        cl_event(&s, SIM_EV_LOAD, load_nm, 0.0);
+    }
+    cl_run(&s, 0.5);
+    cl_measure(&s, 1.0, &w);
+    printf("measured: %5.0f rpm, load %.3f N m: speed error %+.3f %% (true %.2f, ref %.2f, "
+           "est %.2f rpm), angle error mean %+.2f deg, rms %.2f deg, max %.2f deg, "
+           "closed loop throughout: %s\n",
+           rpm, load_nm, cl_speed_err_pct(&w), cl_speed(&w), cl_ref(&w),
+           w.est_sum / (double)(w.n > 0 ? w.n : 1), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
+           w.left_closed_loop ? "no" : "yes");
+    assert_false(w.left_closed_loop);
+    assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
+    assert_true(fabs(cl_ang_mean(&w)) <= 2.0);
+}
+
+static void test_angle_and_speed_error_should_be_small_at_1000_rpm(void **state)
+{
+    (void)state;
+    check_speed(1000.0, 0.0);
+}
+
+static void test_angle_and_speed_error_should_be_small_at_2000_rpm(void **state)
+{
+    (void)state;
+    check_speed(2000.0, 0.0);
+}
+
+static void test_angle_and_speed_error_should_be_small_at_3000_rpm(void **state)
+{
+    (void)state;
+    check_speed(3000.0, 0.0);
+}
+
+static void test_angle_and_speed_error_should_be_small_at_the_lowest_claimed_speed(void **state)
+{
+    (void)state;
+    printf("measured: lowest claimed closed-loop speed SPEED_REF_MIN_RPM = %.0f rpm = %.1f %% of "
+           "SPEED_REF_MAX_RPM (%.0f rpm)\n",
+           (double)SPEED_REF_MIN_RPM, 100.0 * (double)SPEED_REF_MIN_RPM / SPEED_REF_MAX_RPM,
+           (double)SPEED_REF_MAX_RPM);
+    check_speed((double)SPEED_REF_MIN_RPM, 0.0);
+}
+
+static void
+test_angle_and_speed_error_should_be_small_at_2000_rpm_under_half_rated_load(void **state)
+{
+    (void)state;
+    check_speed(2000.0, 0.05);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_angle_and_speed_error_should_be_small_at_1000_rpm),
+        cmocka_unit_test(test_angle_and_speed_error_should_be_small_at_2000_rpm),
+        cmocka_unit_test(test_angle_and_speed_error_should_be_small_at_3000_rpm),
+        cmocka_unit_test(test_angle_and_speed_error_should_be_small_at_the_lowest_claimed_speed),
+        cmocka_unit_test(
+            test_angle_and_speed_error_should_be_small_at_2000_rpm_under_half_rated_load),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,175 @@
+/* test_cl_faults.c - protections in closed loop: detection time, outputs off, restart. */
+#include "cl_helpers.h"
+
+static void start_and_reach(simcore_t *s, double rpm)
+{
+    double t_at;
+    simcore_set_speed(s, rpm);
+    simcore_request(s, MC_REQUEST_START);
+    t_at = cl_run_until_at_speed(s, rpm, 2.0, 0.2, 8.0);
+    if (t_at < 0.0) {
+        fail_msg("did not reach %.0f rpm: state %s, fault %s, true %.0f rpm", rpm,
+                 simcore_state_name(s->now.state), simcore_fault_name(s->now.fault),
+                 s->now.speed_rpm);
+    }
+}
+
+/* Runs until FAULT (or max_s); returns the time of the step that reported it,
+ * -1 if none. Checks the same step switched the outputs off. */
+static double run_until_fault(simcore_t *s, double max_s)
+{
+    double t_end = s->rig.t + max_s;
+    while (s->rig.t < t_end) {
+        simcore_step(s);
+        if (s->now.state == MC_STATE_FAULT) {
+            assert_false(s->now.outputs_on);
+            return s->now.t_s;
+        }
+    }
+    return -1.0;
+}
+
+static void restart_should_work(simcore_t *s, double rpm, const char *what)
+{
+    double t0 = s->rig.t;
+    start_and_reach(s, rpm);
+    printf("measured: %s: restart by START back at %.0f rpm after %.2f s\n", what, rpm,
+           s->rig.t - t0);
+}
+
+static void setup_running(simcore_t *s, double rpm)
+{
+    simcore_cfg_t cfg;
+    simcore_cfg_default(&cfg);
+    cl_setup(s, &cfg, "hurst", "mclv");
+    start_and_reach(s, rpm);
+    cl_run(s, 0.3);
+}
+
+static void test_current_spike_should_fault_within_one_period_with_outputs_off(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    setup_running(&s, 2000.0);
+    cl_event(&s, SIM_EV_CURRENT_SPIKE, 6.0, 1.0);
+    simcore_step(&s); /* this period samples the spike */
+    printf("measured: 6 A spike: state after the sampling period %s, fault %s, outputs %s\n",
+           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault),
+           s.now.outputs_on ? "on" : "off");
+    assert_int_equal(s.now.state, MC_STATE_FAULT);
+    assert_int_equal(s.now.fault, MC_FAULT_OVERCURRENT);
+    assert_false(s.now.outputs_on);
+    cl_run(&s, 0.2);
+    assert_int_equal(s.now.state, MC_STATE_FAULT);
+    restart_should_work(&s, 2000.0, "current spike");
+}
+
+static void test_locked_rotor_should_fault_and_switch_off(void **state)
+{
+    static simcore_t s;
+    double t_lock, t_f;
+    (void)state;
+    setup_running(&s, 1000.0);
+    cl_event(&s, SIM_EV_LOCK_ROTOR, 0.0, 0.0);
+    t_lock = s.rig.t;
+    t_f = run_until_fault(&s, 0.5);
+    printf(
+        "measured: locked rotor at 1000 rpm: FAULT %s after %.2f ms, peak phase current %.2f A\n",
+        simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.i_peak_a);
+    assert_true(t_f >= 0.0);
+    assert_true(t_f - t_lock <= 0.050);
+    cl_event(&s, SIM_EV_UNLOCK_ROTOR, 0.0, 0.0);
+    cl_run(&s, 0.1);
+    restart_should_work(&s, 1000.0, "locked rotor");
+}
+
+static void test_bus_undervoltage_and_overvoltage_should_stop_safely(void **state)
+{
+    static simcore_t s;
+    double t_ev, t_f;
+    (void)state;
+    setup_running(&s, 2000.0);
+    cl_event(&s, SIM_EV_VBUS, 12.0, 0.0);
+    t_ev = s.rig.t;
+    t_f = run_until_fault(&s, 0.2);
+    printf("measured: bus 24 -> 12 V at 2000 rpm: FAULT %s after %.2f ms\n",
+           simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
+    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
+    assert_int_equal(s.now.fault, MC_FAULT_UNDERVOLTAGE);
+    cl_run(&s, 0.1);
+    cl_event(&s, SIM_EV_VBUS, 24.0, 0.0);
+    cl_run(&s, 0.5); /* the rotor coasts down */
+    restart_should_work(&s, 2000.0, "undervoltage");
+
+    cl_event(&s, SIM_EV_VBUS, 36.0, 0.0);
+    t_ev = s.rig.t;
+    t_f = run_until_fault(&s, 0.2);
+    printf("measured: bus 24 -> 36 V at 2000 rpm: FAULT %s after %.2f ms\n",
+           simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
+    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
+    assert_int_equal(s.now.fault, MC_FAULT_OVERVOLTAGE);
+    cl_run(&s, 0.1);
+    cl_event(&s, SIM_EV_VBUS, 24.0, 0.0);
+    cl_run(&s, 0.5);
+    restart_should_work(&s, 2000.0, "overvoltage");
+}
+
+static void test_stall_under_excessive_load_should_be_detected_within_50_ms(void **state)
+{
+    static simcore_t s;
+    double t_load, t_stall = -1.0, t_f = -1.0, t_end;
+    (void)state;
+    setup_running(&s, 2000.0);
+    /* 3x rated: more than the speed loop's current limit can hold */
+    cl_event(&s, SIM_EV_LOAD, 3.0 * s.rated_nm, 0.0);
+    t_load = s.rig.t;
+    t_end = t_load + 0.5;
+    while (s.rig.t < t_end) {
+        simcore_step(&s);
+        if (t_stall < 0.0 && s.now.speed_rpm < 0.5 * 2000.0) {
+            t_stall = s.now.t_s;
+        }
+        if (s.now.state == MC_STATE_FAULT) {
+            assert_false(s.now.outputs_on);
+            t_f = s.now.t_s;
+            break;
+        }
+    }
+    printf("measured: 3x rated load at 2000 rpm: true speed below 50 %% after %.1f ms, FAULT %s "
+           "after %.1f ms (%.1f ms after the stall)\n",
+           1000.0 * (t_stall - t_load), simcore_fault_name(s.now.fault), 1000.0 * (t_f - t_load),
+           1000.0 * (t_f - t_stall));
+    assert_true(t_f >= 0.0);
+    assert_true(t_stall < 0.0 || t_f - t_stall <= 0.050);
+    cl_event(&s, SIM_EV_LOAD, 0.0, 0.0);
+    cl_run(&s, 0.2);
+    restart_should_work(&s, 2000.0, "stall");
+}
+
+static void test_hardware_fault_should_switch_off_at_the_next_period(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    setup_running(&s, 2000.0);
+    cl_event(&s, SIM_EV_HW_FAULT, 0.0, 0.0);
+    simcore_step(&s);
+    printf("measured: FLTA trip: state %s, fault %s after one period\n",
+           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
+    assert_int_equal(s.now.state, MC_STATE_FAULT);
+    assert_int_equal(s.now.fault, MC_FAULT_HARDWARE);
+    assert_false(s.now.outputs_on);
+    cl_run(&s, 0.5);
+    restart_should_work(&s, 2000.0, "hardware fault");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_current_spike_should_fault_within_one_period_with_outputs_off),
+        cmocka_unit_test(test_locked_rotor_should_fault_and_switch_off),
+        cmocka_unit_test(test_bus_undervoltage_and_overvoltage_should_stop_safely),
+        cmocka_unit_test(test_stall_under_excessive_load_should_be_detected_within_50_ms),
+        cmocka_unit_test(test_hardware_fault_should_switch_off_at_the_next_period),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
