@@ -141,7 +141,7 @@ static void test_cordic_atan2_should_stay_within_bound_for_a_million_random_pair
     }
 }
 
-static void test_cordic_atan2_should_report_tiny_vectors_below_32_lsb(void **state)
+static void test_cordic_atan2_should_stay_within_bound_for_tiny_vectors_below_32_lsb(void **state)
 {
     /* Every vector with both components in [-31, 31]: the normalisation is
      * lossless, so they meet the same bound as large ones. */
@@ -224,7 +224,7 @@ int main(void)
         cmocka_unit_test(test_cordic_atan2_should_stay_within_bound_at_every_magnitude),
         cmocka_unit_test(test_cordic_atan2_should_stay_within_bound_with_a_minus_32768_component),
         cmocka_unit_test(test_cordic_atan2_should_stay_within_bound_for_a_million_random_pairs),
-        cmocka_unit_test(test_cordic_atan2_should_report_tiny_vectors_below_32_lsb),
+        cmocka_unit_test(test_cordic_atan2_should_stay_within_bound_for_tiny_vectors_below_32_lsb),
         cmocka_unit_test(test_cordic_atan2_should_answer_the_origin_and_the_axes_exactly),
         cmocka_unit_test(test_cordic_atan2_should_give_exact_diagonals),
         cmocka_unit_test(test_cordic_atan2_should_define_the_unit_y_vectors),
