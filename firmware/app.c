@@ -69,8 +69,11 @@ uint16_t app_fault_pattern_ms(uint16_t fault)
 
 bool app_led_fault_on(uint16_t fault, uint16_t phase_ms)
 {
+    if (fault == MC_FAULT_NONE) {
+        return false;
+    }
     uint16_t n = fault > 20U ? 20U : fault;
-    if (n == 0U || phase_ms >= n * 2U * APP_BLINK_MS) {
+    if (phase_ms >= n * 2U * APP_BLINK_MS) {
         return false;
     }
     return (phase_ms % (2U * APP_BLINK_MS)) < APP_BLINK_MS;

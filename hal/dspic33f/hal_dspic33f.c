@@ -29,12 +29,37 @@ static void corcon_init(void)
     CORCON = (uint16_t)(((unsigned)CORCON & ~HAL_CORCON_CLEAR) | HAL_CORCON_SET);
 }
 
+/* The RPORx word holding the output function of RPn. */
 static volatile uint16_t *rpor_word(unsigned rp)
 {
-    static volatile uint16_t *const words[13] = {&RPOR0,  &RPOR1,  &RPOR2, &RPOR3, &RPOR4,
-                                                 &RPOR5,  &RPOR6,  &RPOR7, &RPOR8, &RPOR9,
-                                                 &RPOR10, &RPOR11, &RPOR12};
-    return words[rp / 2u];
+    switch (rp / 2u) {
+        case 0u:
+            return &RPOR0;
+        case 1u:
+            return &RPOR1;
+        case 2u:
+            return &RPOR2;
+        case 3u:
+            return &RPOR3;
+        case 4u:
+            return &RPOR4;
+        case 5u:
+            return &RPOR5;
+        case 6u:
+            return &RPOR6;
+        case 7u:
+            return &RPOR7;
+        case 8u:
+            return &RPOR8;
+        case 9u:
+            return &RPOR9;
+        case 10u:
+            return &RPOR10;
+        case 11u:
+            return &RPOR11;
+        default:
+            return &RPOR12;
+    }
 }
 
 /* Output function fn on pin RPrp: RPORn holds RP(2n) in bits 0-4 and
