@@ -97,6 +97,9 @@
 #ifndef MC_OFFSET_CALIB_TIME_S
 #define MC_OFFSET_CALIB_TIME_S 0.0128 /* current-offset averaging (256 periods at 20 kHz) */
 #endif
+#ifndef MC_HANDOFF_WAIT_S
+#define MC_HANDOFF_WAIT_S 0.25 /* end speed held at most this long for a valid estimate */
+#endif
 #ifndef MC_RETRY_COAST_S
 #define MC_RETRY_COAST_S 0.5 /* outputs off before a retry, so the rotor stops */
 #endif
@@ -117,7 +120,7 @@
 #endif
 /* Cut-off of the estimated-speed filter (the speed loop's feedback). */
 #ifndef MC_SPEED_FILTER_HZ
-#define MC_SPEED_FILTER_HZ 80.0
+#define MC_SPEED_FILTER_HZ 30.0
 #endif
 
 /* ---- protections ------------------------------------------------------------------- */

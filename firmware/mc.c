@@ -1,2 +1,608 @@
-/* mc.c - placeholder while the core is written. */
+/* mc.c - the motor-control core: state machine, protections, current and speed loops. */
+#include <string.h>
+
 #include "mc.h"
+#include "mc_internal.h"
+
+#include "clarke.h"
+#include "park.h"
+#include "ripple.h"
+#include "sincos.h"
+#include "svgen.h"
+#include "vlimit.h"
+
+/*
+ * One call of mc_step(), in order (AN1078 Figure 27, plus what it lacked):
+ *   1. take the frame and the posted requests;
+ *   2. remove the current offsets; ic = -ia - ib;
+ *   3. protections: overcurrent (any phase, this sample), bus over- and
+ *      under-voltage, FLTA (MC_REQUEST_HW_FAULT); any of them -> FAULT with
+ *      the outputs off in this very step;
+ *   4. the state machine (STOPPED -> CALIBRATE -> LOCK -> OPEN_LOOP ->
+ *      CLOSED_LOOP; FAULT from anywhere);
+ *   5. in LOCK, OPEN_LOOP and CLOSED_LOOP: Clarke, Park, the estimator fed
+ *      the applied voltage, d PI, Vq limit from the voltage circle, q PI,
+ *      ripple compensation (ENVOLTRIPPLE), inverse Park at the angle the
+ *      voltage will be applied at, SVGen, dead-time compensation;
+ *      every IRP_PERCALC periods: speed ramp, speed PI (or the torque
+ *      reference), field weakening, stall detection.
+ * No division in the per-period path except the one inside the ripple
+ * compensation (two div.sd, AN1078's Equation 8 is a quotient).
+ */
+
+/* ---- constant parameters (compile-time, mc_derived.h) --------------------- */
+
+static const smc_params_t mc_smc_params = MC_SMC_PARAMS_INIT;
+
+static const pi_params_t mc_pi_cur_params = {
+    MC_CUR_KP, MC_CUR_KP_SHIFT, MC_CUR_KI, MC_PI_KC, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15,
+};
+
+static const pi_params_t mc_pi_spd_params = {
+    MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
+};
+
+static const fieldweak_params_t mc_fw_params = {
+    MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM),
+    MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM),
+    MC_FW_TABLE_Q15,
+};
+
+/* Inverse-Park advance: a voltage computed from the sample at t_n is
+ * applied over [t_n+1, t_n+2], so it is rotated by 1.5 omega Ts. In binary
+ * angle counts: speed_q15 * 3 omega_fs Ts (omega_fs in Hz). */
+#define MC_ADV_K_ (3.0 * MC_OMEGA_FS_HZ * MC_TS_S)
+MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
+         "3 omega_fs Ts must be < 1 (PWM too "
+         "slow for the speed range)");
+#define MC_ADV_K Q15(MC_ADV_K_)
+
+/* Total current the speed loop may ask for with field weakening active: 90 %
+ * of the software trip, so |(Id, Iq)| never reaches it in steady state. */
+#define MC_I_TOTAL_Q15 MC_Q15_AMPS(0.9 * MC_OVERCURRENT_A)
+
+#define MC_TIMER_MAX 0xFFFFFFFFUL
+
+/* ---- pure helpers (mc_internal.h) ------------------------------------------ */
+
+int16_t mc_deadtime_counts(q15_t i)
+{
+    if (i >= MC_DT_BAND_Q15) {
+        return MC_DT_COUNTS;
+    }
+    if (i <= (q15_t)(-MC_DT_BAND_Q15)) {
+        return (int16_t)(-MC_DT_COUNTS);
+    }
+    return (int16_t)(((int32_t)i * MC_DT_SLOPE + (int32_t)0x4000) >> 15);
+}
+
+ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
+{
+    ab_q15_t v;
+    q15_t vb = (vbus < 0) ? 0 : vbus;
+    /* Volts per duty count relative to V_FS, Q12: alpha's (2 da - db - dc)
+     * and beta's (db - dc) factors (the latter sqrt(3) larger). */
+    int32_t ga = ((int32_t)vb * MC_VAPP_K + (int32_t)0x1000) >> 13;          /* <= 85236 */
+    int32_t gb = ((int32_t)vb * MC_VAPP_KB + (int32_t)0x1000) >> 13;         /* <= 147639 */
+    int32_t na = (int32_t)2 * duty[0] - (int32_t)duty[1] - (int32_t)duty[2]; /* |na| <= 4 DMAX */
+    int32_t nb = (int32_t)duty[1] - (int32_t)duty[2];                        /* |nb| <= 2 DMAX */
+    v.alpha = q15_sat((na * ga + (int32_t)0x800) >> 12);
+    v.beta = q15_sat((nb * gb + (int32_t)0x800) >> 12);
+    return v;
+}
+
+q15_t mc_pot_to_speed(int16_t pot)
+{
+    int32_t p = (pot < 0) ? 0 : pot;
+    int32_t span = (int32_t)MC_SPEED_REF_MAX_Q15 - (int32_t)MC_SPEED_REF_MIN_Q15;
+    return (q15_t)(MC_SPEED_REF_MIN_Q15 + ((p * span) >> 15));
+}
+
+q15_t mc_pot_to_torque(int16_t pot)
+{
+    int32_t p = (pot < 0) ? 0 : pot;
+    return (q15_t)((p * MC_IQ_MAX_Q15) >> 15);
+}
+
+/* ---- the mailbox ------------------------------------------------------------- */
+
+static bool mc_take(mc_t *mc, mc_request_t r)
+{
+    uint8_t posted = mc->req_posted[r];
+    if (posted == mc->req_taken[r]) {
+        return false;
+    }
+    mc->req_taken[r] = posted;
+    return true;
+}
+
+void mc_request(mc_t *mc, mc_request_t r)
+{
+    if ((unsigned)r < (unsigned)MC_REQUEST_COUNT) {
+        mc->req_posted[r] = (uint8_t)(mc->req_posted[r] + 1U);
+    }
+}
+
+void mc_set_reference(mc_t *mc, int16_t ref)
+{
+    mc->ref_remote = ref;
+    mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
+}
+
+/* ---- state changes --------------------------------------------------------------- */
+
+static void mc_enter(mc_t *mc, mc_state_t s)
+{
+    mc->state = s;
+    mc->timer = 0U;
+}
+
+/* Everything the power stage and the loops hold, back to rest. */
+static void mc_outputs_off(mc_t *mc)
+{
+    mc->outputs_on = false;
+    mc->duty[0] = PWM_DUTY_MAX / 2U;
+    mc->duty[1] = PWM_DUTY_MAX / 2U;
+    mc->duty[2] = PWM_DUTY_MAX / 2U;
+    mc->v_dq.d = 0;
+    mc->v_dq.q = 0;
+    mc->i_ref.d = 0;
+    mc->i_ref.q = 0;
+    mc->v_hist[0].alpha = 0;
+    mc->v_hist[0].beta = 0;
+    mc->v_hist[1] = mc->v_hist[0];
+    pi_reset(&mc->pi_d);
+    pi_reset(&mc->pi_q);
+    pi_reset(&mc->pi_w);
+}
+
+static void mc_fault(mc_t *mc, uint16_t code)
+{
+    if (mc->state == MC_STATE_FAULT) {
+        return; /* the first cause stays */
+    }
+    mc->fault = code;
+    mc_outputs_off(mc);
+    mc_enter(mc, MC_STATE_FAULT);
+}
+
+/* CALIBRATE, after coasting for `wait` periods. */
+static void mc_begin_calibration(mc_t *mc, uint16_t wait)
+{
+    mc_outputs_off(mc);
+    mc->calib_wait = wait;
+    mc->offset_acc_a = 0;
+    mc->offset_acc_b = 0;
+    mc_enter(mc, MC_STATE_CALIBRATE);
+}
+
+static bool mc_bus_ok(const mc_t *mc)
+{
+    return mc->vbus > MC_VBUS_UV_Q15 && mc->vbus < MC_VBUS_OV_Q15;
+}
+
+/* A START: from STOPPED, or from FAULT once the cause is gone. */
+static void mc_start(mc_t *mc)
+{
+    if (!mc_bus_ok(mc)) {
+        mc->state = MC_STATE_STOPPED; /* let mc_fault record the new cause */
+        mc_fault(mc, (mc->vbus <= MC_VBUS_UV_Q15) ? MC_FAULT_UNDERVOLTAGE : MC_FAULT_OVERVOLTAGE);
+        return;
+    }
+    mc->fault = MC_FAULT_NONE;
+    mc->retries = 0U;
+    mc_begin_calibration(mc, 0U);
+}
+
+static void mc_stop(mc_t *mc)
+{
+    mc_outputs_off(mc);
+    mc_enter(mc, MC_STATE_STOPPED);
+}
+
+static void mc_enter_lock(mc_t *mc)
+{
+    pi_reset(&mc->pi_d);
+    pi_reset(&mc->pi_q);
+    pi_reset(&mc->pi_w);
+    smc_reset(&mc->smc);
+    mc->ol_angle = 0U;
+    mc->ol_step = 0U;
+    mc->theta = 0;
+    mc->theta_offset = 0;
+    /* AN1078: the torque current at a fixed angle; the rotor settles with
+     * its d axis on the current vector, 90 degrees ahead of the forced d
+     * axis, which is where the ramp's load angle starts from. */
+    mc->i_ref.d = 0;
+    mc->i_ref.q = MC_LOCK_CURRENT_Q15;
+    mc->outputs_on = true;
+    mc_enter(mc, MC_STATE_LOCK);
+}
+
+static void mc_enter_closed_loop(mc_t *mc)
+{
+    angle_q15_t est = smc_theta(&mc->smc);
+    /* The forced angle stays the reference; the difference is bled off. */
+    mc->theta_offset = angle_sub(mc->theta, est);
+    /* The rotor turns at the forced speed on average; the estimator's
+     * window speed is noisier than that, so both start from it. */
+    smc_preset_speed(&mc->smc, MC_RAMP_END_Q15);
+    mc->speed_ref =
+        (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
+    mc->speed_meas = MC_RAMP_END_Q15;
+    /* Bumpless: the speed PI starts from the torque-producing part of the
+     * ramp's current, i.e. the measured current on the estimated q axis (in
+     * open loop the rotor runs at a load angle, so most of the forced Iq
+     * lies on its d axis and makes no torque). */
+    dq_q15_t i_est = park_forward(clarke_forward(mc->ia, mc->ib), sincos_compute(est));
+    pi_preset(&mc->pi_w, i_est.q);
+    mc->i_ref.q = mc->pi_w.out;
+    mc->speed_div = 0U;
+    mc->stall_cnt[0] = 0U;
+    mc->stall_cnt[1] = 0U;
+    mc->stall_cnt[2] = 0U;
+    mc_enter(mc, MC_STATE_CLOSED_LOOP);
+}
+
+/* ---- pieces of the step ---------------------------------------------------------------- */
+
+/* Speed-loop work, every IRP_PERCALC periods in CLOSED_LOOP. Returns false
+ * when a stall fault was raised. */
+static bool mc_speed_loop(mc_t *mc)
+{
+    q15_t w = smc_omega(&mc->smc);
+    mc->speed_meas = w;
+
+#if defined(TORQUEMODE)
+    mc->i_ref.q = mc->torque_target;
+    mc->speed_ref = w;
+    mc->i_ref.d = fieldweak_id_ref(&mc->fw, w);
+#else
+    /* Ramp the reference towards the target. */
+    int32_t diff = (int32_t)mc->speed_target - (int32_t)mc->speed_ref;
+    if (diff > MC_SPEED_RAMP_STEP) {
+        diff = MC_SPEED_RAMP_STEP;
+    } else if (diff < -MC_SPEED_RAMP_STEP) {
+        diff = -MC_SPEED_RAMP_STEP;
+    }
+    mc->speed_ref = (q15_t)((int32_t)mc->speed_ref + diff);
+
+    /* Field weakening from the reference (AN1078), then what is left of the
+     * current budget for Iq. */
+    mc->i_ref.d = fieldweak_id_ref(&mc->fw, mc->speed_ref);
+    q15_t iq_max = vlimit_vq_max(mc->i_ref.d, MC_I_TOTAL_Q15);
+    if (iq_max > MC_IQ_MAX_Q15) {
+        iq_max = MC_IQ_MAX_Q15;
+    }
+    pi_set_limits(&mc->pi_w, (q15_t)(-iq_max), iq_max);
+    mc->i_ref.q = pi_update(&mc->pi_w, mc->speed_ref, w);
+#endif
+
+    /* Stall / loss of synchronisation (note 2). */
+    q15_t aw = q15_abs_sat(w);
+    uint16_t *c = mc->stall_cnt;
+    c[0] = (aw < MC_STALL_SPEED_Q15) ? (uint16_t)(c[0] + 1U) : 0U;
+    q15_t ratio = smc_emf_ratio(&mc->smc);
+    bool fw_active = q15_abs_sat(mc->speed_ref) > mc_fw_params.speed_nominal;
+    bool emf_bad = (ratio > MC_STALL_BEMF_HI_Q12) || (!fw_active && ratio < MC_STALL_BEMF_LO_Q12);
+    c[1] = emf_bad ? (uint16_t)(c[1] + 1U) : 0U;
+#if defined(TORQUEMODE)
+    c[2] = 0U;
+#else
+    q15_t err = q15_abs_sat(q15_sub_sat(mc->speed_ref, w));
+    bool saturated = (mc->i_ref.q >= mc->pi_w.p.out_max) || (mc->i_ref.q <= mc->pi_w.p.out_min);
+    c[2] = (err > MC_STALL_SPEED_ERR_Q15 && saturated) ? (uint16_t)(c[2] + 1U) : 0U;
+#endif
+    if (c[0] >= MC_STALL_TICKS) {
+        mc_fault(mc, MC_FAULT_STALL_SPEED);
+        return false;
+    }
+    if (c[1] >= MC_STALL_TICKS) {
+        mc_fault(mc, MC_FAULT_STALL_BEMF);
+        return false;
+    }
+    if (c[2] >= MC_STALL_TRACK_TICKS) {
+        mc_fault(mc, MC_FAULT_STALL_TRACK);
+        return false;
+    }
+    return true;
+}
+
+/* Current loops, modulation and the estimator, for one period with the
+ * outputs on. theta: angle of this sample; adv: advance for the voltage. */
+static void mc_current_control(mc_t *mc, angle_q15_t adv)
+{
+    sincos_q15_t sc = sincos_compute(mc->theta);
+    ab_q15_t i_ab = clarke_forward(mc->ia, mc->ib);
+    mc->i_dq = park_forward(i_ab, sc);
+
+    /* d first, then q gets what is left of the voltage circle (AN1078). */
+    dq_q15_t v;
+    v.d = pi_update(&mc->pi_d, mc->i_ref.d, mc->i_dq.d);
+    q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
+    pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+    v.q = pi_update(&mc->pi_q, mc->i_ref.q, mc->i_dq.q);
+#if defined(ENVOLTRIPPLE)
+    v = ripple_compensate_dq(v, mc->vbus, MC_VBUS_NOMINAL_Q15);
+#endif
+    mc->v_dq = v;
+
+    /* Voltage at the angle it will be applied at. */
+    sincos_q15_t scv = sincos_compute(angle_add(mc->theta, adv));
+    ab_q15_t v_ab = park_inverse(v, scv);
+    svgen_out_t sv;
+    svgen_update(v_ab, PWM_DUTY_MAX, &sv);
+
+    /* Phase currents predicted at the same angle: the signs the dead time
+     * will see (measured d/q current, rotated). */
+    ab_q15_t ip = park_inverse(mc->i_dq, scv);
+    int32_t half_a = -(int32_t)ip.alpha * (int32_t)16384;
+    int32_t b_s3 = (int32_t)ip.beta * (int32_t)28378; /* beta sqrt(3)/2, Q15 x Q15 */
+    q15_t iph[3];
+    iph[0] = ip.alpha;
+    iph[1] = q15_sat((half_a + b_s3 + (int32_t)0x4000) >> 15);
+    iph[2] = q15_sat((half_a - b_s3 + (int32_t)0x4000) >> 15);
+
+    int16_t eff[3];
+    for (uint8_t k = 0U; k < 3U; k++) {
+        int16_t dt = mc_deadtime_counts(iph[k]);
+        int32_t d = (int32_t)sv.duty[k];
+#if MC_DEADTIME_COMP
+        d += dt;
+#endif
+        if (d < 0) {
+            d = 0;
+        } else if (d > (int32_t)PWM_DUTY_MAX) {
+            d = (int32_t)PWM_DUTY_MAX;
+        }
+        mc->duty[k] = (uint16_t)d;
+        /* What the inverter will really apply: the duty less the dead-time loss. */
+        eff[k] = (int16_t)(d - dt);
+    }
+
+    /* Estimator: fed the voltage applied while this sample's current
+     * evolved (computed two steps ago), then this step's for later. */
+    smc_update(&mc->smc, i_ab, mc->v_hist[1]);
+    mc->v_hist[1] = mc->v_hist[0];
+    mc->v_hist[0] = mc_duty_to_voltage(eff, mc->vbus);
+}
+
+/* ---- the seam ------------------------------------------------------------------------------ */
+
+void mc_init(mc_t *mc)
+{
+    memset(mc, 0, sizeof(*mc));
+    pi_init(&mc->pi_d, &mc_pi_cur_params);
+    pi_init(&mc->pi_q, &mc_pi_cur_params);
+    pi_init(&mc->pi_w, &mc_pi_spd_params);
+    fieldweak_init(&mc->fw, &mc_fw_params);
+    smc_init(&mc->smc, &mc_smc_params);
+    mc->speed_ref = MC_SPEED_REF_MIN_Q15;
+    mc->speed_target = MC_SPEED_REF_MIN_Q15;
+    mc_outputs_off(mc);
+    mc->fault = MC_FAULT_NONE;
+    mc_enter(mc, MC_STATE_STOPPED);
+}
+
+void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+{
+    /* 1. Frame, requests and reference. */
+    mc->vbus = in->vbus;
+    mc->pot = in->pot;
+    bool req_toggle = mc_take(mc, MC_REQUEST_START_STOP);
+    bool req_hw = mc_take(mc, MC_REQUEST_HW_FAULT);
+    bool req_start = mc_take(mc, MC_REQUEST_START);
+    bool req_stop = mc_take(mc, MC_REQUEST_STOP);
+    if (mc_take(mc, MC_REQUEST_REF_POT)) {
+        mc->ref_from_remote = false;
+    }
+    uint8_t seq = mc->ref_remote_seq;
+    if (seq != mc->ref_remote_seen) {
+        mc->ref_remote_seen = seq;
+        mc->ref_from_remote = true;
+    }
+#if defined(TORQUEMODE)
+    if (mc->ref_from_remote) {
+        mc->torque_target = q15_clamp(mc->ref_remote, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15);
+    } else {
+        mc->torque_target = mc_pot_to_torque(in->pot);
+    }
+#else
+    if (mc->ref_from_remote) {
+        mc->speed_target = q15_clamp(mc->ref_remote, MC_SPEED_REF_MIN_Q15, MC_SPEED_REF_MAX_Q15);
+    } else {
+        mc->speed_target = mc_pot_to_speed(in->pot);
+    }
+#endif
+
+    /* 2. Offsets off; ic from the other two. */
+    mc->ia = q15_sub_sat(in->ia, mc->offset_a);
+    mc->ib = q15_sub_sat(in->ib, mc->offset_b);
+    mc->ic = q15_sat(-(int32_t)mc->ia - (int32_t)mc->ib);
+
+    /* 3. Protections, before anything is driven. */
+    bool running = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
+                   mc->state == MC_STATE_CLOSED_LOOP;
+    if (req_hw) {
+        mc_fault(mc, MC_FAULT_HARDWARE);
+    }
+    if (running) {
+        if (q15_abs_sat(mc->ia) >= MC_OVERCURRENT_Q15 ||
+            q15_abs_sat(mc->ib) >= MC_OVERCURRENT_Q15 ||
+            q15_abs_sat(mc->ic) >= MC_OVERCURRENT_Q15) {
+            mc_fault(mc, MC_FAULT_OVERCURRENT);
+        } else if (mc->vbus <= MC_VBUS_UV_Q15) {
+            mc_fault(mc, MC_FAULT_UNDERVOLTAGE);
+        }
+    }
+    if (mc->vbus >= MC_VBUS_OV_Q15) {
+        mc_fault(mc, MC_FAULT_OVERVOLTAGE);
+    }
+
+    /* 4. State machine. */
+    switch (mc->state) {
+        case MC_STATE_STOPPED:
+            if (req_toggle || req_start) {
+                mc_start(mc);
+            }
+            break;
+        case MC_STATE_FAULT:
+            /* timer > 0: not the fault raised by this very frame. */
+            if ((req_toggle || req_start) && mc->timer > 0U) {
+                mc->state = MC_STATE_STOPPED;
+                mc_start(mc); /* back to FAULT at once if the bus is still out */
+            }
+            break;
+        default:
+            if (req_toggle || req_stop) {
+                mc_stop(mc);
+            }
+            break;
+    }
+
+    angle_q15_t adv = 0;
+    switch (mc->state) {
+        case MC_STATE_CALIBRATE:
+            if (mc->timer >= mc->calib_wait) {
+                mc->offset_acc_a += in->ia;
+                mc->offset_acc_b += in->ib;
+                if (mc->timer - mc->calib_wait >= (uint32_t)(MC_CALIB_PERIODS - 1U)) {
+                    /* One division per start, not per period. */
+                    mc->offset_a = (q15_t)(mc->offset_acc_a / (int32_t)MC_CALIB_PERIODS);
+                    mc->offset_b = (q15_t)(mc->offset_acc_b / (int32_t)MC_CALIB_PERIODS);
+                    if (q15_abs_sat(mc->offset_a) > MC_OFFSET_MAX_Q15 ||
+                        q15_abs_sat(mc->offset_b) > MC_OFFSET_MAX_Q15) {
+                        mc->offset_a = 0;
+                        mc->offset_b = 0;
+                        mc_fault(mc, MC_FAULT_OFFSET);
+                        break;
+                    }
+                    /* This sample still carried the old offsets: zero the
+                     * currents the lock's first period sees. */
+                    mc->ia = 0;
+                    mc->ib = 0;
+                    mc->ic = 0;
+                    mc_enter_lock(mc);
+                    mc_current_control(mc, 0);
+                    break;
+                }
+            }
+            break;
+        case MC_STATE_LOCK:
+            if (mc->timer >= MC_LOCK_PERIODS) {
+                mc->i_ref.q = MC_RAMP_CURRENT_Q15;
+                mc_enter(mc, MC_STATE_OPEN_LOOP);
+            }
+            mc_current_control(mc, 0);
+            break;
+        case MC_STATE_OPEN_LOOP:
+            mc->ol_step += MC_RAMP_STEP_INC;
+            mc->ol_angle += mc->ol_step;
+            mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
+            /* 1.5 periods of the forced speed. */
+            adv = (angle_q15_t)(int16_t)(uint16_t)((mc->ol_step >> 16) * 3U / 2U);
+            mc_current_control(mc, adv);
+            if (mc->ol_step >= MC_RAMP_STEP_END) {
+                /* At the end speed: hold it until the estimate is valid,
+                 * for at most MC_HANDOFF_WAIT_PERIODS (note 1). */
+                mc->ol_step = MC_RAMP_STEP_END;
+                if (smc_valid(&mc->smc)) {
+                    mc_enter_closed_loop(mc);
+                } else if (mc->timer < MC_RAMP_PERIODS + MC_HANDOFF_WAIT_PERIODS) {
+                    /* keep turning at the end speed */
+                } else if ((int)mc->retries < (int)MC_START_RETRIES) {
+                    mc->retries++;
+                    mc_begin_calibration(mc, MC_COAST_PERIODS);
+                } else {
+                    mc_fault(mc, MC_FAULT_START_FAILED);
+                }
+            }
+            break;
+        case MC_STATE_CLOSED_LOOP: {
+            /* Bleed the hand-off difference towards 0. */
+            int16_t off = mc->theta_offset;
+            if (off > MC_BLEED_STEP) {
+                off = (int16_t)(off - MC_BLEED_STEP);
+            } else if (off < -MC_BLEED_STEP) {
+                off = (int16_t)(off + MC_BLEED_STEP);
+            } else {
+                off = 0;
+            }
+            mc->theta_offset = off;
+            mc->theta = angle_add(smc_theta(&mc->smc), off);
+            adv = q15_mul(smc_omega(&mc->smc), MC_ADV_K);
+            mc_current_control(mc, adv);
+            mc->speed_div++;
+            if (mc->speed_div >= IRP_PERCALC) {
+                mc->speed_div = 0U;
+                (void)mc_speed_loop(mc);
+            }
+            break;
+        }
+        default: /* STOPPED, FAULT: outputs stay off */
+            break;
+    }
+    if (mc->timer < MC_TIMER_MAX) {
+        mc->timer++;
+    }
+
+    /* 5. Outputs: every path writes all of them. */
+    out->duty[0] = mc->duty[0];
+    out->duty[1] = mc->duty[1];
+    out->duty[2] = mc->duty[2];
+    out->outputs_on = mc->outputs_on;
+}
+
+void mc_status(const mc_t *mc, mc_status_t *st)
+{
+    st->state = mc->state;
+    st->fault = mc->fault;
+    st->theta_est = mc->theta;
+    st->speed_est = smc_omega(&mc->smc);
+    st->speed_ref = mc->speed_ref;
+    st->id = mc->i_dq.d;
+    st->iq = mc->i_dq.q;
+    st->vd = mc->v_dq.d;
+    st->vq = mc->v_dq.q;
+    st->vbus = mc->vbus;
+    st->start_retries = mc->retries;
+    st->estimator_valid = smc_valid(&mc->smc);
+    st->id_ref = mc->i_ref.d;
+    st->iq_ref = mc->i_ref.q;
+    st->speed_target = mc->speed_target;
+    st->theta_forced = (int16_t)(uint16_t)(mc->ol_angle >> 16);
+    st->bemf = smc_emf_amplitude(&mc->smc);
+    st->ia = mc->ia;
+    st->ib = mc->ib;
+    st->duty[0] = mc->duty[0];
+    st->duty[1] = mc->duty[1];
+    st->duty[2] = mc->duty[2];
+    st->outputs_on = mc->outputs_on;
+}
+
+/*
+ * Notes
+ *
+ * 1. Hand-off. At the end of the ramp the forced speed is held until the
+ *    estimator reports a valid angle (its validity flickers on a noisy
+ *    window speed near the threshold), at most MC_HANDOFF_WAIT_S; no valid
+ *    estimate by then is a failed start, retried after the rotor has
+ *    coasted for MC_RETRY_COAST_S, MC_START_RETRIES times, then FAULT
+ *    START_FAILED. The estimator has run for the whole
+ *    start-up on the measured currents and the applied voltages, so its
+ *    angle is already the rotor's; the forced angle is not (the rotor runs
+ *    at a load angle behind the current vector). The difference is kept as
+ *    theta_offset and bled to zero at MC_HANDOFF_BLEED_DEG_PER_S, so the
+ *    current vector turns smoothly onto the estimated rotor axis, and the
+ *    speed PI starts with its integral at the ramp's Iq, so the torque
+ *    does not step.
+ *
+ * 2. Stall detection runs at the speed-loop rate in CLOSED_LOOP; each
+ *    condition must hold for consecutive runs: estimated |speed| below
+ *    MC_STALL_SPEED_MIN_RPM (MC_STALL_TIME_S); the estimator's back-EMF
+ *    ratio (|e| over what Ke predicts at the estimated speed) above
+ *    MC_STALL_BEMF_HIGH_FRACTION or, outside field weakening (where the
+ *    weakened flux lowers it legitimately), below MC_STALL_BEMF_LOW_FRACTION
+ *    (MC_STALL_TIME_S); the speed error above MC_STALL_SPEED_ERROR_RPM with
+ *    the speed PI at its limit (MC_STALL_TRACK_TIME_S).
+ */

@@ -151,17 +151,17 @@ typedef struct {
 
     mc_state_t state;
     uint16_t fault;
-    uint16_t timer;     /* periods spent in the current state (saturates) */
-    uint8_t retries;    /* failed starts since START */
-    uint8_t speed_div;  /* counts periods up to MC_SPEED_LOOP_DIV */
-    bool hw_fault_seen; /* FLTA reported since the last START */
+    uint32_t timer;      /* periods spent in the current state (saturates) */
+    uint8_t retries;     /* failed starts since START */
+    uint8_t speed_div;   /* counts periods up to IRP_PERCALC */
+    uint16_t calib_wait; /* CALIBRATE: periods to coast before averaging */
 
     /* current offsets, Q15 */
     int32_t offset_acc_a, offset_acc_b;
     int16_t offset_a, offset_b;
 
     /* measurements of this period */
-    int16_t ia, ib, vbus, pot;
+    int16_t ia, ib, ic, vbus, pot;
     dq_q15_t i_dq;
 
     /* current and speed control */
@@ -183,9 +183,7 @@ typedef struct {
 
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
-    uint16_t duty_hist[2][3]; /* [0]: duties computed last step, [1]: the step before */
-    int16_t vbus_hist[2];
-    ab_q15_t v_applied;
+    ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
 
     /* outputs */
     uint16_t duty[3];
@@ -224,10 +222,11 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    before the step sees it counts once.
  *
  * 2. The estimator is fed the voltage the inverter actually applied while
- *    the measured current evolved: reconstructed from the duties of two
- *    steps ago (they were applied during the period that ends at this
- *    sample) and the bus voltage then, so dead-time compensation, duty
- *    clamping and bus ripple are all seen by the model.
+ *    the measured current evolved: the duties computed two steps ago (they
+ *    were applied during the period that ends at this sample), less the
+ *    dead-time loss predicted from the sign of each phase current, times
+ *    the bus voltage sampled then. So duty clamping, bus ripple and the
+ *    dead time itself (compensated or not) are all seen by the model.
  */
 
 #endif /* MC_H */

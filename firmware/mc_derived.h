@@ -6,7 +6,7 @@
 /*
  * Nothing here is tuned: every constant is computed from UserParms.h and the
  * board and motor profiles. Each check stops the build with a message that
- * starts with the parameter to change (Q15_STATIC_ASSERT); the Q15()
+ * starts with the parameter to change (MC_CHECK below); the Q15()
  * conversions that follow carry their own range check.
  *
  * Scales used by the core (DESIGN.md):
@@ -28,39 +28,54 @@
 #include "smc.h"
 #include "UserParms.h"
 
+/* MC_CHECK(PARAM, cond, "why"): stops the build when cond is false, naming
+ * PARAM. With a C11-capable compiler: "static assertion failed: "PARAM: why"".
+ * Where _Static_assert is unavailable or hidden (glibc's <sys/cdefs.h>
+ * redefines it as a macro in C99 mode, losing the message): "negative width
+ * in bit-field 'PARAM__out_of_range'". */
+#if defined(_Static_assert) || !defined(__GNUC__) ||                                               \
+    (__GNUC__ < 4 || (__GNUC__ == 4 && __GNUC_MINOR__ < 6))
+#define MC_CHECK(param, cond, msg)                                                                 \
+    struct Q15_CAT(mc_check_line_, __LINE__) {                                                     \
+        unsigned param##__out_of_range : ((cond) ? 1 : -1);                                        \
+    }
+#else
+#define MC_CHECK(param, cond, msg) _Static_assert(cond, #param ": " msg)
+#endif
+
 /* ---- timing ------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(PWM_FREQUENCY_HZ >= 4000L && PWM_FREQUENCY_HZ <= 40000L,
-                  "PWM_FREQUENCY_HZ: must be in 4000..40000 Hz");
-Q15_STATIC_ASSERT(BOARD_FCY_HZ % PWM_FREQUENCY_HZ == 0,
-                  "PWM_FREQUENCY_HZ: BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be an integer "
-                  "(it is the duty full scale)");
-Q15_STATIC_ASSERT(BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
-                  "PWM_FREQUENCY_HZ: duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
-                  "<= 32767 counts");
+MC_CHECK(PWM_FREQUENCY_HZ, PWM_FREQUENCY_HZ >= 4000L && PWM_FREQUENCY_HZ <= 40000L,
+         "must be in 4000..40000 Hz");
+MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ % PWM_FREQUENCY_HZ == 0,
+         "BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be an integer "
+         "(it is the duty full scale)");
+MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
+         "duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
+         "<= 32767 counts");
 
 /* Duty counts for 100 % (AN1078 LOOPINTCY, PDCx units: 2000 at 40 MIPS, 20 kHz). */
 #define PWM_DUTY_MAX ((uint16_t)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ))
 #define MC_TS_S      (1.0 / (double)PWM_FREQUENCY_HZ)
 
-Q15_STATIC_ASSERT(MC_SPEED_LOOP_HZ > 0 && PWM_FREQUENCY_HZ % MC_SPEED_LOOP_HZ == 0,
-                  "MC_SPEED_LOOP_HZ: must divide PWM_FREQUENCY_HZ");
-Q15_STATIC_ASSERT(PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ >= 1 &&
-                      PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ <= 256,
-                  "MC_SPEED_LOOP_HZ: IRP_PERCALC = PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ must be "
-                  "in 1..256");
+MC_CHECK(MC_SPEED_LOOP_HZ, MC_SPEED_LOOP_HZ > 0 && PWM_FREQUENCY_HZ % MC_SPEED_LOOP_HZ == 0,
+         "must divide PWM_FREQUENCY_HZ");
+MC_CHECK(MC_SPEED_LOOP_HZ,
+         PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ >= 1 && PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ <= 256,
+         "IRP_PERCALC = PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ must be "
+         "in 1..256");
 /* PWM periods per speed-loop run (AN1078 IRP_PERCALC). */
 #define IRP_PERCALC ((uint16_t)(PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ))
 
 /* ---- scales -------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(BOARD_I_FULLSCALE_A > 0.0, "BOARD_I_FULLSCALE_A: must be > 0");
-Q15_STATIC_ASSERT(BOARD_VBUS_FULLSCALE_V > 0.0, "BOARD_VBUS_FULLSCALE_V: must be > 0");
-Q15_STATIC_ASSERT(BOARD_VBUS_NOMINAL_V > 0.0 && BOARD_VBUS_NOMINAL_V < BOARD_VBUS_FULLSCALE_V,
-                  "BOARD_VBUS_NOMINAL_V: must be in (0, BOARD_VBUS_FULLSCALE_V)");
-Q15_STATIC_ASSERT(MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32,
-                  "MOTOR_POLE_PAIRS: must be in 1..32");
-Q15_STATIC_ASSERT(MC_SPEED_FULLSCALE_RPM > 0.0, "MC_SPEED_FULLSCALE_RPM: must be > 0");
+MC_CHECK(BOARD_I_FULLSCALE_A, BOARD_I_FULLSCALE_A > 0.0, "must be > 0");
+MC_CHECK(BOARD_VBUS_FULLSCALE_V, BOARD_VBUS_FULLSCALE_V > 0.0, "must be > 0");
+MC_CHECK(BOARD_VBUS_NOMINAL_V,
+         BOARD_VBUS_NOMINAL_V > 0.0 && BOARD_VBUS_NOMINAL_V < BOARD_VBUS_FULLSCALE_V,
+         "must be in (0, BOARD_VBUS_FULLSCALE_V)");
+MC_CHECK(MOTOR_POLE_PAIRS, MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32, "must be in 1..32");
+MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_SPEED_FULLSCALE_RPM > 0.0, "must be > 0");
 
 /* SVGen full scale: the largest linear phase amplitude at the nominal bus. */
 #define MC_VOLTAGE_FULLSCALE_V (BOARD_VBUS_NOMINAL_V / 1.7320508075688772)
@@ -86,20 +101,22 @@ Q15_STATIC_ASSERT(MC_SPEED_FULLSCALE_RPM > 0.0, "MC_SPEED_FULLSCALE_RPM: must be
 
 /* ---- speeds --------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MOTOR_SPEED_MIN_RPM > 0.0 && MOTOR_SPEED_MIN_RPM < MOTOR_SPEED_NOMINAL_RPM,
-                  "MOTOR_SPEED_MIN_RPM: must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
-Q15_STATIC_ASSERT(MOTOR_SPEED_FW_MAX_RPM >= MOTOR_SPEED_NOMINAL_RPM,
-                  "MOTOR_SPEED_FW_MAX_RPM: must be >= MOTOR_SPEED_NOMINAL_RPM (equal: no field "
-                  "weakening)");
-Q15_STATIC_ASSERT(MOTOR_SPEED_FW_MAX_RPM <= 0.95 * MC_SPEED_FULLSCALE_RPM,
-                  "MC_SPEED_FULLSCALE_RPM: must be >= MOTOR_SPEED_FW_MAX_RPM / 0.95 "
-                  "(room for overshoot)");
-Q15_STATIC_ASSERT(SPEED_REF_MIN_RPM > 0.0 && SPEED_REF_MIN_RPM < SPEED_REF_MAX_RPM,
-                  "SPEED_REF_MIN_RPM: must be in (0, SPEED_REF_MAX_RPM)");
-Q15_STATIC_ASSERT(SPEED_REF_MAX_RPM <= MOTOR_SPEED_FW_MAX_RPM,
-                  "SPEED_REF_MAX_RPM: must be <= MOTOR_SPEED_FW_MAX_RPM");
-Q15_STATIC_ASSERT(MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RAMP_END_RPM,
-                  "MC_ESTIMATOR_MIN_RPM: must be in (0, MOTOR_RAMP_END_RPM]");
+MC_CHECK(MOTOR_SPEED_MIN_RPM,
+         MOTOR_SPEED_MIN_RPM > 0.0 && MOTOR_SPEED_MIN_RPM < MOTOR_SPEED_NOMINAL_RPM,
+         "must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
+MC_CHECK(MOTOR_SPEED_FW_MAX_RPM, MOTOR_SPEED_FW_MAX_RPM >= MOTOR_SPEED_NOMINAL_RPM,
+         "must be >= MOTOR_SPEED_NOMINAL_RPM (equal: no field "
+         "weakening)");
+MC_CHECK(MC_SPEED_FULLSCALE_RPM, MOTOR_SPEED_FW_MAX_RPM <= 0.95 * MC_SPEED_FULLSCALE_RPM,
+         "must be >= MOTOR_SPEED_FW_MAX_RPM / 0.95 "
+         "(room for overshoot)");
+MC_CHECK(SPEED_REF_MIN_RPM, SPEED_REF_MIN_RPM > 0.0 && SPEED_REF_MIN_RPM < SPEED_REF_MAX_RPM,
+         "must be in (0, SPEED_REF_MAX_RPM)");
+MC_CHECK(SPEED_REF_MAX_RPM, SPEED_REF_MAX_RPM <= MOTOR_SPEED_FW_MAX_RPM,
+         "must be <= MOTOR_SPEED_FW_MAX_RPM");
+MC_CHECK(MC_ESTIMATOR_MIN_RPM,
+         MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RAMP_END_RPM,
+         "must be in (0, MOTOR_RAMP_END_RPM]");
 
 #define MC_SPEED_REF_MIN_Q15 MC_Q15_RPM(SPEED_REF_MIN_RPM)
 #define MC_SPEED_REF_MAX_Q15 MC_Q15_RPM(SPEED_REF_MAX_RPM)
@@ -107,22 +124,26 @@ Q15_STATIC_ASSERT(MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RA
 #define MC_SPEED_RAMP_STEP_                                                                        \
     ((double)MC_SPEED_RAMP_RPM_PER_S / (double)MC_SPEED_LOOP_HZ / (double)MC_SPEED_FULLSCALE_RPM * \
      32768.0)
-Q15_STATIC_ASSERT(MC_SPEED_RAMP_STEP_ >= 1.0 && MC_SPEED_RAMP_STEP_ < 32767.0,
-                  "MC_SPEED_RAMP_RPM_PER_S: must give 1..32767 Q15 counts per speed-loop run");
+MC_CHECK(MC_SPEED_RAMP_RPM_PER_S, MC_SPEED_RAMP_STEP_ >= 1.0 && MC_SPEED_RAMP_STEP_ < 32767.0,
+         "must give 1..32767 Q15 counts per speed-loop run");
 #define MC_SPEED_RAMP_STEP ((q15_t)(MC_SPEED_RAMP_STEP_ + 0.5))
 
 /* ---- currents -------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MOTOR_CURRENT_MAX_A > 0.0 && MOTOR_CURRENT_MAX_A < BOARD_I_FULLSCALE_A,
-                  "MOTOR_CURRENT_MAX_A: must be in (0, BOARD_I_FULLSCALE_A)");
-Q15_STATIC_ASSERT(MC_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MC_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
-                  "MC_OVERCURRENT_A: must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
-Q15_STATIC_ASSERT(MOTOR_LOCK_CURRENT_A > 0.0 && MOTOR_LOCK_CURRENT_A < MC_OVERCURRENT_A,
-                  "MOTOR_LOCK_CURRENT_A: must be in (0, MC_OVERCURRENT_A)");
-Q15_STATIC_ASSERT(MOTOR_RAMP_CURRENT_A > 0.0 && MOTOR_RAMP_CURRENT_A <= MOTOR_CURRENT_MAX_A,
-                  "MOTOR_RAMP_CURRENT_A: must be in (0, MOTOR_CURRENT_MAX_A]");
-Q15_STATIC_ASSERT(MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A,
-                  "MC_OFFSET_MAX_A: must be in (0, BOARD_I_FULLSCALE_A)");
+MC_CHECK(MOTOR_CURRENT_MAX_A,
+         MOTOR_CURRENT_MAX_A > 0.0 && MOTOR_CURRENT_MAX_A < BOARD_I_FULLSCALE_A,
+         "must be in (0, BOARD_I_FULLSCALE_A)");
+MC_CHECK(MC_OVERCURRENT_A,
+         MC_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MC_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
+         "must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
+MC_CHECK(MOTOR_LOCK_CURRENT_A,
+         MOTOR_LOCK_CURRENT_A > 0.0 && MOTOR_LOCK_CURRENT_A < MC_OVERCURRENT_A,
+         "must be in (0, MC_OVERCURRENT_A)");
+MC_CHECK(MOTOR_RAMP_CURRENT_A,
+         MOTOR_RAMP_CURRENT_A > 0.0 && MOTOR_RAMP_CURRENT_A <= MOTOR_CURRENT_MAX_A,
+         "must be in (0, MOTOR_CURRENT_MAX_A]");
+MC_CHECK(MC_OFFSET_MAX_A, MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A,
+         "must be in (0, BOARD_I_FULLSCALE_A)");
 
 #define MC_IQ_MAX_Q15       MC_Q15_AMPS(MOTOR_CURRENT_MAX_A)
 #define MC_OVERCURRENT_Q15  MC_Q15_AMPS(MC_OVERCURRENT_A)
@@ -132,20 +153,23 @@ Q15_STATIC_ASSERT(MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A
 
 /* ---- DC bus ---------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MC_VBUS_UNDERVOLTAGE_V > 0.0 && MC_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
-                  "MC_VBUS_UNDERVOLTAGE_V: must be in (0, BOARD_VBUS_NOMINAL_V)");
-Q15_STATIC_ASSERT(MC_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V &&
-                      MC_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
-                  "MC_VBUS_OVERVOLTAGE_V: must be in (BOARD_VBUS_NOMINAL_V, "
-                  "BOARD_VBUS_FULLSCALE_V)");
+MC_CHECK(MC_VBUS_UNDERVOLTAGE_V,
+         MC_VBUS_UNDERVOLTAGE_V > 0.0 && MC_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
+         "must be in (0, BOARD_VBUS_NOMINAL_V)");
+MC_CHECK(MC_VBUS_OVERVOLTAGE_V,
+         MC_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V &&
+             MC_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
+         "must be in (BOARD_VBUS_NOMINAL_V, "
+         "BOARD_VBUS_FULLSCALE_V)");
 #define MC_VBUS_UV_Q15      MC_Q15_VBUS(MC_VBUS_UNDERVOLTAGE_V)
 #define MC_VBUS_OV_Q15      MC_Q15_VBUS(MC_VBUS_OVERVOLTAGE_V)
 #define MC_VBUS_NOMINAL_Q15 MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V)
 
 /* ---- voltage limit ----------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MC_VOLTAGE_LIMIT_FRACTION > 0.5 && MC_VOLTAGE_LIMIT_FRACTION <= 1.0,
-                  "MC_VOLTAGE_LIMIT_FRACTION: must be in (0.5, 1]");
+MC_CHECK(MC_VOLTAGE_LIMIT_FRACTION,
+         MC_VOLTAGE_LIMIT_FRACTION > 0.5 && MC_VOLTAGE_LIMIT_FRACTION <= 1.0,
+         "must be in (0.5, 1]");
 #define MC_VMAX_Q15 Q15(MC_VOLTAGE_LIMIT_FRACTION)
 
 /* ---- current PI (d and q): gains in V/A and V/(A s) to Q15 of V_FS per I_FS ---- */
@@ -153,10 +177,10 @@ Q15_STATIC_ASSERT(MC_VOLTAGE_LIMIT_FRACTION > 0.5 && MC_VOLTAGE_LIMIT_FRACTION <
 #define MC_CUR_KP_ ((double)MOTOR_CURRENT_KP_V_PER_A * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
 #define MC_CUR_KI_                                                                                 \
     ((double)MOTOR_CURRENT_KI_V_PER_AS * MC_TS_S * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
-Q15_STATIC_ASSERT(MC_CUR_KP_ >= 0.0 && MC_CUR_KP_ < 128.0,
-                  "MOTOR_CURRENT_KP_V_PER_A: Kp * I_FS / V_FS must be in [0, 128)");
-Q15_STATIC_ASSERT(MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
-                  "MOTOR_CURRENT_KI_V_PER_AS: Ki * Ts * I_FS / V_FS must be in [0, 1)");
+MC_CHECK(MOTOR_CURRENT_KP_V_PER_A, MC_CUR_KP_ >= 0.0 && MC_CUR_KP_ < 128.0,
+         "Kp * I_FS / V_FS must be in [0, 128)");
+MC_CHECK(MOTOR_CURRENT_KI_V_PER_AS, MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
+         "Ki * Ts * I_FS / V_FS must be in [0, 1)");
 #define MC_CUR_KP       MC_MANT_OF(MC_CUR_KP_)
 #define MC_CUR_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_CUR_KP_))
 #define MC_CUR_KI       Q15(MC_CUR_KI_)
@@ -167,11 +191,11 @@ Q15_STATIC_ASSERT(MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
 #define MC_SPD_KI_                                                                                 \
     ((double)MOTOR_SPEED_KI_A_PER_RPM_S / (double)MC_SPEED_LOOP_HZ * MC_SPEED_FULLSCALE_RPM /      \
      BOARD_I_FULLSCALE_A)
-Q15_STATIC_ASSERT(MC_SPD_KP_ >= 0.0 && MC_SPD_KP_ < 128.0,
-                  "MOTOR_SPEED_KP_A_PER_RPM: Kp * speed FS / I_FS must be in [0, 128)");
-Q15_STATIC_ASSERT(MC_SPD_KI_ >= 0.0 && MC_SPD_KI_ < 1.0,
-                  "MOTOR_SPEED_KI_A_PER_RPM_S: Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be "
-                  "in [0, 1)");
+MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_SPD_KP_ >= 0.0 && MC_SPD_KP_ < 128.0,
+         "Kp * speed FS / I_FS must be in [0, 128)");
+MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_SPD_KI_ >= 0.0 && MC_SPD_KI_ < 1.0,
+         "Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be "
+         "in [0, 1)");
 #define MC_SPD_KP       MC_MANT_OF(MC_SPD_KP_)
 #define MC_SPD_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_SPD_KP_))
 #define MC_SPD_KI       Q15(MC_SPD_KI_)
@@ -182,23 +206,25 @@ Q15_STATIC_ASSERT(MC_SPD_KI_ >= 0.0 && MC_SPD_KI_ < 1.0,
 
 /* ---- start-up -------------------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MOTOR_LOCK_TIME_S *PWM_FREQUENCY_HZ >= 1.0 &&
-                      MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
-                  "MOTOR_LOCK_TIME_S: must be 1..65000 PWM periods");
+MC_CHECK(MOTOR_LOCK_TIME_S,
+         MOTOR_LOCK_TIME_S *PWM_FREQUENCY_HZ >= 1.0 &&
+             MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
+         "must be 1..65000 PWM periods");
 #define MC_LOCK_PERIODS ((uint16_t)(MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ + 0.5))
 
-Q15_STATIC_ASSERT(MC_OFFSET_CALIB_TIME_S *PWM_FREQUENCY_HZ >= 16.0 &&
-                      MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
-                  "MC_OFFSET_CALIB_TIME_S: must be 16..65000 PWM periods");
+MC_CHECK(MC_OFFSET_CALIB_TIME_S,
+         MC_OFFSET_CALIB_TIME_S *PWM_FREQUENCY_HZ >= 16.0 &&
+             MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
+         "must be 16..65000 PWM periods");
 #define MC_CALIB_PERIODS ((uint16_t)(MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ + 0.5))
 
-Q15_STATIC_ASSERT(MC_RETRY_COAST_S *PWM_FREQUENCY_HZ >= 0.0 &&
-                      MC_RETRY_COAST_S * PWM_FREQUENCY_HZ <= 65000.0,
-                  "MC_RETRY_COAST_S: must be 0..65000 PWM periods");
+MC_CHECK(MC_RETRY_COAST_S,
+         MC_RETRY_COAST_S *PWM_FREQUENCY_HZ >= 0.0 &&
+             MC_RETRY_COAST_S * PWM_FREQUENCY_HZ <= 65000.0,
+         "must be 0..65000 PWM periods");
 #define MC_COAST_PERIODS ((uint16_t)(MC_RETRY_COAST_S * PWM_FREQUENCY_HZ + 0.5))
 
-Q15_STATIC_ASSERT(MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250,
-                  "MC_START_RETRIES: must be in 0..250");
+MC_CHECK(MC_START_RETRIES, MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250, "must be in 0..250");
 
 /* Open-loop ramp, constant acceleration: the 32-bit angle step grows by
  * MC_RAMP_STEP_INC each period; the ramp ends when the step reaches
@@ -208,95 +234,109 @@ Q15_STATIC_ASSERT(MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250,
 #define MC_RAMP_STEP_INC_                                                                          \
     ((double)MOTOR_RAMP_END_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0 /               \
      MC_RAMP_PERIODS_)
-Q15_STATIC_ASSERT(MOTOR_RAMP_END_RPM >= MC_ESTIMATOR_MIN_RPM &&
-                      MOTOR_RAMP_END_RPM < MOTOR_SPEED_NOMINAL_RPM,
-                  "MOTOR_RAMP_END_RPM: must be in [MC_ESTIMATOR_MIN_RPM, MOTOR_SPEED_NOMINAL_RPM)");
-Q15_STATIC_ASSERT(MC_RAMP_PERIODS_ >= 100.0 && MC_RAMP_PERIODS_ <= 4.0e6,
-                  "MOTOR_RAMP_TIME_S: must be 100..4e6 PWM periods");
-Q15_STATIC_ASSERT(MC_RAMP_STEP_INC_ >= 8.0,
-                  "MOTOR_RAMP_TIME_S: ramp too slow for the 32-bit angle (step increment < 8)");
+MC_CHECK(MOTOR_RAMP_END_RPM,
+         MOTOR_RAMP_END_RPM >= MC_ESTIMATOR_MIN_RPM && MOTOR_RAMP_END_RPM < MOTOR_SPEED_NOMINAL_RPM,
+         "must be in [MC_ESTIMATOR_MIN_RPM, MOTOR_SPEED_NOMINAL_RPM)");
+MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_PERIODS_ >= 100.0 && MC_RAMP_PERIODS_ <= 4.0e6,
+         "must be 100..4e6 PWM periods");
+MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_STEP_INC_ >= 8.0,
+         "ramp too slow for the 32-bit angle (step increment < 8)");
 #define MC_RAMP_STEP_INC ((uint32_t)(MC_RAMP_STEP_INC_ + 0.5))
 #define MC_RAMP_STEP_END (MC_RAMP_STEP_INC * (uint32_t)(MC_RAMP_PERIODS_ + 0.5))
+#define MC_RAMP_PERIODS  ((uint32_t)(MC_RAMP_PERIODS_ + 0.5))
+MC_CHECK(MC_HANDOFF_WAIT_S,
+         MC_HANDOFF_WAIT_S >= 0.0 && MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ <= 1.0e6,
+         "must be 0..1e6 PWM periods");
+#define MC_HANDOFF_WAIT_PERIODS ((uint32_t)(MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ + 0.5))
 /* Ramp end speed (mechanical Q15) = step end * fpwm * 60 / (2^32 pp FS). */
 #define MC_RAMP_END_Q15 MC_Q15_RPM(MOTOR_RAMP_END_RPM)
 
 /* Hand-off angle bleed per period, binary angle counts. */
 #define MC_BLEED_STEP_                                                                             \
     ((double)MC_HANDOFF_BLEED_DEG_PER_S / (double)PWM_FREQUENCY_HZ * 65536.0 / 360.0)
-Q15_STATIC_ASSERT(MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 4096.0,
-                  "MC_HANDOFF_BLEED_DEG_PER_S: must give 1..4096 angle counts per period");
+MC_CHECK(MC_HANDOFF_BLEED_DEG_PER_S, MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 4096.0,
+         "must give 1..4096 angle counts per period");
 #define MC_BLEED_STEP ((int16_t)(MC_BLEED_STEP_ + 0.5))
 
 /* ---- dead time ---------------------------------------------------------------------- */
 
 /* Dead time in duty counts: Td / Ts * PWM_DUTY_MAX = Td * Fcy (80 on the MCLV). */
 #define MC_DT_COUNTS_ ((double)PWM_DEADTIME_NS * 1e-9 * (double)BOARD_FCY_HZ)
-Q15_STATIC_ASSERT(MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
-                  "PWM_DEADTIME_NS: must be below 10 % of the PWM period");
+MC_CHECK(PWM_DEADTIME_NS,
+         MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
+         "must be below 10 % of the PWM period");
 #define MC_DT_COUNTS ((int16_t)(MC_DT_COUNTS_ + 0.5))
-Q15_STATIC_ASSERT(MC_DEADTIME_BAND_A > 0.0 && MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
-                  "MC_DEADTIME_BAND_A: must be in (0, BOARD_I_FULLSCALE_A / 4)");
+MC_CHECK(MC_DEADTIME_BAND_A,
+         MC_DEADTIME_BAND_A > 0.0 && MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
+         "must be in (0, BOARD_I_FULLSCALE_A / 4)");
 #define MC_DT_BAND_Q15 MC_Q15_AMPS(MC_DEADTIME_BAND_A)
 /* Inside the band the correction is i * MC_DT_COUNTS / band = (i * MC_DT_SLOPE) >> 15. */
 #define MC_DT_SLOPE_ ((double)MC_DT_COUNTS * 32768.0 / (double)MC_DT_BAND_Q15)
-Q15_STATIC_ASSERT(MC_DT_SLOPE_ < 32767.0,
-                  "MC_DEADTIME_BAND_A: too narrow for the dead-time counts (slope >= 1)");
+MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
+         "too narrow for the dead-time counts (slope >= 1)");
 #define MC_DT_SLOPE ((q15_t)(MC_DT_SLOPE_ + 0.5))
 
-/* Applied voltage from duties (note 2 of mc.h): v_alpha = (2 da - db - dc) *
- * g >> 10 with g = vbus * MC_VAPP_K >> 15, MC_VAPP_K = sqrt(3) / (3
- * PWM_DUTY_MAX) * VBUS_FS / VBUS_NOMINAL * 2^25. */
+/* Applied voltage from duties (mc_internal.h): MC_VAPP_K = sqrt(3) / (3
+ * PWM_DUTY_MAX) * VBUS_FS / VBUS_NOMINAL * 2^25, so that (2 da - db - dc) *
+ * vbus * MC_VAPP_K / 2^25 is v_alpha in Q15 of V_FS. */
 #define MC_VAPP_K_                                                                                 \
     (1.7320508075688772 / (3.0 * (double)PWM_DUTY_MAX) * (double)BOARD_VBUS_FULLSCALE_V /          \
      (double)BOARD_VBUS_NOMINAL_V * 33554432.0)
-Q15_STATIC_ASSERT(MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
-                  "BOARD_VBUS_FULLSCALE_V: VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
-                  "range of the applied-voltage scaling");
-#define MC_VAPP_K ((q15_t)(MC_VAPP_K_ + 0.5))
+MC_CHECK(BOARD_VBUS_FULLSCALE_V, MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
+         "VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
+         "range of the applied-voltage scaling");
+#define MC_VAPP_K  ((int32_t)(MC_VAPP_K_ + 0.5))
+#define MC_VAPP_KB ((int32_t)(MC_VAPP_K_ * 1.7320508075688772 + 0.5)) /* beta: sqrt(3) larger */
 
 /* ---- protections ------------------------------------------------------------------------ */
 
 #define MC_STALL_TICKS_ ((double)MC_STALL_TIME_S * (double)MC_SPEED_LOOP_HZ)
-Q15_STATIC_ASSERT(MC_STALL_TICKS_ >= 2.0 && MC_STALL_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
-                  "MC_STALL_TIME_S: must be 2 speed-loop runs .. 50 ms");
+MC_CHECK(MC_STALL_TIME_S, MC_STALL_TICKS_ >= 2.0 && MC_STALL_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
+         "must be 2 speed-loop runs .. 50 ms");
 #define MC_STALL_TICKS        ((uint16_t)(MC_STALL_TICKS_ + 0.5))
 #define MC_STALL_TRACK_TICKS_ ((double)MC_STALL_TRACK_TIME_S * (double)MC_SPEED_LOOP_HZ)
-Q15_STATIC_ASSERT(MC_STALL_TRACK_TICKS_ >= 2.0 && MC_STALL_TRACK_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
-                  "MC_STALL_TRACK_TIME_S: must be 2 speed-loop runs .. 50 ms");
+MC_CHECK(MC_STALL_TRACK_TIME_S,
+         MC_STALL_TRACK_TICKS_ >= 2.0 && MC_STALL_TRACK_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
+         "must be 2 speed-loop runs .. 50 ms");
 #define MC_STALL_TRACK_TICKS ((uint16_t)(MC_STALL_TRACK_TICKS_ + 0.5))
-Q15_STATIC_ASSERT(MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,
-                  "MC_STALL_SPEED_MIN_RPM: must be in (0, MC_ESTIMATOR_MIN_RPM)");
+MC_CHECK(MC_STALL_SPEED_MIN_RPM,
+         MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,
+         "must be in (0, MC_ESTIMATOR_MIN_RPM)");
 #define MC_STALL_SPEED_Q15 MC_Q15_RPM(MC_STALL_SPEED_MIN_RPM)
-Q15_STATIC_ASSERT(MC_STALL_SPEED_ERROR_RPM > 0.0 &&
-                      MC_STALL_SPEED_ERROR_RPM < MC_SPEED_FULLSCALE_RPM,
-                  "MC_STALL_SPEED_ERROR_RPM: must be in (0, MC_SPEED_FULLSCALE_RPM)");
+MC_CHECK(MC_STALL_SPEED_ERROR_RPM,
+         MC_STALL_SPEED_ERROR_RPM > 0.0 && MC_STALL_SPEED_ERROR_RPM < MC_SPEED_FULLSCALE_RPM,
+         "must be in (0, MC_SPEED_FULLSCALE_RPM)");
 #define MC_STALL_SPEED_ERR_Q15 MC_Q15_RPM(MC_STALL_SPEED_ERROR_RPM)
-Q15_STATIC_ASSERT(MC_STALL_BEMF_LOW_FRACTION >= 0.0 && MC_STALL_BEMF_LOW_FRACTION < 1.0,
-                  "MC_STALL_BEMF_LOW_FRACTION: must be in [0, 1)");
-Q15_STATIC_ASSERT(MC_STALL_BEMF_HIGH_FRACTION > 1.0 && MC_STALL_BEMF_HIGH_FRACTION < 7.9,
-                  "MC_STALL_BEMF_HIGH_FRACTION: must be in (1, 7.9)");
+MC_CHECK(MC_STALL_BEMF_LOW_FRACTION,
+         MC_STALL_BEMF_LOW_FRACTION >= 0.0 && MC_STALL_BEMF_LOW_FRACTION < 1.0,
+         "must be in [0, 1)");
+MC_CHECK(MC_STALL_BEMF_HIGH_FRACTION,
+         MC_STALL_BEMF_HIGH_FRACTION > 1.0 && MC_STALL_BEMF_HIGH_FRACTION < 7.9,
+         "must be in (1, 7.9)");
 /* In the estimator's Q12 ratio format (4096 = as expected). */
 #define MC_STALL_BEMF_LO_Q12 ((int16_t)(MC_STALL_BEMF_LOW_FRACTION * 4096.0 + 0.5))
 #define MC_STALL_BEMF_HI_Q12 ((int16_t)(MC_STALL_BEMF_HIGH_FRACTION * 4096.0 + 0.5))
 
 /* ---- motor model and estimator -------------------------------------------------------- */
 
-Q15_STATIC_ASSERT(MOTOR_RS_OHM > 0.0, "MOTOR_RS_OHM: must be > 0");
-Q15_STATIC_ASSERT(MOTOR_LS_H > 0.0, "MOTOR_LS_H: must be > 0");
-Q15_STATIC_ASSERT(MC_TS_S *MOTOR_RS_OHM / MOTOR_LS_H < 1.0,
-                  "MOTOR_LS_H: F = 1 - Ts R / L must be > 0 (L too small for MOTOR_RS_OHM)");
-Q15_STATIC_ASSERT(MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A < 1.0,
-                  "MOTOR_LS_H: G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
-                  "scales)");
-Q15_STATIC_ASSERT(MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "MOTOR_KE_VPK_LL_PER_KRPM: must be > 0");
-Q15_STATIC_ASSERT(MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < MC_VOLTAGE_FULLSCALE_V,
-                  "MOTOR_SMC_GAIN_V: Kslide must be in (0, V_FS = BOARD_VBUS_NOMINAL_V / sqrt 3)");
-Q15_STATIC_ASSERT(MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
-                      MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,
-                  "MOTOR_SMC_LINEAR_BAND_A: must be in (1 LSB, BOARD_I_FULLSCALE_A)");
-Q15_STATIC_ASSERT(MC_SPEED_FILTER_HZ > 0.0 &&
-                      6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ < 1.0,
-                  "MC_SPEED_FILTER_HZ: 2 pi fc / MC_SPEED_LOOP_HZ must be in (0, 1)");
+MC_CHECK(MOTOR_RS_OHM, MOTOR_RS_OHM > 0.0, "must be > 0");
+MC_CHECK(MOTOR_LS_H, MOTOR_LS_H > 0.0, "must be > 0");
+MC_CHECK(MOTOR_LS_H, MC_TS_S *MOTOR_RS_OHM / MOTOR_LS_H < 1.0,
+         "F = 1 - Ts R / L must be > 0 (L too small for MOTOR_RS_OHM)");
+MC_CHECK(MOTOR_LS_H, MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A < 1.0,
+         "G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
+         "scales)");
+MC_CHECK(MOTOR_KE_VPK_LL_PER_KRPM, MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "must be > 0");
+MC_CHECK(MOTOR_SMC_GAIN_V, MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < MC_VOLTAGE_FULLSCALE_V,
+         "Kslide must be in (0, V_FS = BOARD_VBUS_NOMINAL_V / sqrt 3)");
+MC_CHECK(MOTOR_SMC_LINEAR_BAND_A,
+         MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
+             MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,
+         "must be in (1 LSB, BOARD_I_FULLSCALE_A)");
+MC_CHECK(MC_SPEED_FILTER_HZ,
+         MC_SPEED_FILTER_HZ > 0.0 &&
+             6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ < 1.0,
+         "2 pi fc / MC_SPEED_LOOP_HZ must be in (0, 1)");
 
 /* Back-EMF, phase peak volts per electrical Hz. */
 #define MC_KE_V_PER_HZ                                                                             \
@@ -312,11 +352,11 @@ Q15_STATIC_ASSERT(MC_SPEED_FILTER_HZ > 0.0 &&
 /* ---- field weakening ------------------------------------------------------------------- */
 
 #define MC_FW_COUNT_(a) +1
-Q15_STATIC_ASSERT((0 MOTOR_FW_ID_TABLE_A(MC_FW_COUNT_)) == 16,
-                  "MOTOR_FW_ID_TABLE_A: must have exactly 16 entries");
+MC_CHECK(MOTOR_FW_ID_TABLE_A, (0 MOTOR_FW_ID_TABLE_A(MC_FW_COUNT_)) == 16,
+         "must have exactly 16 entries");
 #define MC_FW_NONPOS_(a) &&((a) <= 0.0 && (a) > -BOARD_I_FULLSCALE_A)
-Q15_STATIC_ASSERT((1 MOTOR_FW_ID_TABLE_A(MC_FW_NONPOS_)),
-                  "MOTOR_FW_ID_TABLE_A: every entry must be in (-BOARD_I_FULLSCALE_A, 0] amps");
+MC_CHECK(MOTOR_FW_ID_TABLE_A, (1 MOTOR_FW_ID_TABLE_A(MC_FW_NONPOS_)),
+         "every entry must be in (-BOARD_I_FULLSCALE_A, 0] amps");
 #define MC_FW_Q15_(a) MC_Q15_AMPS(a),
 #define MC_FW_TABLE_Q15                                                                            \
     {                                                                                              \

@@ -87,10 +87,10 @@
 
 /* ---- speed PI ---------------------------------------------------------------- */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.002
+#define MOTOR_SPEED_KP_A_PER_RPM 0.001
 #endif
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.02
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.01
 #endif
 
 /* ---- field weakening: Id (A) at 16 speeds evenly spaced from

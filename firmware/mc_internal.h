@@ -1,0 +1,43 @@
+/* mc_internal.h - the core's pure helpers, exposed for the unit tests (not part of the seam). */
+#ifndef MC_INTERNAL_H
+#define MC_INTERNAL_H
+
+#include "mc.h"
+
+/*
+ * Dead-time correction of one phase, in duty counts: +MC_DT_COUNTS for a
+ * current at or above +MC_DT_BAND_Q15 (into the motor: during the dead time
+ * the low-side diode conducts and the phase sits at the negative rail, so
+ * the inverter applies less than commanded), -MC_DT_COUNTS at or below
+ * -MC_DT_BAND_Q15, and linear in between: (i * MC_DT_SLOPE) >> 15 (rounded),
+ * so the correction does not chatter around a zero crossing.
+ * i: Q15 of BOARD_I_FULLSCALE_A. Result in [-MC_DT_COUNTS, MC_DT_COUNTS].
+ */
+int16_t mc_deadtime_counts(q15_t i);
+
+/*
+ * The alpha/beta voltage three phase duties produce on a bus vbus:
+ *   v_alpha = (2 da - db - dc) / (3 PWM_DUTY_MAX) * Vbus / V_FS
+ *   v_beta  = (db - dc) / (sqrt(3) PWM_DUTY_MAX) * Vbus / V_FS
+ * with V_FS = BOARD_VBUS_NOMINAL_V / sqrt(3) (MC_VOLTAGE_FULLSCALE_V).
+ * duty: effective duty counts, -PWM_DUTY_MAX/2..3 PWM_DUTY_MAX/2 (they may
+ * lie outside 0..PWM_DUTY_MAX by the predicted dead-time loss); vbus: Q15 of
+ * BOARD_VBUS_FULLSCALE_V (negative counts as 0). Output Q15 of V_FS,
+ * saturated (the hexagon corners exceed the circle by 2/sqrt(3)).
+ * Scaling: ga = vbus MC_VAPP_K >> 13 and gb = vbus MC_VAPP_KB >> 13 (Q12
+ * volts per count); v_alpha = (2 da - db - dc) ga >> 12, v_beta = (db - dc)
+ * gb >> 12, every product < 2^31 in the stated ranges, rounded to nearest.
+ * Error <= 1.1 LSB (test_mc.c).
+ */
+ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus);
+
+/* Speed reference (Q15 speed) for a pot reading 0..32767 (speed mode):
+ * SPEED_REF_MIN + pot (SPEED_REF_MAX - SPEED_REF_MIN) / 32768, floor;
+ * negative readings count as 0. */
+q15_t mc_pot_to_speed(int16_t pot);
+
+/* Iq reference (Q15 current) for a pot reading (TORQUEMODE):
+ * pot * MC_IQ_MAX_Q15 / 32768, floor; negative readings count as 0. */
+q15_t mc_pot_to_torque(int16_t pot);
+
+#endif /* MC_INTERNAL_H */

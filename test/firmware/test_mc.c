@@ -1,0 +1,610 @@
+/* test_mc.c - the mc core with synthetic ADC frames: states, transitions, protections, helpers. */
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mc.h"
+#include "mc_internal.h"
+
+/* ---- helpers ---------------------------------------------------------------- */
+
+static mc_t mc;
+static mc_pwm_out_t out;
+static mc_status_t st;
+
+static mc_adc_frame_t frame(int16_t ia, int16_t ib, int16_t vbus, int16_t pot)
+{
+    mc_adc_frame_t f;
+    f.ia = ia;
+    f.ib = ib;
+    f.vbus = vbus;
+    f.pot = pot;
+    return f;
+}
+
+static mc_adc_frame_t nominal(void)
+{
+    return frame(0, 0, MC_VBUS_NOMINAL_Q15, 0);
+}
+
+static void step_with(mc_adc_frame_t f)
+{
+    mc_step(&mc, &f, &out);
+    mc_status(&mc, &st);
+}
+
+static void steps(long n, mc_adc_frame_t f)
+{
+    for (long k = 0; k < n; k++) {
+        step_with(f);
+    }
+}
+
+static void assert_off(void)
+{
+    assert_false(out.outputs_on);
+    assert_int_equal(out.duty[0], PWM_DUTY_MAX / 2U);
+    assert_int_equal(out.duty[1], PWM_DUTY_MAX / 2U);
+    assert_int_equal(out.duty[2], PWM_DUTY_MAX / 2U);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    mc_init(&mc);
+    memset(&out, 0xA5, sizeof(out));
+    mc_status(&mc, &st);
+    return 0;
+}
+
+/* Start and run to the given state with zero currents. */
+static void run_to(mc_state_t s)
+{
+    mc_request(&mc, MC_REQUEST_START);
+    for (long k = 0; k < 200000L; k++) {
+        step_with(nominal());
+        if (st.state == s) {
+            return;
+        }
+    }
+    fail_msg("state %d not reached", (int)s);
+}
+
+/* ---- init, STOPPED ------------------------------------------------------------ */
+
+static void test_mc_init_should_leave_the_core_stopped_with_no_fault(void **state)
+{
+    (void)state;
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+    assert_int_equal(st.fault, MC_FAULT_NONE);
+    assert_false(st.outputs_on);
+    assert_int_equal(st.start_retries, 0);
+}
+
+static void
+test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_frame(void **state)
+{
+    (void)state;
+    uint32_t rng = 7U;
+    for (int k = 0; k < 5000; k++) {
+        /* Anything but an overvoltage (which is a fault even when stopped). */
+        int16_t vb = (int16_t)(test_rand_u32(&rng) % (uint32_t)(int32_t)MC_VBUS_OV_Q15);
+        step_with(frame(test_rand_i16(&rng), test_rand_i16(&rng), vb, test_rand_i16(&rng)));
+        assert_int_equal(st.state, MC_STATE_STOPPED);
+        assert_off();
+    }
+}
+
+static void test_mc_request_out_of_range_should_be_ignored(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_COUNT);
+    mc_request(&mc, (mc_request_t)200);
+    steps(10, nominal());
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+}
+
+/* ---- calibration -------------------------------------------------------------- */
+
+static void test_start_should_calibrate_the_offsets_with_outputs_off_then_lock(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START);
+    mc_adc_frame_t f = frame(300, -200, MC_VBUS_NOMINAL_Q15, 0);
+    step_with(f);
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    long n = 1;
+    while (st.state == MC_STATE_CALIBRATE) {
+        assert_off();
+        step_with(f);
+        n++;
+        assert_true(n <= (long)MC_CALIB_PERIODS + 1);
+    }
+    printf("measured: calibration took %ld periods (MC_CALIB_PERIODS = %u)\n", n,
+           (unsigned)MC_CALIB_PERIODS);
+    assert_int_equal(n, (long)MC_CALIB_PERIODS);
+    assert_int_equal(st.state, MC_STATE_LOCK);
+    assert_true(out.outputs_on);
+    /* The same raw reading now means zero current. */
+    step_with(f);
+    assert_int_equal(st.ia, 0);
+    assert_int_equal(st.ib, 0);
+}
+
+static void test_calibration_should_fault_when_an_offset_is_beyond_the_limit(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START);
+    int16_t bad = (int16_t)(MC_OFFSET_MAX_Q15 + 1);
+    steps((long)MC_CALIB_PERIODS + 2, frame(0, bad, MC_VBUS_NOMINAL_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_OFFSET);
+    assert_off();
+}
+
+static void test_calibration_should_accept_an_offset_at_the_limit(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START);
+    steps((long)MC_CALIB_PERIODS + 2, frame(MC_OFFSET_MAX_Q15, 0, MC_VBUS_NOMINAL_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_LOCK);
+}
+
+/* ---- LOCK and OPEN_LOOP --------------------------------------------------------- */
+
+static void
+test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_LOCK);
+    long n = 0;
+    while (st.state == MC_STATE_LOCK) {
+        assert_int_equal(st.theta_est, 0);
+        assert_int_equal(st.iq_ref, MC_LOCK_CURRENT_Q15);
+        assert_int_equal(st.id_ref, 0);
+        assert_true(out.outputs_on);
+        step_with(nominal());
+        n++;
+    }
+    printf("measured: lock lasted %ld periods (MC_LOCK_PERIODS = %u)\n", n,
+           (unsigned)MC_LOCK_PERIODS);
+    assert_int_equal(n, (long)MC_LOCK_PERIODS);
+    assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
+}
+
+static void test_lock_should_drive_the_current_towards_its_reference(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_LOCK);
+    /* No current measured: the q PI must push Vq up, d stays at 0. */
+    steps(50, nominal());
+    assert_true(st.vq > 0);
+    assert_int_equal(st.vd, 0);
+}
+
+static void test_open_loop_should_advance_the_angle_at_constant_acceleration(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_OPEN_LOOP);
+    /* The first OPEN_LOOP period is still at the lock angle; after n more
+     * the 32-bit angle is INC * n (n + 1) / 2. */
+    err_stats_t e;
+    err_stats_init(&e);
+    for (uint32_t n = 0U; n < 15000U; n++) {
+        uint32_t ang = MC_RAMP_STEP_INC * (n * (n + 1U) / 2U);
+        int16_t expect = (int16_t)(uint16_t)(ang >> 16);
+        err_stats_add(&e, (double)angle_sub(st.theta_forced, expect), (double)n);
+        assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
+        assert_int_equal(st.iq_ref, MC_RAMP_CURRENT_Q15);
+        step_with(nominal());
+    }
+    err_stats_print("open-loop forced angle vs INC n(n+1)/2", &e, "counts");
+    assert_true(e.max_abs == 0.0);
+}
+
+static void test_open_loop_should_retry_a_failed_start_then_fault(void **state)
+{
+    (void)state;
+    /* Zero currents: the estimator never becomes valid. */
+    run_to(MC_STATE_OPEN_LOOP);
+    int attempts = 1;
+    long coast = 0;
+    for (long k = 0; k < 2000000L && st.state != MC_STATE_FAULT; k++) {
+        mc_state_t before = st.state;
+        step_with(nominal());
+        if (before == MC_STATE_OPEN_LOOP && st.state == MC_STATE_CALIBRATE) {
+            attempts++;
+            assert_int_equal(st.start_retries, attempts - 1);
+            assert_off();
+            coast = 0;
+        }
+        if (st.state == MC_STATE_CALIBRATE) {
+            coast++;
+        }
+        if (before == MC_STATE_CALIBRATE && st.state == MC_STATE_LOCK) {
+            printf("measured: retry %d after %ld periods with outputs off\n", attempts - 1, coast);
+            assert_int_equal(coast, (long)MC_COAST_PERIODS + (long)MC_CALIB_PERIODS - 1);
+        }
+    }
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_START_FAILED);
+    assert_int_equal(attempts, MC_START_RETRIES + 1);
+    assert_int_equal(st.start_retries, MC_START_RETRIES);
+    assert_off();
+}
+
+/* ---- STOP, START_STOP --------------------------------------------------------------- */
+
+static void stop_from(mc_state_t s, mc_request_t r)
+{
+    mc_init(&mc);
+    run_to(s);
+    mc_request(&mc, r);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+    assert_int_equal(st.fault, MC_FAULT_NONE);
+    assert_off();
+}
+
+static void test_stop_should_reach_stopped_with_outputs_off_from_every_running_state(void **state)
+{
+    (void)state;
+    const mc_state_t states[] = {MC_STATE_CALIBRATE, MC_STATE_LOCK, MC_STATE_OPEN_LOOP};
+    for (unsigned k = 0; k < 3U; k++) {
+        stop_from(states[k], MC_REQUEST_STOP);
+        stop_from(states[k], MC_REQUEST_START_STOP);
+    }
+}
+
+static void test_start_stop_should_toggle_and_start_should_not_restart_a_running_core(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START_STOP);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    steps(5, nominal());
+    mc_request(&mc, MC_REQUEST_START); /* already running: no effect */
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    mc_request(&mc, MC_REQUEST_STOP);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+    mc_request(&mc, MC_REQUEST_STOP); /* already stopped: no effect */
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+}
+
+static void test_a_request_posted_twice_before_a_step_should_count_once(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START_STOP);
+    mc_request(&mc, MC_REQUEST_START_STOP);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+}
+
+/* ---- protections ------------------------------------------------------------------------ */
+
+/* Phase currents (after the offsets, which are 0 here) giving |i_k| = x on
+ * phase k (0: a, 1: b, 2: c = -a - b) with the others sharing the return. */
+static mc_adc_frame_t phase_current(unsigned k, int16_t x)
+{
+    int16_t half = (int16_t)(-x / 2);
+    int16_t other = (int16_t)(-x - half);
+    switch (k) {
+        case 0:
+            return frame(x, half, MC_VBUS_NOMINAL_Q15, 0);
+        case 1:
+            return frame(half, x, MC_VBUS_NOMINAL_Q15, 0);
+        default:
+            return frame(half, other, MC_VBUS_NOMINAL_Q15, 0); /* ic = -(half + other) = x */
+    }
+}
+
+static void test_overcurrent_should_trip_at_the_threshold_on_any_phase_in_one_period(void **state)
+{
+    (void)state;
+    const mc_state_t states[] = {MC_STATE_LOCK, MC_STATE_OPEN_LOOP};
+    for (unsigned s = 0; s < 2U; s++) {
+        for (unsigned k = 0; k < 3U; k++) {
+            for (int sign = -1; sign <= 1; sign += 2) {
+                mc_init(&mc);
+                run_to(states[s]);
+                int16_t x = (int16_t)(sign * MC_OVERCURRENT_Q15);
+                step_with(phase_current(k, x));
+                assert_int_equal(st.state, MC_STATE_FAULT);
+                assert_int_equal(st.fault, MC_FAULT_OVERCURRENT);
+                assert_off();
+            }
+        }
+    }
+}
+
+static void test_overcurrent_should_not_trip_just_below_the_threshold(void **state)
+{
+    (void)state;
+    for (unsigned k = 0; k < 3U; k++) {
+        for (int sign = -1; sign <= 1; sign += 2) {
+            mc_init(&mc);
+            run_to(MC_STATE_OPEN_LOOP);
+            int16_t x = (int16_t)(sign * (MC_OVERCURRENT_Q15 - 1));
+            step_with(phase_current(k, x));
+            assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
+        }
+    }
+}
+
+static void test_undervoltage_should_trip_at_the_threshold_while_running_only(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_LOCK);
+    step_with(frame(0, 0, (int16_t)(MC_VBUS_UV_Q15 + 1), 0));
+    assert_int_equal(st.state, MC_STATE_LOCK);
+    step_with(frame(0, 0, MC_VBUS_UV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_UNDERVOLTAGE);
+    assert_off();
+    /* Stopped, a low bus is no fault (the board may be powering down). */
+    mc_init(&mc);
+    steps(10, frame(0, 0, 0, 0));
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+}
+
+static void test_overvoltage_should_trip_at_the_threshold_in_any_state(void **state)
+{
+    (void)state;
+    steps(3, frame(0, 0, (int16_t)(MC_VBUS_OV_Q15 - 1), 0));
+    assert_int_equal(st.state, MC_STATE_STOPPED);
+    step_with(frame(0, 0, MC_VBUS_OV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_OVERVOLTAGE);
+
+    mc_init(&mc);
+    run_to(MC_STATE_OPEN_LOOP);
+    step_with(frame(0, 0, (int16_t)(MC_VBUS_OV_Q15 - 1), 0));
+    assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
+    step_with(frame(0, 0, MC_VBUS_OV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_OVERVOLTAGE);
+    assert_off();
+}
+
+static void test_start_should_be_refused_while_the_bus_is_out_of_its_window(void **state)
+{
+    (void)state;
+    mc_request(&mc, MC_REQUEST_START);
+    step_with(frame(0, 0, MC_VBUS_UV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_UNDERVOLTAGE);
+    /* Still low: a new START leaves it in FAULT. */
+    steps(2, frame(0, 0, MC_VBUS_UV_Q15, 0));
+    mc_request(&mc, MC_REQUEST_START);
+    step_with(frame(0, 0, MC_VBUS_UV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_off();
+    /* Back in the window: START leaves FAULT and clears the code. */
+    mc_request(&mc, MC_REQUEST_START_STOP);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    assert_int_equal(st.fault, MC_FAULT_NONE);
+}
+
+static void test_hw_fault_should_latch_from_any_state_until_a_new_start(void **state)
+{
+    (void)state;
+    const mc_state_t states[] = {MC_STATE_STOPPED, MC_STATE_CALIBRATE, MC_STATE_LOCK,
+                                 MC_STATE_OPEN_LOOP};
+    for (unsigned s = 0; s < 4U; s++) {
+        mc_init(&mc);
+        if (states[s] != MC_STATE_STOPPED) {
+            run_to(states[s]);
+        }
+        mc_request(&mc, MC_REQUEST_HW_FAULT);
+        step_with(nominal());
+        assert_int_equal(st.state, MC_STATE_FAULT);
+        assert_int_equal(st.fault, MC_FAULT_HARDWARE);
+        assert_off();
+        /* STOP does not leave FAULT; the code stays. */
+        mc_request(&mc, MC_REQUEST_STOP);
+        steps(100, nominal());
+        assert_int_equal(st.state, MC_STATE_FAULT);
+        assert_int_equal(st.fault, MC_FAULT_HARDWARE);
+        assert_off();
+        mc_request(&mc, MC_REQUEST_START);
+        step_with(nominal());
+        assert_int_equal(st.state, MC_STATE_CALIBRATE);
+        assert_int_equal(st.fault, MC_FAULT_NONE);
+    }
+}
+
+static void test_a_start_in_the_same_frame_as_a_fault_should_not_clear_it(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_LOCK);
+    mc_request(&mc, MC_REQUEST_HW_FAULT);
+    mc_request(&mc, MC_REQUEST_START);
+    step_with(nominal());
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    /* A second fault keeps the first code. */
+    step_with(frame(0, 0, MC_VBUS_OV_Q15, 0));
+    assert_int_equal(st.fault, MC_FAULT_HARDWARE);
+}
+
+/* ---- pot and references -------------------------------------------------------------------- */
+
+static void test_pot_should_map_linearly_onto_the_speed_reference_range(void **state)
+{
+    (void)state;
+    err_stats_t e;
+    err_stats_init(&e);
+    for (int32_t p = 0; p <= 32767; p++) {
+        double ref = SPEED_REF_MIN_RPM + (SPEED_REF_MAX_RPM - SPEED_REF_MIN_RPM) * p / 32768.0;
+        double got = (double)mc_pot_to_speed((int16_t)p) * MC_SPEED_FULLSCALE_RPM / 32768.0;
+        err_stats_add(&e, got - ref, (double)p);
+    }
+    err_stats_print("pot -> speed reference vs linear map", &e, "rpm");
+    /* Q15 quantisation of the two ends plus the floor: <= 1.5 LSB. */
+    assert_true(e.max_abs <= 1.5 * MC_SPEED_FULLSCALE_RPM / 32768.0);
+    assert_int_equal(mc_pot_to_speed(0), MC_SPEED_REF_MIN_Q15);
+    assert_int_equal(mc_pot_to_speed(-5), MC_SPEED_REF_MIN_Q15);
+    assert_true(mc_pot_to_speed(32767) <= MC_SPEED_REF_MAX_Q15);
+    assert_true(mc_pot_to_speed(32767) >= MC_SPEED_REF_MAX_Q15 - 1);
+}
+
+static void test_pot_should_map_linearly_onto_the_torque_reference_range(void **state)
+{
+    (void)state;
+    err_stats_t e;
+    err_stats_init(&e);
+    for (int32_t p = 0; p <= 32767; p++) {
+        double ref = MOTOR_CURRENT_MAX_A * p / 32768.0;
+        double got = (double)mc_pot_to_torque((int16_t)p) * BOARD_I_FULLSCALE_A / 32768.0;
+        err_stats_add(&e, got - ref, (double)p);
+    }
+    err_stats_print("pot -> Iq reference vs linear map", &e, "A");
+    assert_true(e.max_abs <= 1.5 * BOARD_I_FULLSCALE_A / 32768.0);
+    assert_int_equal(mc_pot_to_torque(-1), 0);
+}
+
+static void test_speed_target_should_follow_the_pot_then_the_remote_reference(void **state)
+{
+    (void)state;
+    step_with(frame(0, 0, MC_VBUS_NOMINAL_Q15, 16384));
+    assert_int_equal(st.speed_target, mc_pot_to_speed(16384));
+    mc_set_reference(&mc, MC_Q15_RPM(1000.0));
+    step_with(frame(0, 0, MC_VBUS_NOMINAL_Q15, 16384));
+    assert_int_equal(st.speed_target, MC_Q15_RPM(1000.0));
+    /* Clamped to the reference range. */
+    mc_set_reference(&mc, 32767);
+    step_with(nominal());
+    assert_int_equal(st.speed_target, MC_SPEED_REF_MAX_Q15);
+    mc_set_reference(&mc, -100);
+    step_with(nominal());
+    assert_int_equal(st.speed_target, MC_SPEED_REF_MIN_Q15);
+    mc_request(&mc, MC_REQUEST_REF_POT);
+    step_with(frame(0, 0, MC_VBUS_NOMINAL_Q15, 32767));
+    assert_int_equal(st.speed_target, mc_pot_to_speed(32767));
+}
+
+/* ---- dead time and applied voltage -------------------------------------------------------------
+ */
+
+static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band(void **state)
+{
+    (void)state;
+    err_stats_t e;
+    err_stats_init(&e);
+    for (int32_t i = -32768; i <= 32767; i++) {
+        double ref;
+        if (i >= MC_DT_BAND_Q15) {
+            ref = MC_DT_COUNTS;
+        } else if (i <= -MC_DT_BAND_Q15) {
+            ref = -MC_DT_COUNTS;
+        } else {
+            ref = (double)MC_DT_COUNTS * i / MC_DT_BAND_Q15;
+        }
+        int16_t got = mc_deadtime_counts((q15_t)i);
+        assert_true(got >= -MC_DT_COUNTS && got <= MC_DT_COUNTS);
+        err_stats_add(&e, got - ref, (double)i);
+    }
+    err_stats_print("dead-time correction vs sign with linear band", &e, "counts");
+    assert_true(e.max_abs <= 0.51);
+    printf("measured: dead time %d counts = %.2f %% of the period, band %d LSB = %.3f A\n",
+           MC_DT_COUNTS, 100.0 * MC_DT_COUNTS / PWM_DUTY_MAX, MC_DT_BAND_Q15,
+           MC_DT_BAND_Q15 * BOARD_I_FULLSCALE_A / 32768.0);
+    assert_int_equal(mc_deadtime_counts(0), 0);
+    assert_int_equal(mc_deadtime_counts(32767), MC_DT_COUNTS);
+    assert_int_equal(mc_deadtime_counts(-32768), -MC_DT_COUNTS);
+}
+
+static void test_duty_to_voltage_should_match_the_double_precision_reconstruction(void **state)
+{
+    (void)state;
+    err_stats_t e;
+    err_stats_init(&e);
+    uint32_t rng = 99U;
+    const double vfs = MC_VOLTAGE_FULLSCALE_V;
+    for (int k = 0; k < 200000; k++) {
+        int16_t d[3];
+        for (int j = 0; j < 3; j++) {
+            d[j] = (int16_t)((int32_t)(test_rand_u32(&rng) % (PWM_DUTY_MAX + 201U)) - 100);
+        }
+        int16_t vb = (int16_t)(test_rand_u32(&rng) % 32768U);
+        double vbus = vb * BOARD_VBUS_FULLSCALE_V / 32768.0;
+        double va = d[0] * vbus / PWM_DUTY_MAX;
+        double vbb = d[1] * vbus / PWM_DUTY_MAX;
+        double vc = d[2] * vbus / PWM_DUTY_MAX;
+        double alpha = (2.0 * va - vbb - vc) / 3.0 / vfs * 32768.0;
+        double beta = (vbb - vc) / sqrt(3.0) / vfs * 32768.0;
+        ab_q15_t v = mc_duty_to_voltage(d, vb);
+        if (fabs(alpha) < 32000.0) {
+            err_stats_add(&e, v.alpha - alpha, (double)k);
+        } else {
+            assert_true(alpha > 0 ? v.alpha >= 31990 : v.alpha <= -31990);
+        }
+        if (fabs(beta) < 32000.0) {
+            err_stats_add(&e, v.beta - beta, (double)k);
+        }
+    }
+    err_stats_print("applied voltage from duties and Vbus vs double", &e, "LSB");
+    /* Bound: the Q12 volts-per-count factor rounded (<= 0.5 / 4096 of a count
+     * per count, |na| <= 4600) plus the final rounding: <= 1.1 LSB. */
+    assert_true(e.max_abs <= 1.1);
+    int16_t half[3] = {1000, 1000, 1000};
+    ab_q15_t z = mc_duty_to_voltage(half, MC_VBUS_NOMINAL_Q15);
+    assert_int_equal(z.alpha, 0);
+    assert_int_equal(z.beta, 0);
+    z = mc_duty_to_voltage(half, -5);
+    assert_int_equal(z.alpha, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_mc_init_should_leave_the_core_stopped_with_no_fault, setup),
+        cmocka_unit_test_setup(
+            test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_frame,
+            setup),
+        cmocka_unit_test_setup(test_mc_request_out_of_range_should_be_ignored, setup),
+        cmocka_unit_test_setup(test_start_should_calibrate_the_offsets_with_outputs_off_then_lock,
+                               setup),
+        cmocka_unit_test_setup(test_calibration_should_fault_when_an_offset_is_beyond_the_limit,
+                               setup),
+        cmocka_unit_test_setup(test_calibration_should_accept_an_offset_at_the_limit, setup),
+        cmocka_unit_test_setup(
+            test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time, setup),
+        cmocka_unit_test_setup(test_lock_should_drive_the_current_towards_its_reference, setup),
+        cmocka_unit_test_setup(test_open_loop_should_advance_the_angle_at_constant_acceleration,
+                               setup),
+        cmocka_unit_test_setup(test_open_loop_should_retry_a_failed_start_then_fault, setup),
+        cmocka_unit_test_setup(
+            test_stop_should_reach_stopped_with_outputs_off_from_every_running_state, setup),
+        cmocka_unit_test_setup(
+            test_start_stop_should_toggle_and_start_should_not_restart_a_running_core, setup),
+        cmocka_unit_test_setup(test_a_request_posted_twice_before_a_step_should_count_once, setup),
+        cmocka_unit_test_setup(
+            test_overcurrent_should_trip_at_the_threshold_on_any_phase_in_one_period, setup),
+        cmocka_unit_test_setup(test_overcurrent_should_not_trip_just_below_the_threshold, setup),
+        cmocka_unit_test_setup(test_undervoltage_should_trip_at_the_threshold_while_running_only,
+                               setup),
+        cmocka_unit_test_setup(test_overvoltage_should_trip_at_the_threshold_in_any_state, setup),
+        cmocka_unit_test_setup(test_start_should_be_refused_while_the_bus_is_out_of_its_window,
+                               setup),
+        cmocka_unit_test_setup(test_hw_fault_should_latch_from_any_state_until_a_new_start, setup),
+        cmocka_unit_test_setup(test_a_start_in_the_same_frame_as_a_fault_should_not_clear_it,
+                               setup),
+        cmocka_unit_test_setup(test_pot_should_map_linearly_onto_the_speed_reference_range, setup),
+        cmocka_unit_test_setup(test_pot_should_map_linearly_onto_the_torque_reference_range, setup),
+        cmocka_unit_test_setup(test_speed_target_should_follow_the_pot_then_the_remote_reference,
+                               setup),
+        cmocka_unit_test_setup(
+            test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band, setup),
+        cmocka_unit_test_setup(
+            test_duty_to_voltage_should_match_the_double_precision_reconstruction, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

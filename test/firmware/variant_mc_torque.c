@@ -1,0 +1,5 @@
+/* variant_mc_torque.c - placeholder */
+int main(void)
+{
+    return 0;
+}
