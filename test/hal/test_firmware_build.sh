@@ -8,6 +8,12 @@
 #   fake <root>     with stand-in xc16-gcc / xc16-bin2hex that record their calls:
 #                   every source compiled, one link, one bin2hex, the .hex in place;
 #                   a compiler failure leaves no .hex behind.
+#   hostcc <root>   the same, with the host gcc standing in for xc16-gcc (XC16-only
+#                   flags dropped, the SFR stand-in on the include path, strict
+#                   warnings as errors): every source of the image compiles and the
+#                   objects link into ONE program (one main, the ISR, the core, no
+#                   missing or duplicate symbol); run for 1 s it must still be in
+#                   its main loop (killed by the timeout), not crashed in hal_init.
 set -u
 mode=$1
 root=$2
@@ -101,6 +107,41 @@ EOS
   [ ! -e "$tmp/out/mclv.hex" ] || fail "a hex survived a failed build"
   grep -q "script=" "$tmp/log" && fail "linked after a failed compile"
   echo "measured: failed compile -> exit non-zero, no mclv.hex"
+  ;;
+hostcc)
+  mkdir -p "$tmp/xc16/bin"
+  gcc -std=c99 -c "$root/test/support/sfr/sfr_standin.c" -I"$root/test/support/sfr" -o "$tmp/sfr.o" ||
+    fail "stand-in does not compile"
+  cat >"$tmp/xc16/bin/xc16-gcc" <<'EOS'
+#!/usr/bin/env bash
+args=(); link=1
+for a in "$@"; do
+  case "$a" in
+    -mcpu=*|-omf=*|-msmart-io=*|-msfr-warn=*|-fno-short-double|-Wl,--script=*) ;;
+    -c) link=0; args+=("$a") ;;
+    *) args+=("$a") ;;
+  esac
+done
+if [ $link -eq 1 ]; then
+  exec gcc "${args[@]}" "$FAKE_SFR_OBJ" -lm
+fi
+exec gcc -Werror -Wconversion -Wsign-conversion -Wshadow -I"$FAKE_ROOT/test/support/sfr" "${args[@]}"
+EOS
+  cat >"$tmp/xc16/bin/xc16-bin2hex" <<'EOS'
+#!/bin/sh
+echo ":00000001FF" >"${1%.elf}.hex"
+EOS
+  chmod +x "$tmp/xc16/bin/"*
+  "${clean_env[@]}" XC16_DIR="$tmp/xc16" FAKE_SFR_OBJ="$tmp/sfr.o" FAKE_ROOT="$root" \
+    FIRMWARE_OUT="$tmp/out" "$root/tools/firmware_build" mclv hurst >"$tmp/stdout" 2>&1 ||
+    { tail -30 "$tmp/stdout"; fail "the image does not compile or link with the host compiler"; }
+  [ -s "$tmp/out/mclv.hex" ] || fail "no hex"
+  nm "$tmp/out/mclv.elf" | grep -q ' T _ADC1Interrupt$' || fail "no _ADC1Interrupt in the image"
+  nm "$tmp/out/mclv.elf" | grep -q ' T main$' || fail "no main in the image"
+  timeout 1 "$tmp/out/mclv.elf" >/dev/null 2>&1
+  rc=$?
+  echo "measured: host-compiled image: $(grep -c ' -c ' "$tmp/stdout") objects linked, run 1 s -> exit $rc (124 = still looping)"
+  [ $rc -eq 124 ] || fail "the image exited (status $rc) instead of looping"
   ;;
 *) fail "unknown mode $mode" ;;
 esac
