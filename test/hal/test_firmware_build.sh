@@ -8,6 +8,9 @@
 #   fake <root>     with stand-in xc16-gcc / xc16-bin2hex that record their calls:
 #                   every source compiled, one link, one bin2hex, the .hex in place;
 #                   a compiler failure leaves no .hex behind.
+#   mplabx <root>   the committed MPLAB X project (firmware/an1078.X) is what
+#                   `tools/firmware_build --mplabx mclv hurst` writes: same sources,
+#                   include directories and defines as make firmware.
 #   hostcc <root>   the same, with the host gcc standing in for xc16-gcc (XC16-only
 #                   flags dropped, the SFR stand-in on the include path, strict
 #                   warnings as errors): every source of the image compiles and the
@@ -107,6 +110,26 @@ EOS
   [ ! -e "$tmp/out/mclv.hex" ] || fail "a hex survived a failed build"
   grep -q "script=" "$tmp/log" && fail "linked after a failed compile"
   echo "measured: failed compile -> exit non-zero, no mclv.hex"
+  ;;
+mplabx)
+  committed=$root/firmware/an1078.X/nbproject/configurations.xml
+  [ -f "$committed" ] || fail "no $committed"
+  [ -f "$root/firmware/an1078.X/nbproject/project.xml" ] || fail "no project.xml"
+  "${clean_env[@]}" MPLABX_PROJECT_DIR="$tmp/p" "$root/tools/firmware_build" --mplabx mclv hurst >/dev/null ||
+    fail "--mplabx failed"
+  if ! diff -u "$committed" "$tmp/p/nbproject/configurations.xml"; then
+    fail "firmware/an1078.X is out of date: run tools/firmware_build --mplabx mclv hurst"
+  fi
+  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+  n_item=$(grep -c '<itemPath>\.\./\.\./.*\.c</itemPath>' "$committed")
+  echo "measured: MPLAB X project: $n_item source items for $n_src sources"
+  [ "$n_item" -eq "$n_src" ] || fail "project lists $n_item sources, the image has $n_src"
+  grep -q '<targetDevice>dsPIC33FJ32MC204</targetDevice>' "$committed" || fail "device"
+  grep -q '<languageToolchain>XC16</languageToolchain>' "$committed" || fail "toolchain"
+  grep -q 'key="output-file-format" value="elf"' "$committed" || fail "elf"
+  grep -q 'key="fno-short-double" value="true"' "$committed" || fail "64-bit double"
+  grep -q 'value="MC_BOARD_MCLV;MC_MOTOR_HURST;MC_MOTOR_HEADER=&quot;motors/motor_hurst.h&quot;"' "$committed" ||
+    fail "defines differ from make firmware"
   ;;
 hostcc)
   mkdir -p "$tmp/xc16/bin"
