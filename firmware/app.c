@@ -157,7 +157,7 @@ static void fmt_field(uint8_t *buf, uint8_t *n, char tag, int32_t v)
 /* Queues the status line whole, or not at all when it does not fit. */
 static void queue_telemetry(app_t *app)
 {
-    uint8_t line[40];
+    uint8_t line[48]; /* longest: 7 fields of up to 7 bytes + CR LF */
     uint8_t n = 0;
     uint8_t i;
     fmt_field(line, &n, 'S', (int32_t)app->status.state);
@@ -167,6 +167,8 @@ static void queue_telemetry(app_t *app)
     fmt_field(line, &n, 'R', app->status.speed_ref);
     line[n++] = ' ';
     fmt_field(line, &n, 'W', app->status.speed_est);
+    line[n++] = ' ';
+    fmt_field(line, &n, 'A', app->status.ia);
     line[n++] = ' ';
     fmt_field(line, &n, 'D', app->double_speed ? 1 : 0);
     line[n++] = '\r';

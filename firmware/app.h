@@ -30,10 +30,10 @@
  * APP_FAULT_PAUSE_MS dark, repeating; off when there is no fault.
  *
  * UART (8N1, HAL_UART_BAUD): every 100 ms the line
- *   "S<state> F<fault> R<speed_ref> W<speed_est> D<0|1>\r\n"
+ *   "S<state> F<fault> R<speed_ref> W<speed_est> A<ia> D<0|1>\r\n"
  * (decimal; state = mc_state_t, speeds in Q15 of MC_SPEED_FULLSCALE_RPM,
- * D = double-speed mode). Commands, one byte each: 'g' MC_REQUEST_START,
- * 's' MC_REQUEST_STOP, 'p' MC_REQUEST_REF_POT (and double speed off).
+ * ia offset-corrected in Q15 of BOARD_I_FULLSCALE_A, D = double-speed mode). Commands, one byte
+ * each: 'g' MC_REQUEST_START, 's' MC_REQUEST_STOP, 'p' MC_REQUEST_REF_POT (and double speed off).
  */
 
 #include <stdbool.h>
@@ -47,7 +47,7 @@
 #define APP_RUN_BLINK_MS        125U /* start-up blink: 125 ms on, 125 ms off */
 #define APP_BLINK_MS            250U
 #define APP_FAULT_PAUSE_MS      1500U
-#define APP_TX_QUEUE_SIZE       64U /* power of two */
+#define APP_TX_QUEUE_SIZE       128U /* power of two, up to 256 */
 
 typedef struct {
     bool level;     /* debounced: true = held down */

@@ -297,21 +297,23 @@ static void test_telemetry_should_send_one_status_line_every_100ms(void **state)
     fake_status.fault = 0;
     fake_status.speed_ref = 1234;
     fake_status.speed_est = -56;
+    fake_status.ia = -7;
     ticks(APP_TELEMETRY_PERIOD_MS - 1U);
     app_service_uart(&app);
     assert_int_equal(fake_tx_n, 0);
     ticks(1);
     app_service_uart(&app);
     printf("measured: line \"%.*s\"\n", (int)(fake_tx_n - 2), fake_tx);
-    assert_string_equal(fake_tx, "S4 F0 R1234 W-56 D0\r\n");
+    assert_string_equal(fake_tx, "S4 F0 R1234 W-56 A-7 D0\r\n");
     fake_tx_n = 0;
     fake_status.fault = MC_FAULT_OFFSET;
     fake_status.state = MC_STATE_FAULT;
     fake_status.speed_ref = -32768;
     fake_status.speed_est = 32767;
+    fake_status.ia = -32768;
     ticks(APP_TELEMETRY_PERIOD_MS);
     app_service_uart(&app);
-    assert_string_equal(fake_tx, "S5 F9 R-32768 W32767 D0\r\n");
+    assert_string_equal(fake_tx, "S5 F9 R-32768 W32767 A-32768 D0\r\n");
 }
 
 static void
@@ -320,7 +322,7 @@ test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines(v
     (void)state;
     unsigned i;
     fake_tx_accept = false;
-    for (i = 0; i < 10U; i++) { /* 10 lines offered, the queue holds 3 */
+    for (i = 0; i < 10U; i++) { /* 10 lines offered, the queue holds 6 */
         ticks(APP_TELEMETRY_PERIOD_MS);
         app_service_uart(&app);
     }
@@ -328,9 +330,15 @@ test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines(v
     fake_tx_accept = true;
     app_service_uart(&app);
     printf("measured: %zu bytes queued while blocked (queue %u)\n", fake_tx_n, APP_TX_QUEUE_SIZE);
-    /* 63 usable bytes hold three 16-byte lines; the other seven were dropped whole. */
-    assert_int_equal(fake_tx_n, 3U * strlen("S0 F0 R0 W0 D0\r\n"));
-    assert_string_equal(fake_tx, "S0 F0 R0 W0 D0\r\nS0 F0 R0 W0 D0\r\nS0 F0 R0 W0 D0\r\n");
+    /* 127 usable bytes hold six 19-byte lines; the other four were dropped whole. */
+    {
+        const char *line = "S0 F0 R0 W0 A0 D0\r\n";
+        unsigned k;
+        assert_int_equal(fake_tx_n, 6U * strlen(line));
+        for (k = 0; k < 6U; k++) {
+            assert_memory_equal(fake_tx + k * strlen(line), line, strlen(line));
+        }
+    }
 }
 
 static void test_uart_commands_should_post_start_stop_and_return_to_the_pot(void **state)
