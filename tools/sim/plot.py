@@ -147,7 +147,7 @@ def main():
              label="motor torque [mN m]")
     ax2.set_ylabel("torque [mN m]")
     ax3 = ax.twinx()
-    ax3.spines["right"].set_position(("axes", 1.06))
+    ax3.spines["right"].set_position(("axes", 1.09))
     ax3.plot(t, d["vbus_V"], color="tab:cyan", lw=0.8, label="bus [V]")
     ax3.set_ylabel("bus [V]", color="tab:cyan")
     lines = ax.get_lines()[:1] + ax2.get_lines() + ax3.get_lines()

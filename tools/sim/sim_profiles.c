@@ -6,15 +6,19 @@
 /*
  * Catalogue values are from facts/hardware.md (AN1078 UserParms for the
  * Hurst075, Microchip's hurst300.h for the long Hurst). Inertia and friction
- * are not published for either: the values below are assumptions for the
- * bare motor with a small coupled load (docs/sim.md). The high-speed motor is
- * defined here: the motor behind AN1078's "500 to 17,000 rpm" is not documented.
+ * are not in the motor data sheets. Hurst075: a public MATLAB parameter
+ * script for Microchip's low-voltage board gives J = 5.5e-6 kg m^2 and
+ * B = 15.3e-6 N m s/rad for the bare motor; we add 2e-6 kg m^2 for a small
+ * coupled load and 0.5 mN m of dry friction. Hurst300: about twice the rotor,
+ * assumed. The high-speed motor is defined by us (same numbers as
+ * firmware/motors/motor_hispeed.h): the motor behind AN1078's "500 to 17,000
+ * rpm" is not documented. See docs/sim.md.
  */
 static const sim_motor_profile_t MOTORS[] = {
     {"hurst", "hurst075", "Hurst DMB0224C10002 (Hurst075, AC300020), 24 V", 2.67, 1.92e-3, 7.3, 5,
-     7.5e-6, 3.0e-6, 1.0e-3, 1.64, 2700.0, 5300.0},
+     7.5e-6, 15.3e-6, 0.5e-3, 1.64, 2700.0, 5300.0},
     {"hurst300", "hurst_long", "Hurst DMA0204024B101 (Hurst300, AC300022), 24 V", 0.40, 0.34e-3,
-     7.3, 5, 1.5e-5, 5.0e-6, 2.0e-3, 4.88, 2500.0, 3000.0},
+     7.3, 5, 1.5e-5, 25.0e-6, 1.0e-3, 4.88, 2500.0, 3000.0},
     {"hispeed", "hs2p", "2-pole-pair high-speed PMSM (assumed, see docs/sim.md), 320 V bus", 1.2,
      4.0e-3, 10.0, 2, 2.0e-5, 2.0e-6, 2.0e-3, 2.5, 17000.0, 17000.0},
 };
