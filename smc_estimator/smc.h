@@ -32,8 +32,10 @@
  *   currents   Q15 of I_FS (A), the ADC current full scale
  *              (BOARD_I_FULLSCALE_A = 4.4 A on the MCLV);
  *   voltages   Q15 of V_FS (V), the SVGen full scale (nominal Vbus / sqrt(3),
- *              phase peak); G is therefore Ts/L * V_FS/I_FS in these units;
- *   back-EMF   e, ef, z: Q15 of V_FS (32-bit filter states, Q31 of V_FS);
+ *              phase peak);
+ *   back-EMF   e, ef, z, Kslide and the amplitude: Q15 of E_FS = 2 V_FS
+ *              (SMC_EMF_FS_RATIO; 32-bit filter states, Q31 of E_FS), so G
+ *              is (1 - F)/R * E_FS/I_FS in these units;
  *   speed      electrical, signed (negative = reverse rotation), Q15 of
  *              omega_fs_hz (the core sets omega_fs_hz = MC_SPEED_FULLSCALE_RPM
  *              * pole pairs / 60, so the Q15 speed equals the mechanical speed
@@ -62,6 +64,12 @@
  * and one 32 / 16 division (the back-EMF consistency figure).
  */
 
+/* The back-EMF quantities (z, e, e_final, Kslide, the amplitude) are Q15 of
+ * E_FS = SMC_EMF_FS_RATIO * V_FS: above the base speed the back-EMF exceeds
+ * the inverter's V_FS (field weakening), and the correction must carry
+ * about 0.65 of it (note 5). */
+#define SMC_EMF_FS_RATIO 2.0
+
 /* ---- parameters ---------------------------------------------------------- */
 
 /*
@@ -70,22 +78,28 @@
  * which computes and range-checks everything at compile time.
  */
 typedef struct {
-    q15_t f;              /* F = 1 - Ts R / L, Q15, in (0, 1) */
-    q15_t g;              /* G = Ts/L * V_FS/I_FS (I_FS per V_FS): mantissa, Q15 */
+    q15_t f;              /* F = exp(-Ts R / L), Q15, in (0, 1) (note 2) */
+    q15_t g;              /* G = (1 - F)/R * 2 V_FS/I_FS (I_FS per E_FS): mantissa, Q15 */
     uint8_t g_shift;      /* ... and its shift, 0..7 */
-    q15_t kslide;         /* Kslide, Q15 of V_FS, in (0, 1) */
+    q15_t kslide;         /* Kslide, Q15 of E_FS = 2 V_FS, in (0, 1) */
     q15_t max_err;        /* MaxSMCError, Q15 of I_FS, >= 1 LSB */
-    q15_t kz;             /* Kslide / MaxSMCError (V_FS per I_FS): mantissa, Q15 */
+    q15_t kz;             /* Kslide / MaxSMCError (E_FS per I_FS): mantissa, Q15 */
     uint8_t kz_shift;     /* ... and its shift, 0..15 */
-    q15_t k_per_omega;    /* K = |omega| * k_per_omega: 2 pi omega_fs Ts, Q15 */
+    q15_t k_per_omega;    /* x = |omega| * k_per_omega = 2 pi f Ts (rad per period), Q15 */
     q15_t k_min;          /* floor of K: 2 pi f_min Ts, Q15 */
     q15_t omega_min;      /* minimum closed-loop speed, Q15 of omega_fs */
     q15_t kspeed;         /* omega = sum of angle steps * kspeed * 2^kspeed_shift / 32768 */
     uint8_t kspeed_shift; /* ... 1 / (2 IRP Ts omega_fs) as mantissa and shift, 0..15 */
     uint16_t irp_percalc; /* PWM periods per speed calculation, 1..256 */
     q15_t k_speed_lpf;    /* speed filter coefficient at the speed-loop rate, Q15 */
-    q15_t emf_gain;       /* expected |ef| per unit |omega| (both Q15): mantissa; 0 = */
-    uint8_t emf_shift;    /* ... no consistency check; and its shift, 0..7 */
+    q15_t emf_gain;       /* expected |ef| (Q15 of E_FS) per unit |omega| (Q15): mantissa, */
+    uint8_t emf_shift;    /* ... and shift; emf_gain 0 = no back-EMF consistency check */
+    /* The observer's transfer function (notes 3-4), Q12 unless said: */
+    q15_t tf_mdc; /* constant term of the in-loop stage's denominator, per unit K */
+    q15_t tf_b10; /* its u coefficient B1 = tf_b10 + K tf_b1k */
+    q15_t tf_b1k;
+    q15_t tf_b2;   /* its u^2 coefficient B2 = tf_b2 (1 - K), Q15 */
+    q15_t tf_xadv; /* compensation term tf_xadv * x, in angle counts per Q15 rad, Q15 */
 } smc_params_t;
 
 /* ---- compile-time parameter computation ---------------------------------- */
@@ -118,17 +132,84 @@ typedef struct {
 /* Mantissa of x for the shift SMC_SHIFT_OF(x). */
 #define SMC_MANT_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT_OF(x)))
 
+/* Q12 constant (range [-8, 8)), rounded half away from zero. */
+#define SMC_Q12(x) ((q15_t)((x)*4096.0 + ((x) >= 0.0 ? 0.5 : -0.5)))
+
+/* exp(-y) for 0 <= y <= 1 as a constant expression (Taylor, 13 terms,
+ * error < 2e-11). */
+#define SMC_EXPNEG_(y)                                                                             \
+    (1.0 -                                                                                         \
+     (y) *                                                                                         \
+         (1.0 -                                                                                    \
+          (y) / 2.0 *                                                                              \
+              (1.0 -                                                                               \
+               (y) / 3.0 *                                                                         \
+                   (1.0 -                                                                          \
+                    (y) / 4.0 *                                                                    \
+                        (1.0 -                                                                     \
+                         (y) / 5.0 *                                                               \
+                             (1.0 -                                                                \
+                              (y) / 6.0 *                                                          \
+                                  (1.0 -                                                           \
+                                   (y) / 7.0 *                                                     \
+                                       (1.0 -                                                      \
+                                        (y) / 8.0 *                                                \
+                                            (1.0 -                                                 \
+                                             (y) / 9.0 *                                           \
+                                                 (1.0 - (y) / 10.0 *                               \
+                                                            (1.0 - (y) / 11.0 *                    \
+                                                                       (1.0 - (y) / 12.0 *         \
+                                                                                  1.0))))))))))))
+
 /* The derived quantities, in double (engineering units in, ratios out). */
-#define SMC_F_(r, l, ts)          (1.0 - (double)(ts) * (double)(r) / (double)(l))
-#define SMC_G_(l, ts, vfs, ifs)   ((double)(ts) / (double)(l) * (double)(vfs) / (double)(ifs))
-#define SMC_KZ_(kslide, maxerr)   ((double)(kslide) / (double)(maxerr))
-#define SMC_KPW_(ts, wfs)         (6.283185307179586 * (double)(wfs) * (double)(ts))
-#define SMC_KSPEED_(ts, wfs, irp) (1.0 / (2.0 * (double)(irp) * (double)(ts) * (double)(wfs)))
-#define SMC_KSLPF_(ts, irp, fc)   (6.283185307179586 * (double)(fc) * (double)(irp) * (double)(ts))
-/* |ef| per unit omega: Ke (V peak per electrical Hz) * omega_fs / V_FS times
- * the low-speed gain of the two stages, SMC_STAGE_GAIN (note 5). */
-#define SMC_STAGE_GAIN          0.316227766016838 /* 1 / sqrt(10) */
-#define SMC_EMFG_(ke, wfs, vfs) ((double)(ke) * (double)(wfs) / (double)(vfs)*SMC_STAGE_GAIN)
+#define SMC_Y_(r, l, ts) ((double)(ts) * (double)(r) / (double)(l))
+#define SMC_F_(r, l, ts) SMC_EXPNEG_(SMC_Y_(r, l, ts))
+#define SMC_G_(r, l, ts, vfs, ifs)                                                                 \
+    ((1.0 - SMC_F_(r, l, ts)) / (double)(r) * (double)(vfs) / (double)(ifs))
+/* G and Kslide in the internal back-EMF scale E_FS = SMC_EMF_FS_RATIO * V_FS. */
+#define SMC_GE_(r, l, ts, vfs, ifs) (SMC_G_(r, l, ts, vfs, ifs) * SMC_EMF_FS_RATIO)
+#define SMC_KSE_(ks)                ((double)(ks) / SMC_EMF_FS_RATIO)
+#define SMC_KZ_(kslide, maxerr)     (SMC_KSE_(kslide) / (double)(maxerr))
+#define SMC_KPW_(ts, wfs)           (6.283185307179586 * (double)(wfs) * (double)(ts))
+#define SMC_KSPEED_(ts, wfs, irp)   (1.0 / (2.0 * (double)(irp) * (double)(ts) * (double)(wfs)))
+#define SMC_KSLPF_(ts, irp, fc)     (6.283185307179586 * (double)(fc) * (double)(irp) * (double)(ts))
+/* Loop gain c = G Kz of the linear band and the pole p = F - c (note 3).
+ * Linear when |p| < 1 (c < 1 + F); otherwise the band is unstable as a
+ * linear loop and the observer chatters (relay mode, note 4). */
+#define SMC_C_(r, l, ts, vfs, ifs, ks, me) (SMC_GE_(r, l, ts, vfs, ifs) * SMC_KZ_(ks, me))
+#define SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                       \
+    (SMC_C_(r, l, ts, vfs, ifs, ks, me) < 1.0 + SMC_F_(r, l, ts))
+#define SMC_P_(r, l, ts, vfs, ifs, ks, me) (SMC_F_(r, l, ts) - SMC_C_(r, l, ts, vfs, ifs, ks, me))
+#define SMC_MDC_(r, l, ts, vfs, ifs, ks, me)                                                       \
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                          \
+         ? 1.0 + SMC_C_(r, l, ts, vfs, ifs, ks, me) - SMC_P_(r, l, ts, vfs, ifs, ks, me)           \
+         : 2.0)
+#define SMC_B10_(r, l, ts, vfs, ifs, ks, me)                                                       \
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? 1.0 - SMC_P_(r, l, ts, vfs, ifs, ks, me) : 1.0)
+#define SMC_B1K_(r, l, ts, vfs, ifs, ks, me)                                                       \
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                          \
+         ? -(1.0 + SMC_C_(r, l, ts, vfs, ifs, ks, me) - 2.0 * SMC_P_(r, l, ts, vfs, ifs, ks, me))  \
+         : -1.0)
+#define SMC_B2_(r, l, ts, vfs, ifs, ks, me)                                                        \
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? SMC_P_(r, l, ts, vfs, ifs, ks, me) : 0.0)
+#define SMC_XADV_(r, l, ts, vfs, ifs, ks, me)                                                      \
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? 0.5 / 3.141592653589793 : 0.0)
+/* Low-speed gain |ef| / |e| of the two stages (note 5): c / |mdc + j b10| / sqrt(2)
+ * (c = 1 in relay mode), the modulus by alpha-max-plus-beta-min (within 4 %). */
+#define SMC_AMBM_(a, b)                                                                            \
+    ((a) > (b) ? 0.96043387 * (a) + 0.39782473 * (b) : 0.96043387 * (b) + 0.39782473 * (a))
+#define SMC_STAGE_GAIN_(r, l, ts, vfs, ifs, ks, me)                                                \
+    ((SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? SMC_C_(r, l, ts, vfs, ifs, ks, me) : 1.0) /           \
+     SMC_AMBM_(SMC_MDC_(r, l, ts, vfs, ifs, ks, me), SMC_B10_(r, l, ts, vfs, ifs, ks, me)) /       \
+     1.4142135623730951)
+#define SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs)                                             \
+    ((double)(ke) * (double)(wfs) / ((double)(vfs)*SMC_EMF_FS_RATIO) *                             \
+     SMC_STAGE_GAIN_(r, l, ts, vfs, ifs, ks, me))
+
+/* MaxSMCError (fraction of I_FS) that makes the linear band dead-beat
+ * (c = F, p = 0; note 3): the recommended choice. */
+#define SMC_MAXERR_DEADBEAT(r, l, ts, vfs, ifs, kslide)                                            \
+    ((double)(kslide)*SMC_G_(r, l, ts, vfs, ifs) / SMC_F_(r, l, ts))
 
 /*
  * SMC_PARAMS_INIT(r_ohm, l_h, ts_s, v_fs_v, i_fs_a, kslide_frac, maxerr_frac,
@@ -139,8 +220,11 @@ typedef struct {
  *                  line-to-line meter reading);
  *   ts_s           PWM period (s);
  *   v_fs_v, i_fs_a the voltage and current full scales (above);
- *   kslide_frac    Kslide as a fraction of V_FS, (0, 1);
- *   maxerr_frac    MaxSMCError as a fraction of I_FS, > 0;
+ *   kslide_frac    Kslide as a fraction of V_FS, (0, 2); it must exceed the
+ *                  part of the back-EMF the correction carries (about half
+ *                  the largest back-EMF, note 5);
+ *   maxerr_frac    MaxSMCError as a fraction of I_FS, > 0; recommended:
+ *                  SMC_MAXERR_DEADBEAT(...) (note 3);
  *   omega_fs_hz    electrical frequency of Q15 full-scale speed (Hz);
  *   min_speed_hz   minimum closed-loop electrical speed (Hz): the K floor
  *                  and the validity threshold;
@@ -151,29 +235,30 @@ typedef struct {
  * Each range is checked; a failure names the quantity in the compiler's
  * "negative width in bit-field 'smc_...'" error.
  */
-#define SMC_PARAMS_INIT(r, l, ts, vfs, ifs, kslide, maxerr, wfs, fmin, irp, fspd, ke)              \
+#define SMC_PARAMS_INIT(r, l, ts, vfs, ifs, ks, me, wfs, fmin, irp, fspd, ke)                      \
     {                                                                                              \
-        /* f */ (q15_t)(SMC_CHECK(smc_F_needs_0_lt_Ts_R_over_L_lt_1,                               \
-                                  SMC_F_(r, l, ts) > 0.0 && SMC_F_(r, l, ts) < 1.0) +              \
+        /* f */ (q15_t)(SMC_CHECK(smc_Ts_R_over_L_must_be_in_0_1,                                  \
+                                  SMC_Y_(r, l, ts) > 0.0 && SMC_Y_(r, l, ts) <= 1.0) +             \
                         Q15(SMC_F_(r, l, ts))), /* g */                                            \
-            (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_Vfs_over_Ifs_must_be_in_1e_4_to_128,           \
-                              SMC_G_(l, ts, vfs, ifs) >= 1e-4 &&                                   \
-                                  SMC_G_(l, ts, vfs, ifs) < 128.0) +                               \
-                    SMC_MANT_OF(SMC_G_(l, ts, vfs, ifs))),                                         \
-            /* g_shift */ (uint8_t)SMC_SHIFT_OF(SMC_G_(l, ts, vfs, ifs)), /* kslide */             \
-            (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_1, (kslide) > 0.0 && (kslide) < 1.0) +       \
-                    Q15(kslide)), /* max_err */                                                    \
+            (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_2Vfs_over_Ifs_must_be_in_1e_4_to_128,          \
+                              SMC_GE_(r, l, ts, vfs, ifs) >= 1e-4 &&                               \
+                                  SMC_GE_(r, l, ts, vfs, ifs) < 128.0) +                           \
+                    SMC_MANT_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                     \
+            /* g_shift */ (uint8_t)SMC_SHIFT_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */         \
+            (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_2_of_V_FS, (ks) > 0.0 && (ks) < 2.0) +       \
+                    Q15(SMC_KSE_(ks))), /* max_err */                                              \
             (q15_t)(SMC_CHECK(smc_MaxSMCError_must_be_in_1_LSB_to_1,                               \
-                              (maxerr) >= 1.0 / 32768.0 && (maxerr) < 1.0) +                       \
-                    Q15(maxerr)), /* kz */                                                         \
+                              (me) >= 1.0 / 32768.0 && (me) < 1.0) +                               \
+                    Q15(me)), /* kz */                                                             \
             (q15_t)(SMC_CHECK(smc_Kslide_over_MaxSMCError_must_be_below_32768,                     \
-                              SMC_KZ_(kslide, maxerr) < 32768.0) +                                 \
-                    SMC_MANT_OF(SMC_KZ_(kslide, maxerr))),                                         \
-            /* kz_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KZ_(kslide, maxerr)), /* k_per_omega */       \
+                              SMC_KZ_(ks, me) < 32768.0) +                                         \
+                    SMC_MANT_OF(SMC_KZ_(ks, me))),                                                 \
+            /* kz_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KZ_(ks, me)), /* k_per_omega */               \
             (q15_t)(SMC_CHECK(smc_2pi_omega_fs_Ts_must_be_below_1, SMC_KPW_(ts, wfs) < 1.0) +      \
                     Q15(SMC_KPW_(ts, wfs))), /* k_min */                                           \
             (q15_t)(SMC_CHECK(smc_min_speed_must_be_in_0_omega_fs,                                 \
-                              (fmin) > 0.0 && (fmin) < (wfs)) +                                    \
+                              (fmin) > 0.0 && (fmin) < (wfs) &&                                    \
+                                  SMC_KPW_(ts, fmin) >= 1.0 / 32768.0) +                           \
                     Q15(SMC_KPW_(ts, fmin))),                                                      \
             /* omega_min */ Q15((double)(fmin) / (double)(wfs)), /* kspeed */                      \
             (q15_t)(SMC_CHECK(smc_speed_scale_1_over_2_IRP_Ts_omega_fs_must_be_below_32768,        \
@@ -187,9 +272,15 @@ typedef struct {
                                   SMC_KSLPF_(ts, irp, fspd) < 1.0) +                               \
                     Q15(SMC_KSLPF_(ts, irp, fspd))), /* emf_gain */                                \
             (q15_t)(SMC_CHECK(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_128,                      \
-                              SMC_EMFG_(ke, wfs, vfs) >= 0.0 && SMC_EMFG_(ke, wfs, vfs) < 128.0) + \
-                    SMC_MANT_OF(SMC_EMFG_(ke, wfs, vfs))),                                         \
-            /* emf_shift */ (uint8_t)SMC_SHIFT_OF(SMC_EMFG_(ke, wfs, vfs))                         \
+                              SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs) >= 0.0 &&             \
+                                  SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs) < 128.0) +        \
+                    SMC_MANT_OF(SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs))),                  \
+            /* emf_shift */ (uint8_t)SMC_SHIFT_OF(SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs)), \
+            /* tf_mdc */ SMC_Q12(SMC_MDC_(r, l, ts, vfs, ifs, ks, me)),                            \
+            /* tf_b10 */ SMC_Q12(SMC_B10_(r, l, ts, vfs, ifs, ks, me)),                            \
+            /* tf_b1k */ SMC_Q12(SMC_B1K_(r, l, ts, vfs, ifs, ks, me)),                            \
+            /* tf_b2 */ Q15(SMC_B2_(r, l, ts, vfs, ifs, ks, me)),                                  \
+            /* tf_xadv */ Q15(SMC_XADV_(r, l, ts, vfs, ifs, ks, me))                               \
     }
 
 /* ---- state --------------------------------------------------------------- */
@@ -197,10 +288,11 @@ typedef struct {
 typedef struct {
     const smc_params_t *p;
     ab_q15_t i_est; /* model current, Q15 of I_FS */
-    ab_q15_t z;     /* sliding-mode correction, Q15 of V_FS */
-    lpf_t e_alpha;  /* first stage e, Q31 of V_FS */
+    ab_q15_t z;     /* sliding-mode correction, Q15 of E_FS */
+    ab_q15_t e;     /* first stage e rounded to Q15 (what the model is fed) */
+    lpf_t e_alpha;  /* first stage e, Q31 of E_FS */
     lpf_t e_beta;
-    lpf_t ef_alpha; /* second stage e_final, Q31 of V_FS */
+    lpf_t ef_alpha; /* second stage e_final, Q31 of E_FS */
     lpf_t ef_beta;
     lpf_t omega_lpf;       /* filtered speed, Q31 of omega_fs */
     int32_t dtheta_sum;    /* sum of theta_raw steps this window, angle counts */
@@ -208,10 +300,11 @@ typedef struct {
     angle_q15_t theta_raw; /* atan2 of ef, uncompensated */
     angle_q15_t theta;     /* compensated: the rotor angle at t_n */
     angle_q15_t comp;      /* compensation added to theta_raw (incl. pi if omega < 0) */
+    angle_q15_t lag;       /* lag of theta_raw behind the model back-EMF at the last window end */
     q15_t omega_raw;       /* last unfiltered window speed, Q15 of omega_fs */
     q15_t omega;           /* filtered speed, Q15 of omega_fs, signed */
     q15_t k;               /* Kslf in use, Q15 */
-    q15_t emf_mag;         /* |ef| (Q15 of V_FS), refreshed every window */
+    q15_t emf_mag;         /* |ef| (Q15 of E_FS), refreshed every window */
     q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
     bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
 } smc_t;

@@ -1,0 +1,326 @@
+/* smc.c - sliding-mode current observer: rotor angle and speed from alpha/beta currents and
+ * voltages. */
+#include "smc.h"
+
+#include "cordic.h"
+
+/*
+ * Arithmetic of the per-period path (smc_update), per axis:
+ *
+ *  model   u = sat16(v/2 - e - z) (E_FS = 2 V_FS); acc = (F i) >> g_shift + G_mant u, both
+ *          16 x 16 products, scale 2^(30 - g_shift); |F i| < 2^30 and
+ *          |G_mant u| <= 2^30, so the sum fits 32 bits; i_est = sat16 of
+ *          acc rounded (ties up) to Q15. Saturating u at full scale only acts
+ *          far outside the sliding band (|v - e - z| > V_FS), where the
+ *          correction is at +-Kslide anyway (|u| > 2 V_FS).
+ *  switch  err = i_est - i_meas (32 bits); outside the band +-Kslide;
+ *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
+ *          +-Kslide (rounding could step one LSB past it).
+ *  stages  foc/lpf.h (32-bit states, exact to 2^-30).
+ *  angle   both Q31 e_final components shifted right together until the
+ *          larger fits 15 bits, then the CORDIC (which normalises again):
+ *          the angle keeps 15 bits of resolution at any back-EMF amplitude.
+ *  speed   angle steps (angle_sub, in [-pi, pi)) summed in int32: the
+ *          window of at most 256 periods sums to at most 2^23.
+ * No division and no multiply wider than 16 x 16 in this path.
+ *
+ * Once per window (smc_speed_refresh): the speed scaling (note 7), K, the
+ * compensation from the transfer functions (notes 3-4: two CORDIC calls
+ * and about twenty 16 x 16 products), the back-EMF amplitude and one
+ * 32 / 16 division for the consistency figure.
+ */
+
+/* a * b / 2^15 rounded (ties up), for |a| < 2^30: a = hi 2^15 + lo with
+ * lo in 0..32767, so both partial products are 16 x 16. The result keeps
+ * a's Q format. */
+static int32_t smc_mul_q15(int32_t a, q15_t b)
+{
+    int16_t hi = (int16_t)(a >> 15);
+    int16_t lo = (int16_t)(uint16_t)((uint32_t)a & 0x7FFFUL);
+    return q15_dsp_mulss(hi, b) + ((q15_dsp_mulss(lo, b) + (int32_t)0x4000) >> 15);
+}
+
+/* x * 2^n for a 32-bit value known to fit after the shift (done unsigned). */
+static int32_t smc_shl32(int32_t x, uint8_t n)
+{
+    return (int32_t)((uint32_t)x << n);
+}
+
+/* Angle of (x, y) for 32-bit components: both shifted right by the same
+ * amount so the larger magnitude fits 15 bits, then cordic_atan2. */
+static angle_q15_t smc_atan2_32(int32_t y, int32_t x)
+{
+    uint32_t ux = (x < 0) ? ((uint32_t)0U - (uint32_t)x) : (uint32_t)x;
+    uint32_t uy = (y < 0) ? ((uint32_t)0U - (uint32_t)y) : (uint32_t)y;
+    uint32_t m = ux | uy;
+    uint8_t sh = 0U;
+    if (m > 0x7FFFFFUL) {
+        m >>= 8;
+        sh = 8U;
+    }
+    while (m > 0x7FFFUL) {
+        m >>= 1;
+        sh++;
+    }
+    /* After the shift |x|, |y| <= 32768; -(-32768) is clamped by q15_sat. */
+    return cordic_atan2(q15_sat(y >> sh), q15_sat(x >> sh));
+}
+
+/* One axis of the digitised model: F i + G (v - e - z), rounded, saturated. */
+static q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15_t z)
+{
+    /* v is Q15 of V_FS, e and z Q15 of E_FS = 2 V_FS: v / 2 rounded. */
+    q15_t u = q15_sat((((int32_t)v + 1) >> 1) - (int32_t)e - (int32_t)z);
+    uint8_t r = (uint8_t)(15U - p->g_shift); /* 8..15 */
+    int32_t acc = (q15_dsp_mulss(p->f, i) >> p->g_shift) + q15_dsp_mulss(p->g, u);
+    return q15_sat((acc + (int32_t)(1L << (r - 1U))) >> r);
+}
+
+/* The switching function: Kslide * sat(err / MaxSMCError). */
+static q15_t smc_switch(const smc_params_t *p, int32_t err)
+{
+    int32_t z;
+    uint8_t r;
+    if (err >= (int32_t)p->max_err) {
+        return p->kslide;
+    }
+    if (err <= -(int32_t)p->max_err) {
+        return (q15_t)(-p->kslide);
+    }
+    /* |err| < max_err <= 32767: fits int16. */
+    z = q15_dsp_mulss(p->kz, (int16_t)err);
+    r = (uint8_t)(15U - p->kz_shift);
+    if (r > 0U) {
+        z = (z + (int32_t)(1L << (r - 1U))) >> r;
+    }
+    return q15_clamp(q15_sat(z), (q15_t)(-p->kslide), p->kslide);
+}
+
+/*
+ * Sum of angle steps -> Q15 speed: |sum| * kspeed * 2^kspeed_shift / 2^15,
+ * rounded, saturated at 32767, sign restored. |sum| = mh 2^15 + ml with
+ * mh <= 2^8, so mh kspeed 2^shift is compared against 2^15 before it is
+ * formed, and ml kspeed < 2^30 is shifted right by 15 - shift (>= 0).
+ */
+static q15_t smc_speed_scale(const smc_params_t *p, int32_t sum)
+{
+    uint32_t mag = (sum < 0) ? ((uint32_t)0U - (uint32_t)sum) : (uint32_t)sum;
+    uint32_t mh = mag >> 15;
+    uint32_t ml = mag & 0x7FFFUL;
+    uint32_t k = (uint32_t)(uint16_t)p->kspeed;
+    uint8_t r = (uint8_t)(15U - p->kspeed_shift);
+    uint32_t hi = mh * k; /* < 2^24 */
+    uint32_t lo = ml * k; /* < 2^30 */
+    uint32_t res;
+    if (hi >= (0x8000UL >> p->kspeed_shift)) {
+        res = 0x7FFFUL;
+    } else {
+        res = (hi << p->kspeed_shift) + ((r > 0U) ? ((lo + ((uint32_t)1U << (r - 1U))) >> r) : lo);
+        if (res > 0x7FFFUL) {
+            res = 0x7FFFUL;
+        }
+    }
+    return (sum < 0) ? (q15_t)(-(int16_t)res) : (q15_t)res;
+}
+
+/*
+ * The phase lead (angle counts, >= 0 for the forward direction) that
+ * cancels the lag of the two stages and the loop delay at the frequency x
+ * (rad per period, Q15) with coefficient k (Q15): notes 3 and 4.
+ *   u = 1 - exp(-j x) = (1 - cos x) + j sin x, by Taylor series in Q27
+ *   D2 = K + (1 - K) u                       (second stage)
+ *   D1 = K mdc + B1 u + B2 u^2               (first stage, in the loop)
+ *   comp = arg D1 + arg D2 + xadv x
+ * Q27 keeps every term below 16 in magnitude (|u| < 1.1, |B1| < 8,
+ * mdc < 4, |B2| < 1), so no sum can overflow.
+ */
+static angle_q15_t smc_compensation(const smc_params_t *p, q15_t k, q15_t x)
+{
+    int32_t x1 = smc_shl32((int32_t)x, 12U); /* Q27 */
+    int32_t x2 = q15_dsp_mulss(x, x) >> 3;   /* Q30 -> Q27 */
+    int32_t x3 = smc_mul_q15(x2, x);
+    int32_t x4 = smc_mul_q15(x3, x);
+    int32_t x5 = smc_mul_q15(x4, x);
+    int32_t x6 = smc_mul_q15(x5, x);
+    /* 1 - cos x and sin x; the next terms are < 2.5e-5 x^7 (x < 1 rad). */
+    int32_t ur = (x2 >> 1) - smc_mul_q15(x4, Q15(1.0 / 24.0)) + smc_mul_q15(x6, Q15(1.0 / 720.0));
+    int32_t ui = x1 - smc_mul_q15(x3, Q15(1.0 / 6.0)) + smc_mul_q15(x5, Q15(1.0 / 120.0));
+    q15_t ur15 = q15_sat((ur + (int32_t)0x800) >> 12); /* Q15 copies for u^2 */
+    q15_t ui15 = q15_sat((ui + (int32_t)0x800) >> 12);
+    int32_t u2r = smc_mul_q15(ur, ur15) - smc_mul_q15(ui, ui15);
+    int32_t u2i = smc_shl32(smc_mul_q15(ur, ui15), 1U);
+    q15_t omk = (q15_t)(32768L - (int32_t)k);                 /* 1 - K; k >= 1 so <= 32767 */
+    q15_t b1 = q15_add_sat(p->tf_b10, q15_mul(p->tf_b1k, k)); /* Q12 */
+    q15_t b2 = q15_mul(p->tf_b2, omk);                        /* Q15 */
+    int32_t re2 = smc_shl32((int32_t)k, 12U) + smc_mul_q15(ur, omk);
+    int32_t im2 = smc_mul_q15(ui, omk);
+    /* K mdc: Q15 x Q12 = Q27. B1 u: Q27 x Q12 / 2^15 = Q24, times 8. */
+    int32_t re1 =
+        q15_dsp_mulss(k, p->tf_mdc) + smc_shl32(smc_mul_q15(ur, b1), 3U) + smc_mul_q15(u2r, b2);
+    int32_t im1 = smc_shl32(smc_mul_q15(ui, b1), 3U) + smc_mul_q15(u2i, b2);
+    angle_q15_t a1 = smc_atan2_32(im1, re1);
+    angle_q15_t a2 = smc_atan2_32(im2, re2);
+    angle_q15_t adv = q15_mul(x, p->tf_xadv);
+    return angle_add(angle_add(a1, a2), adv);
+}
+
+/* |ef| by alpha-max-plus-beta-min (0.96043 max + 0.39782 min): within
+ * +-4 % of the modulus, plenty for a 0.5 .. 2 consistency band (note 5). */
+static q15_t smc_magnitude(q15_t a, q15_t b)
+{
+    q15_t ua = q15_abs_sat(a);
+    q15_t ub = q15_abs_sat(b);
+    q15_t mx = (ua > ub) ? ua : ub;
+    q15_t mn = (ua > ub) ? ub : ua;
+    return q15_add_sat(q15_mul(mx, Q15(0.96043387)), q15_mul(mn, Q15(0.39782473)));
+}
+
+/* Everything that follows the speed: K, the compensation, the back-EMF
+ * figures and the validity flag. */
+static void smc_speed_refresh(smc_t *s)
+{
+    const smc_params_t *p = s->p;
+    q15_t aw = q15_abs_sat(s->omega);
+    q15_t x = q15_mul(aw, p->k_per_omega);
+    q15_t k = (x > p->k_min) ? x : p->k_min;
+    angle_q15_t lead = smc_compensation(p, k, x);
+    ab_q15_t ef = smc_e_final(s);
+    bool emf_ok = true;
+
+    s->k = k;
+    /* Reverse rotation: the stages' lag changes sign and atan2(-ef_a, ef_b)
+     * points at the rotor plus pi (the back-EMF is reversed). */
+    s->comp = (s->omega < 0) ? angle_add(angle_sub(0, lead), Q15_MIN) : lead;
+
+    s->emf_mag = smc_magnitude(ef.alpha, ef.beta);
+    if (p->emf_gain > 0) {
+        uint8_t r = (uint8_t)(15U - p->emf_shift);
+        int32_t expect = q15_dsp_mulss(p->emf_gain, aw);
+        int32_t num = smc_shl32((int32_t)s->emf_mag, 12U);
+        q15_t den;
+        if (r > 0U) {
+            expect = (expect + (int32_t)(1L << (r - 1U))) >> r;
+        }
+        den = q15_sat(expect);
+        if (den <= 0 || num >= (int32_t)den * 32767L) {
+            s->emf_ratio = Q15_MAX;
+        } else {
+            s->emf_ratio = q15_dsp_divsd(num, den);
+        }
+        emf_ok = (s->emf_ratio >= SMC_EMF_RATIO_LO) && (s->emf_ratio <= SMC_EMF_RATIO_HI);
+    } else {
+        s->emf_ratio = SMC_EMF_RATIO_ONE;
+    }
+    s->valid = (aw >= p->omega_min) && emf_ok;
+}
+
+void smc_init(smc_t *s, const smc_params_t *p)
+{
+    s->p = p;
+    smc_reset(s);
+}
+
+void smc_reset(smc_t *s)
+{
+    s->i_est.alpha = 0;
+    s->i_est.beta = 0;
+    s->z.alpha = 0;
+    s->z.beta = 0;
+    s->e.alpha = 0;
+    s->e.beta = 0;
+    lpf_reset(&s->e_alpha, 0);
+    lpf_reset(&s->e_beta, 0);
+    lpf_reset(&s->ef_alpha, 0);
+    lpf_reset(&s->ef_beta, 0);
+    lpf_reset(&s->omega_lpf, 0);
+    s->dtheta_sum = 0;
+    s->count = 0U;
+    s->theta_raw = 0;
+    s->theta = 0;
+    s->lag = 0;
+    s->omega_raw = 0;
+    s->omega = 0;
+    smc_speed_refresh(s);
+    s->valid = false;
+}
+
+void smc_preset_speed(smc_t *s, q15_t omega)
+{
+    lpf_reset(&s->omega_lpf, omega);
+    s->omega_raw = omega;
+    s->omega = omega;
+    s->dtheta_sum = 0;
+    s->count = 0U;
+    smc_speed_refresh(s);
+    s->theta = angle_add(s->theta_raw, s->comp);
+}
+
+/*
+ * The present lag of theta_raw behind the back-EMF itself (note 8). In the
+ * linear band z(n) = c (E(n-1) - e(n-1)) + p z(n-1) exactly, so
+ * c E(n-1) = z(n) - p z(n-1) + c e(n-1): an unfiltered back-EMF whose angle
+ * does not depend on K. Its angle minus theta_raw is the lag the stages
+ * have right now, including their transients.
+ */
+static angle_q15_t smc_lag(const smc_t *s, ab_q15_t z_prev, ab_q15_t e_prev)
+{
+    const smc_params_t *p = s->p;
+    /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
+    q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
+    /* Q15 + Q15 x Q15 + Q15 x Q12 / 2^12 -> Q15 of E_FS, in 32 bits. */
+    int32_t wa = (int32_t)s->z.alpha -
+                 ((q15_dsp_mulss(p->tf_b2, z_prev.alpha) + (int32_t)0x4000) >> 15) +
+                 ((q15_dsp_mulss(c, e_prev.alpha) + (int32_t)0x800) >> 12);
+    int32_t wb = (int32_t)s->z.beta -
+                 ((q15_dsp_mulss(p->tf_b2, z_prev.beta) + (int32_t)0x4000) >> 15) +
+                 ((q15_dsp_mulss(c, e_prev.beta) + (int32_t)0x800) >> 12);
+    angle_q15_t emf_angle = smc_atan2_32((wa == Q31_MIN) ? Q31_MAX : -wa, wb);
+    return angle_sub(emf_angle, s->theta_raw);
+}
+
+void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
+{
+    const smc_params_t *p = s->p;
+    angle_q15_t prev = s->theta_raw;
+    ab_q15_t z_prev = s->z;
+    ab_q15_t e_prev = s->e;
+
+    /* Model, error and correction (z and e from the previous period feed the
+     * model step that brings i_est to this sample). */
+    s->i_est.alpha = smc_model(p, s->i_est.alpha, v_applied.alpha, s->e.alpha, s->z.alpha);
+    s->i_est.beta = smc_model(p, s->i_est.beta, v_applied.beta, s->e.beta, s->z.beta);
+    s->z.alpha = smc_switch(p, (int32_t)s->i_est.alpha - (int32_t)i_meas.alpha);
+    s->z.beta = smc_switch(p, (int32_t)s->i_est.beta - (int32_t)i_meas.beta);
+
+    /* The two stages. */
+    s->e.alpha = lpf_update(&s->e_alpha, s->z.alpha, s->k);
+    s->e.beta = lpf_update(&s->e_beta, s->z.beta, s->k);
+    (void)lpf_update(&s->ef_alpha, s->e.alpha, s->k);
+    (void)lpf_update(&s->ef_beta, s->e.beta, s->k);
+
+    /* theta_raw = atan2(-ef_alpha, ef_beta): the back-EMF turned back by
+     * 90 degrees points at the rotor flux. -state cannot overflow except for
+     * -2^31, which is clamped (one part in 2^31). */
+    {
+        int32_t a = s->ef_alpha.state;
+        s->theta_raw = smc_atan2_32((a == Q31_MIN) ? Q31_MAX : -a, s->ef_beta.state);
+    }
+
+    /* Speed window. */
+    s->dtheta_sum += (int32_t)angle_sub(s->theta_raw, prev);
+    s->count++;
+    if (s->count >= p->irp_percalc) {
+        if (p->tf_xadv != 0) {
+            angle_q15_t lag = smc_lag(s, z_prev, e_prev);
+            s->dtheta_sum += (int32_t)angle_sub(lag, s->lag);
+            s->lag = lag;
+        }
+        s->omega_raw = smc_speed_scale(p, s->dtheta_sum);
+        s->omega = lpf_update(&s->omega_lpf, s->omega_raw, p->k_speed_lpf);
+        s->dtheta_sum = 0;
+        s->count = 0U;
+        smc_speed_refresh(s);
+    }
+
+    s->theta = angle_add(s->theta_raw, s->comp);
+}
