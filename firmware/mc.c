@@ -234,7 +234,7 @@ static void mc_enter_closed_loop(mc_t *mc)
      * ramp's current, i.e. the measured current on the estimated q axis (in
      * open loop the rotor runs at a load angle, so most of the forced Iq
      * lies on its d axis and makes no torque). */
-    dq_q15_t i_est = park_forward(clarke_forward(mc->ia, mc->ib), sincos_compute(est));
+    dq_q15_t i_est = park_forward(mc->i_ab, sincos_compute(est));
     pi_preset(&mc->pi_w, i_est.q);
     mc->i_ref.q = mc->pi_w.out;
     mc->speed_div = 0U;
@@ -308,13 +308,22 @@ static bool mc_speed_loop(mc_t *mc)
     return true;
 }
 
-/* Current loops, modulation and the estimator, for one period with the
- * outputs on. theta: angle of this sample; adv: advance for the voltage. */
+/* Clarke of this sample and the estimator update, first thing in every
+ * period with the outputs on, so the angle it gives is the one of this
+ * sample (smc.h timing contract): fed the voltage applied while this
+ * sample's current evolved, computed two steps ago (mc.h note 2). */
+static void mc_estimate(mc_t *mc)
+{
+    mc->i_ab = clarke_forward(mc->ia, mc->ib);
+    smc_update(&mc->smc, mc->i_ab, mc->v_hist[1]);
+}
+
+/* Current loops and modulation, for one period with the outputs on.
+ * mc->theta: angle of this sample; adv: advance for the voltage. */
 static void mc_current_control(mc_t *mc, angle_q15_t adv)
 {
     sincos_q15_t sc = sincos_compute(mc->theta);
-    ab_q15_t i_ab = clarke_forward(mc->ia, mc->ib);
-    mc->i_dq = park_forward(i_ab, sc);
+    mc->i_dq = park_forward(mc->i_ab, sc);
 
     /* d first, then q gets what is left of the voltage circle (AN1078). */
     dq_q15_t v;
@@ -360,9 +369,7 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
         eff[k] = (int16_t)(d - dt);
     }
 
-    /* Estimator: fed the voltage applied while this sample's current
-     * evolved (computed two steps ago), then this step's for later. */
-    smc_update(&mc->smc, i_ab, mc->v_hist[1]);
+    /* This step's applied voltage, for the estimator two steps on. */
     mc->v_hist[1] = mc->v_hist[0];
     mc->v_hist[0] = mc_duty_to_voltage(eff, mc->vbus);
 }
@@ -483,6 +490,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                     mc->ib = 0;
                     mc->ic = 0;
                     mc_enter_lock(mc);
+                    mc_estimate(mc);
                     mc_current_control(mc, 0);
                     break;
                 }
@@ -493,6 +501,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                 mc->i_ref.q = MC_RAMP_CURRENT_Q15;
                 mc_enter(mc, MC_STATE_OPEN_LOOP);
             }
+            mc_estimate(mc);
             mc_current_control(mc, 0);
             break;
         case MC_STATE_OPEN_LOOP:
@@ -501,6 +510,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
             /* 1.5 periods of the forced speed. */
             adv = (angle_q15_t)(int16_t)(uint16_t)((mc->ol_step >> 16) * 3U / 2U);
+            mc_estimate(mc);
             mc_current_control(mc, adv);
             if (mc->ol_step >= MC_RAMP_STEP_END) {
                 /* At the end speed: hold it until the estimate is valid,
@@ -529,6 +539,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                 off = 0;
             }
             mc->theta_offset = off;
+            mc_estimate(mc);
             mc->theta = angle_add(smc_theta(&mc->smc), off);
             adv = q15_mul(smc_omega(&mc->smc), MC_ADV_K);
             mc_current_control(mc, adv);

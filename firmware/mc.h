@@ -162,6 +162,7 @@ typedef struct {
 
     /* measurements of this period */
     int16_t ia, ib, ic, vbus, pot;
+    ab_q15_t i_ab;
     dq_q15_t i_dq;
 
     /* current and speed control */

@@ -53,6 +53,8 @@ void mc_bench_step(mc_bench_t *b)
 {
     mc_adc_frame_t in;
     sim_rig_sample(&b->rig, &b->frame);
+    b->theta_sample = b->rig.plant.s.theta_e;
+    b->rpm_sample = sim_plant_rpm(&b->rig.plant);
     in.ia = b->frame.ia;
     in.ib = b->frame.ib;
     in.vbus = b->frame.vbus;
@@ -82,7 +84,7 @@ double mc_bench_rpm(const mc_bench_t *b)
 double mc_bench_angle_err_deg(const mc_bench_t *b)
 {
     double est = (double)b->st.theta_est * M_PI / 32768.0;
-    double d = sim_wrap_pi(est - b->rig.plant.s.theta_e);
+    double d = sim_wrap_pi(est - b->theta_sample);
     return d * 180.0 / M_PI;
 }
 

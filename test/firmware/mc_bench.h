@@ -17,6 +17,8 @@ typedef struct {
     mc_pwm_out_t out;
     sim_adc_frame_t frame;
     mc_status_t st;
+    double theta_sample; /* true electrical angle at this period's sample, rad */
+    double rpm_sample;   /* true speed then */
     long n;
 } mc_bench_t;
 
@@ -37,7 +39,8 @@ void mc_bench_step(mc_bench_t *b);
  * or -1. */
 long mc_bench_run_until(mc_bench_t *b, mc_state_t s, long n);
 double mc_bench_rpm(const mc_bench_t *b);
-/* Estimated angle minus true angle, degrees in [-180, 180). */
+/* Angle the core used for this period's sample minus the true angle at the
+ * sample instant, degrees in [-180, 180). */
 double mc_bench_angle_err_deg(const mc_bench_t *b);
 double mc_rpm_of_q15(int16_t q);
 

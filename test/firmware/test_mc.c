@@ -88,9 +88,11 @@ test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_fra
 {
     (void)state;
     uint32_t rng = 7U;
+    const int16_t ov = MC_VBUS_OV_Q15;
     for (int k = 0; k < 5000; k++) {
         /* Anything but an overvoltage (which is a fault even when stopped). */
-        int16_t vb = (int16_t)(test_rand_u32(&rng) % (uint32_t)(int32_t)MC_VBUS_OV_Q15);
+        uint32_t r = test_rand_u32(&rng);
+        int16_t vb = (int16_t)(r % (uint32_t)(uint16_t)ov);
         step_with(frame(test_rand_i16(&rng), test_rand_i16(&rng), vb, test_rand_i16(&rng)));
         assert_int_equal(st.state, MC_STATE_STOPPED);
         assert_off();

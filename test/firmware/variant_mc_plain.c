@@ -1,5 +1,56 @@
-/* variant_mc_torque.c - placeholder */
+/* variant_mc_plain.c - the core built without ripple and dead-time compensation (UserParms.h off).
+ */
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "mc_bench.h"
+#include "mc_internal.h"
+
+#if defined(ENVOLTRIPPLE) || MC_DEADTIME_COMP
+#error "variant_mc_plain.c must be built against the core without compensations (mc_plain)"
+#endif
+
+static mc_bench_t b;
+
+/* Angle error at 500 rpm, light load, for comparison with test_mc_closedloop's
+ * figure with the compensation on. */
+static void
+test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_run(void **state)
+{
+    (void)state;
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.pot = 0.0;
+    mc_bench_init(&b, &c);
+    b.rig.inv.prm.ripple_v = 2.0;
+    b.rig.inv.prm.ripple_hz = 100.0;
+    mc_request(&b.mc, MC_REQUEST_START);
+    long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 4L * PWM_FREQUENCY_HZ);
+    assert_true(n > 0);
+    err_stats_t ang;
+    err_stats_init(&ang);
+    for (long k = 0; k < 3L * PWM_FREQUENCY_HZ; k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+        /* No ripple compensation: the PI outputs are the voltages. */
+        assert_int_equal(b.st.vd, b.mc.pi_d.out);
+        assert_int_equal(b.st.vq, b.mc.pi_q.out);
+        if (k > PWM_FREQUENCY_HZ) {
+            err_stats_add(&ang, mc_bench_angle_err_deg(&b), (double)k);
+        }
+    }
+    err_stats_print("angle at 500 rpm, no dead-time compensation (estimator fed duty - Td loss)",
+                    &ang, "deg");
+    assert_true(ang.max_abs < 45.0);
+}
+
 int main(void)
 {
-    return 0;
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(
+            test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_run),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,310 @@
+/* test_mc_closedloop.c - the mc core on the simulated Hurst: start, tracking, field weakening,
+ * ripple compensation, voltage limit, stall detection, no false trips. */
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mc_bench.h"
+#include "mc_internal.h"
+
+static mc_bench_t b;
+
+#define PERIODS(s) ((long)((s) * (double)PWM_FREQUENCY_HZ))
+
+static double pot_for_rpm(double rpm)
+{
+    return (rpm - SPEED_REF_MIN_RPM) / (SPEED_REF_MAX_RPM - SPEED_REF_MIN_RPM);
+}
+
+/* Bench with the pot at `rpm`, started, run into CLOSED_LOOP. Returns the
+ * time it took, s. */
+static double start_at(double rpm)
+{
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.pot = pot_for_rpm(rpm);
+    mc_bench_init(&b, &c);
+    mc_request(&b.mc, MC_REQUEST_START);
+    long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, PERIODS(4.0));
+    assert_true(n > 0);
+    return (double)n / (double)PWM_FREQUENCY_HZ;
+}
+
+static void run(double seconds)
+{
+    long n = PERIODS(seconds);
+    for (long k = 0; k < n; k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+    }
+}
+
+static void set_pot_rpm(double rpm)
+{
+    b.rig.pot = pot_for_rpm(rpm);
+    b.rig.pot_target = b.rig.pot;
+}
+
+/* ---- start-up and tracking ----------------------------------------------------- */
+
+static void test_core_should_start_the_hurst_and_hold_the_pot_speed(void **state)
+{
+    (void)state;
+    double t_cl = start_at(1500.0);
+    printf("measured: START -> CLOSED_LOOP in %.3f s (calibration %.4f s, lock %.2f s, ramp %.2f "
+           "s)\n",
+           t_cl, (double)MC_CALIB_PERIODS / PWM_FREQUENCY_HZ, MOTOR_LOCK_TIME_S, MOTOR_RAMP_TIME_S);
+    assert_true(t_cl < MC_OFFSET_CALIB_TIME_S + MOTOR_LOCK_TIME_S + MOTOR_RAMP_TIME_S +
+                           MC_HANDOFF_WAIT_S + 0.01);
+
+    /* The hand-off must not make the speed dip. */
+    double rpm_min = 1e9;
+    for (long k = 0; k < PERIODS(0.2); k++) {
+        mc_bench_step(&b);
+        if (b.rpm_sample < rpm_min) {
+            rpm_min = b.rpm_sample;
+        }
+    }
+    printf("measured: lowest speed in the 200 ms after hand-off: %.0f rpm (ramp end %.0f)\n",
+           rpm_min, MOTOR_RAMP_END_RPM);
+    assert_true(rpm_min > 0.8 * MOTOR_RAMP_END_RPM);
+
+    run(2.0); /* ramp to 1500 rpm at MC_SPEED_RAMP_RPM_PER_S and settle */
+    err_stats_t spd, ang;
+    err_stats_init(&spd);
+    err_stats_init(&ang);
+    double target = mc_rpm_of_q15(b.st.speed_target);
+    for (long k = 0; k < PERIODS(1.0); k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+        err_stats_add(&spd, b.rpm_sample - target, (double)k);
+        err_stats_add(&ang, mc_bench_angle_err_deg(&b), (double)k);
+    }
+    err_stats_print("speed at 1500 rpm (true - reference)", &spd, "rpm");
+    err_stats_print("angle at 1500 rpm (used - true)", &ang, "deg");
+    assert_true(fabs(err_stats_mean(&spd)) < 0.01 * target);
+    assert_true(spd.max_abs < 0.05 * target);
+    assert_true(fabs(err_stats_mean(&ang)) < 5.0);
+    assert_true(ang.max_abs < 15.0);
+}
+
+static void test_core_should_reach_top_speed_with_field_weakening_from_the_table(void **state)
+{
+    (void)state;
+    start_at(SPEED_REF_MAX_RPM);
+    /* Every speed-loop run: Id reference = linear interpolation of the
+     * table (Q15 entries) at the speed reference, in double. */
+    static const q15_t table[16] = MC_FW_TABLE_Q15;
+    const double nom = MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM);
+    const double top = MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM);
+    err_stats_t e;
+    err_stats_init(&e);
+    long n_fw = 0;
+    for (long k = 0; k < PERIODS(6.5); k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+        double s = b.st.speed_ref;
+        double ref = 0.0;
+        if (s >= top) {
+            ref = table[15];
+        } else if (s >= nom) {
+            double pos = 15.0 * (s - nom) / (top - nom);
+            int i = (int)floor(pos);
+            ref = table[i] + (pos - i) * (table[i + 1] - table[i]);
+            n_fw++;
+        }
+        err_stats_add(&e, b.st.id_ref - ref, s);
+    }
+    err_stats_print("Id reference vs table interpolation at the speed reference", &e, "LSB");
+    assert_true(n_fw > 1000);
+    assert_true(e.max_abs <= 1.0);
+    err_stats_t spd, ang;
+    err_stats_init(&spd);
+    err_stats_init(&ang);
+    for (long k = 0; k < PERIODS(0.5); k++) {
+        mc_bench_step(&b);
+        err_stats_add(&spd, b.rpm_sample - SPEED_REF_MAX_RPM, (double)k);
+        err_stats_add(&ang, mc_bench_angle_err_deg(&b), (double)k);
+    }
+    err_stats_print("speed at the top of field weakening (true - reference)", &spd, "rpm");
+    err_stats_print("angle at the top of field weakening", &ang, "deg");
+    printf("measured: Id at %.0f rpm: %.3f A (table end %.3f A)\n", SPEED_REF_MAX_RPM,
+           b.st.id * BOARD_I_FULLSCALE_A / 32768.0, table[15] * BOARD_I_FULLSCALE_A / 32768.0);
+    assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+    assert_true(fabs(err_stats_mean(&spd)) < 0.02 * SPEED_REF_MAX_RPM);
+    assert_true(fabs(err_stats_mean(&ang)) < 10.0);
+}
+
+static void
+test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation(void **state)
+{
+    (void)state;
+    start_at(SPEED_REF_MIN_RPM);
+    run(1.0);
+    err_stats_t ang;
+    err_stats_init(&ang);
+    for (long k = 0; k < PERIODS(2.0); k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+        err_stats_add(&ang, mc_bench_angle_err_deg(&b), (double)k);
+    }
+    err_stats_print("angle at the minimum speed (500 rpm), dead-time compensation on", &ang, "deg");
+    assert_true(fabs(err_stats_mean(&ang)) < 5.0);
+    assert_true(ang.max_abs < 20.0);
+}
+
+/* ---- voltage: ripple compensation and circle limit ------------------------------- */
+
+static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(void **state)
+{
+    (void)state;
+    start_at(2000.0);
+    b.rig.inv.prm.ripple_v = 3.0;
+    b.rig.inv.prm.ripple_hz = 100.0;
+    err_stats_t e;
+    err_stats_init(&e);
+    const double target = MC_VBUS_NOMINAL_Q15;
+    long n_up = 0, n_down = 0;
+    for (long k = 0; k < PERIODS(1.0); k++) {
+        mc_bench_step(&b);
+        double dc = b.frame.vbus;
+        double vpi[2] = {b.mc.pi_d.out, b.mc.pi_q.out};
+        double got[2] = {b.st.vd, b.st.vq};
+        for (int j = 0; j < 2; j++) {
+            double v;
+            /* AN1078 Equation 8, both branches as written. */
+            if (target > dc) {
+                v = vpi[j] + (target - dc) / dc * vpi[j];
+                n_up++;
+            } else if (dc > target) {
+                v = target / dc * vpi[j];
+                n_down++;
+            } else {
+                v = vpi[j];
+            }
+            if (fabs(v) < 32767.0) {
+                err_stats_add(&e, got[j] - v, dc);
+            }
+        }
+    }
+    err_stats_print("Vd, Vq after ripple compensation vs Equation 8 (double)", &e, "LSB");
+    assert_true(n_up > 1000 && n_down > 1000);
+    assert_true(e.max_abs <= 0.5);
+}
+
+static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate(void **state)
+{
+    (void)state;
+    start_at(2000.0);
+    /* A weak bus and the top speed: the current loops run into the limit. */
+    b.rig.inv.prm.vbus_v = 17.0;
+    set_pot_rpm(SPEED_REF_MAX_RPM);
+    err_stats_t e;
+    err_stats_init(&e);
+    long at_limit = 0;
+    for (long k = 0; k < PERIODS(3.0) && b.st.state == MC_STATE_CLOSED_LOOP; k++) {
+        mc_bench_step(&b);
+        double m = hypot((double)b.mc.pi_d.out, (double)b.mc.pi_q.out);
+        err_stats_add(&e, m - MC_VMAX_Q15, (double)k);
+        assert_true(m <= MC_VMAX_Q15 + 1.0);
+        assert_true(abs(b.mc.pi_d.out) <= MC_VMAX_Q15);
+        if (m > MC_VMAX_Q15 - 2.0) {
+            at_limit++;
+        }
+    }
+    printf("measured: %ld periods at the voltage limit (|V| within 2 LSB of %d)\n", at_limit,
+           MC_VMAX_Q15);
+    assert_true(at_limit > 1000);
+}
+
+/* ---- protections in closed loop ---------------------------------------------------- */
+
+static void test_stall_should_fault_within_50_ms_when_the_rotor_locks(void **state)
+{
+    (void)state;
+    const double speeds[] = {800.0, 1500.0, 3000.0};
+    for (int s = 0; s < 3; s++) {
+        start_at(speeds[s]);
+        run(2.5);
+        b.rig.plant.s.locked = true;
+        long k = 0;
+        for (; k < PERIODS(0.1) && b.st.state != MC_STATE_FAULT; k++) {
+            mc_bench_step(&b);
+        }
+        double t = (double)k / PWM_FREQUENCY_HZ;
+        printf("measured: locked rotor at %.0f rpm -> FAULT code %u after %.1f ms\n", speeds[s],
+               b.st.fault, 1000.0 * t);
+        assert_int_equal(b.st.state, MC_STATE_FAULT);
+        assert_true(b.st.fault == MC_FAULT_STALL_SPEED || b.st.fault == MC_FAULT_STALL_BEMF ||
+                    b.st.fault == MC_FAULT_STALL_TRACK);
+        assert_true(t <= 0.050);
+        assert_false(b.out.outputs_on);
+        assert_int_equal(b.out.duty[0], PWM_DUTY_MAX / 2U);
+    }
+}
+
+static void test_closed_loop_should_not_trip_through_speed_changes_and_load_steps(void **state)
+{
+    (void)state;
+    start_at(600.0);
+    const double plan[][2] = {
+        /* rpm, load N m */
+        /* (the field-weakening table is for a light load: 0.02 N m at 3000 rpm) */
+        {600.0, 0.0},  {1500.0, 0.0}, {3000.0, 0.0}, {3000.0, 0.02}, {1500.0, 0.06},
+        {600.0, 0.06}, {600.0, 0.0},  {5300.0, 0.0}, {2000.0, 0.02}, {500.0, 0.0},
+    };
+    for (unsigned p = 0; p < sizeof(plan) / sizeof(plan[0]); p++) {
+        set_pot_rpm(plan[p][0]);
+        b.rig.plant.load.active_nm = plan[p][1];
+        run(1.5 + fabs(plan[p][0] - mc_rpm_of_q15(b.st.speed_ref)) / MC_SPEED_RAMP_RPM_PER_S);
+        printf("measured: %.0f rpm, load %.2f N m: speed %.0f rpm, Iq %.3f A\n", plan[p][0],
+               plan[p][1], b.rpm_sample, b.st.iq * BOARD_I_FULLSCALE_A / 32768.0);
+        assert_true(fabs(b.rpm_sample - plan[p][0]) < 0.05 * plan[p][0] + 20.0);
+    }
+}
+
+static void test_stop_in_closed_loop_should_turn_the_outputs_off_at_once(void **state)
+{
+    (void)state;
+    start_at(1000.0);
+    run(0.5);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    mc_bench_step(&b);
+    assert_int_equal(b.st.state, MC_STATE_STOPPED);
+    assert_false(b.out.outputs_on);
+    assert_int_equal(b.out.duty[1], PWM_DUTY_MAX / 2U);
+}
+
+static void test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen(void **state)
+{
+    (void)state;
+    start_at(1000.0);
+    run(0.5);
+    /* A current spike on the phase-A reading (sim: B gets the opposite). */
+    b.rig.spike_a = MC_OVERCURRENT_A + 0.1;
+    b.rig.spike_left = 1;
+    mc_bench_step(&b);
+    assert_int_equal(b.st.state, MC_STATE_FAULT);
+    assert_int_equal(b.st.fault, MC_FAULT_OVERCURRENT);
+    assert_false(b.out.outputs_on);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_core_should_start_the_hurst_and_hold_the_pot_speed),
+        cmocka_unit_test(test_core_should_reach_top_speed_with_field_weakening_from_the_table),
+        cmocka_unit_test(
+            test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation),
+        cmocka_unit_test(test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus),
+        cmocka_unit_test(test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate),
+        cmocka_unit_test(test_stall_should_fault_within_50_ms_when_the_rotor_locks),
+        cmocka_unit_test(test_closed_loop_should_not_trip_through_speed_changes_and_load_steps),
+        cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
+        cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
