@@ -1,0 +1,368 @@
+"""From a motor description to every value of a motor profile, with the reason for each.
+
+All arithmetic in SI units (speeds in rpm where named so). Phase quantities
+are per phase; currents and voltages are peak amplitudes of the phase
+sinusoid (the core's scales). The voltage limit is the one the core applies
+(MC_VOLTAGE_LIMIT_FRACTION of the SVGen full scale Vbus/sqrt 3) less a
+headroom for the current loops and the dead time.
+
+Each derived value is stored as a Value(macro, number, unit, reason) so the
+header writer can put the reason next to the number.
+"""
+
+import math
+
+from . import cheader
+from .units import InputError
+
+SQRT3 = math.sqrt(3.0)
+TWO_PI = 2.0 * math.pi
+RPM = TWO_PI / 60.0  # rad/s per rpm
+
+
+class Infeasible(Exception):
+    """The request cannot be met on this board: the message starts with the field."""
+
+    def __init__(self, field, message):
+        super().__init__(f"{field}: {message}")
+        self.field = field
+
+
+class Value:
+    def __init__(self, macro, number, unit, reason, fmt="{:.4g}"):
+        self.macro, self.number, self.unit, self.reason, self.fmt = macro, number, unit, reason, fmt
+
+    def text(self):
+        return fmt_num(self.number, self.fmt)
+
+
+def fmt_num(x, fmt="{:.4g}"):
+    s = fmt.format(x)
+    if "e" not in s and "." not in s and "inf" not in s and "nan" not in s:
+        s += ".0"
+    return s
+
+
+def sig(x, n=4):
+    """x rounded to n significant digits (what the header prints)."""
+    if x == 0:
+        return 0.0
+    return float(f"{x:.{n}g}")
+
+
+def sig_down(x, n=3):
+    """x rounded down to n significant digits (limits never round up)."""
+    if x <= 0:
+        return 0.0
+    e = math.floor(math.log10(x)) - (n - 1)
+    return math.floor(x / 10.0**e + 1e-9) * 10.0**e
+
+
+def round_up(x, step):
+    return math.ceil(x / step - 1e-9) * step
+
+
+def round_down(x, step):
+    return math.floor(x / step + 1e-9) * step
+
+
+class Tuning:
+    """Every derived value; .values is the ordered list written to the header."""
+
+    def __init__(self):
+        self.values, self.notes, self.warnings, self.fw_table, self.fw_speeds = [], [], [], [], []
+        self.by = {}
+
+    def add(self, macro, number, unit, reason, fmt="{:.4g}"):
+        v = Value(macro, number, unit, reason, fmt)
+        self.values.append(v)
+        self.by[macro] = v
+        return number
+
+    def __getitem__(self, macro):
+        return self.by[macro].number
+
+
+def id_for_voltage(w, r, l, psi, iq, vmax):
+    """Smallest |Id| (Id <= 0) with |V| <= vmax in steady state at electrical speed w:
+    Vd = R Id - w L Iq, Vq = R Iq + w (psi + L Id). None when no Id reaches it.
+    |V|^2 - vmax^2 = A Id^2 + B Id + C, a quadratic in Id."""
+    a_ = w * l * iq
+    b_ = r * iq + w * psi
+    A = r * r + (w * l) ** 2
+    B = 2.0 * (b_ * w * l - r * a_)
+    C = a_ * a_ + b_ * b_ - vmax * vmax
+    if C <= 0.0:
+        return 0.0
+    disc = B * B - 4.0 * A * C
+    if disc < 0.0:
+        return None
+    return min(0.0, (-B + math.sqrt(disc)) / (2.0 * A))
+
+
+def derive(desc):
+    t = Tuning()
+    benv = cheader.board_env(desc.board)
+    gb = benv.get
+    i_fs = float(gb("BOARD_I_FULLSCALE_A"))
+    vbus = float(gb("BOARD_VBUS_NOMINAL_V"))
+    fcy = int(gb("BOARD_FCY_HZ"))
+    td = float(gb("BOARD_DEADTIME_NS")) * 1e-9
+    board_name = gb("BOARD_NAME") if benv.has("BOARD_NAME") else desc.board
+    fpwm = int(round(desc.pwm_hz)) if desc.pwm_hz is not None else int(gb("PWM_FREQUENCY_HZ"))
+    if not 4000 <= fpwm <= 40000 or fcy % fpwm != 0:
+        raise InputError("pwm_frequency", f"{fpwm} Hz: must be 4..40 kHz and divide the {fcy} Hz instruction clock")
+    loop_hz = int(gb("MC_SPEED_LOOP_HZ"))
+    if fpwm % loop_hz != 0 or not 1 <= fpwm // loop_hz <= 256:
+        raise InputError("pwm_frequency", f"{fpwm} Hz: must be 1..256 times the {loop_hz} Hz speed loop")
+    vfrac = float(gb("MC_VOLTAGE_LIMIT_FRACTION"))
+    spd_fc = float(gb("MC_SPEED_FILTER_HZ"))
+    ts = 1.0 / fpwm
+    pp, r, l = desc.pole_pairs, desc.r_ph, desc.l_ph
+    v_fs = vbus / SQRT3
+    t.board, t.fpwm, t.i_fs, t.v_fs, t.vbus, t.board_name = desc.board, fpwm, i_fs, v_fs, vbus, board_name
+    t.desc = desc
+
+    # ---- motor constants ----------------------------------------------------
+    psi = desc.ke_ll / SQRT3 / (1000.0 * RPM * pp)  # V s/rad electrical (Wb)
+    kt = 1.5 * pp * psi  # N m per A peak
+    e_per_rpm = desc.ke_ll / SQRT3 / 1000.0  # phase peak volts per rpm
+    t.psi, t.kt = psi, kt
+    if ts * r / l >= 1.0:
+        raise Infeasible("motor.inductance", f"Ts R / L = {ts * r / l:.3f} >= 1: L is too small for R at {fpwm} Hz "
+                         "(the observer's F = 1 - Ts R/L would be <= 0); check the unit (mH?) and the PWM frequency")
+    if ts / l * v_fs / i_fs >= 1.0:
+        raise Infeasible("motor.inductance", f"G = Ts/L * V_FS/I_FS = {ts / l * v_fs / i_fs:.2f} >= 1: L too small for "
+                         f"the {board_name} scales ({v_fs:.1f} V, {i_fs:g} A)")
+
+    # ---- voltage available in steady state -----------------------------------
+    dt_frac = td * fpwm
+    headroom = 1.0 - 0.05 - dt_frac
+    v_ss = vfrac * v_fs * headroom
+    t.v_ss, t.headroom = v_ss, headroom
+    t.notes.append(
+        f"Steady-state voltage budget: {vfrac:g} x {vbus:g} V / sqrt 3 = {vfrac * v_fs:.2f} V phase peak "
+        f"(MC_VOLTAGE_LIMIT_FRACTION of the SVGen circle), times {headroom:.2f} (5 % left to the current "
+        f"loops, {100 * dt_frac:.0f} % = dead time {td * 1e6:g} us x {fpwm} Hz) = {v_ss:.2f} V.")
+
+    # ---- currents and the board ---------------------------------------------
+    trip_board = 0.9 * i_fs
+    i_peak_req = desc.i_peak if desc.i_peak is not None else desc.i_rated
+    trip = min(trip_board, 1.25 * i_peak_req)
+    i_total = 0.9 * trip  # what mc.c lets |(Id, Iq)| reach (MC_I_TOTAL)
+    derated = i_total < i_peak_req - 1e-9
+    i_peak = min(i_peak_req, i_total)
+    i_qmax = min(desc.i_rated, i_peak)
+    t.i_peak, t.i_qmax, t.trip = i_peak, i_qmax, trip
+    if derated:
+        msg = (f"derated: the {board_name} reads +-{i_fs:g} A, the trip must stay below 90 % of it "
+               f"({trip_board:.2f} A) and the core holds |I| to 90 % of the trip, so the motor's "
+               f"{i_peak_req:.3g} A peak is limited to {i_peak:.3g} A ({100 * i_peak / i_peak_req:.0f} % of its torque)")
+        t.warnings.append(msg)
+    t.add("MOTOR_OVERCURRENT_A", sig(trip, 3), "A",
+          f"software trip: min(90 % of the {i_fs:g} A current full scale = {trip_board:.3g} A, so one sample "
+          f"of overshoot still reads inside the ADC range; 1.25 x the peak current {i_peak_req:.3g} A)")
+    t.add("MOTOR_CURRENT_MAX_A", sig_down(i_qmax, 3), "A",
+          f"|Iq| limit of the speed loop: the rated {desc.i_rated:.3g} A peak" +
+          (f", {msg}" if derated else " (continuous torque)"))
+    i_qmax = t["MOTOR_CURRENT_MAX_A"]
+
+    # ---- speeds -------------------------------------------------------------
+    # Load current the voltage budget is computed for: the field-weakening
+    # table and the nominal speed are exact at this Iq (more load at the same
+    # speed asks for more voltage; the current loops' 5 % headroom covers some).
+    i_load = desc.i_fw_load if desc.i_fw_load is not None else 0.25 * i_qmax
+    if i_load > i_qmax:
+        raise Infeasible("application.fw_load_current", f"{i_load:.3g} A exceeds the Iq limit {i_qmax:.3g} A")
+    t.i_load = i_load
+
+    def v_at(n, i_d, i_q):
+        w = n * RPM * pp
+        return math.hypot(r * i_d - w * l * i_q, r * i_q + w * (psi + l * i_d))
+
+    # Nominal speed: highest speed with Id = 0 inside the budget (bisection).
+    lo, hi = 0.0, 1.0
+    while v_at(hi, 0.0, i_load) < v_ss and hi < 1e7:
+        hi *= 2.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if v_at(mid, 0.0, i_load) < v_ss:
+            lo = mid
+        else:
+            hi = mid
+    n_bus = lo
+    t.n_bus = n_bus
+    n_top = desc.n_max if desc.n_max is not None else desc.n_rated
+    top_field = "application.max_speed" if desc.n_max is not None else "motor.rated_speed"
+    # Id limit: the total current may reach i_peak (|(Id, Iq_load)| <= i_peak).
+    id_limit = -math.sqrt(max(i_peak * i_peak - i_load * i_load, 0.0))
+    id_limit = max(id_limit, -0.95 * i_fs)
+
+    def id_needed(n):
+        return id_for_voltage(n * RPM * pp, r, l, psi, i_load, v_ss)
+
+    if n_top <= n_bus:
+        n_nom = round_down(n_top, 10.0)
+        n_fw = n_nom
+        fw_reason = (f"= the top speed {n_top:.0f} rpm ({top_field}): the bus reaches {n_bus:.0f} rpm without "
+                     f"field weakening at Iq = {i_load:.2g} A, so none is needed (AN1078: nominal = FW max disables it)")
+    else:
+        # Highest speed reachable with Id inside the current limit.
+        def reachable(n):
+            i_d = id_needed(n)
+            return i_d is not None and i_d >= id_limit
+
+        lo, hi = n_bus, n_top
+        if not reachable(n_top):
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if reachable(mid):
+                    lo = mid
+                else:
+                    hi = mid
+            raise Infeasible(
+                top_field,
+                f"{n_top:.0f} rpm is beyond the {vbus:g} V bus even with field weakening: at most "
+                f"{round_down(lo, 10):.0f} rpm with |I| <= {i_peak:.3g} A (Id >= {id_limit:.2f} A at Iq = "
+                f"{i_load:.2g} A; raise motor.peak_current or lower the speed)")
+        n_nom = round_down(n_bus, 10.0)
+        n_fw = n_top
+        fw_reason = (f"highest speed with Id = 0: back-EMF {e_per_rpm * 1000:.3f} V/krpm phase peak plus the R and "
+                     f"wL drops at Iq = {i_load:.2g} A reach the {v_ss:.2f} V budget at {n_bus:.0f} rpm")
+    t.add("MOTOR_SPEED_NOMINAL_RPM", n_nom, "rpm", fw_reason, "{:.1f}")
+    t.add("MOTOR_SPEED_FW_MAX_RPM", n_fw, "rpm",
+          f"top speed asked for ({top_field})" + ("" if n_fw > n_nom else ", no field weakening"), "{:.1f}")
+
+    # Field-weakening table: 16 points from nominal to FW max.
+    tab, speeds = [], []
+    for k in range(16):
+        n = n_nom + (n_fw - n_nom) * k / 15.0
+        i_d = 0.0 if (k == 0 or n_fw <= n_nom) else id_needed(n)
+        if i_d is None or i_d < id_limit - 1e-9:
+            raise Infeasible(top_field, f"field weakening fails at {n:.0f} rpm")  # guarded above
+        tab.append(round(i_d, 3) + 0.0)
+        speeds.append(n)
+    for k in range(1, 16):  # rounding must not break monotony
+        tab[k] = min(tab[k], tab[k - 1])
+    t.fw_table, t.fw_speeds, t.id_limit = tab, speeds, id_limit
+
+    # Speed full scale: 1.5 x the top speed, a round 1000 rpm, inside the core's ranges.
+    fs = round_up(1.5 * n_fw, 1000.0)
+    fs_max = min(fpwm * 60.0 / (TWO_PI * pp) * 0.95,  # smc: 2 pi omega_fs Ts < 1
+                 fpwm * 60.0 / (3.0 * pp) * 0.95,  # mc.c: 3 omega_fs Ts < 1
+                 32767.0 * float(gb("MC_SPEED_RAMP_RPM_PER_S")) / loop_hz)  # slew >= 1 count
+    fs = min(fs, round_down(fs_max, 100.0))
+    if fs < n_fw / 0.95:
+        raise Infeasible(top_field, f"{n_fw:.0f} rpm x {pp} pole pairs is too fast for {fpwm} Hz PWM "
+                         f"(speed full scale would have to exceed {fs_max:.0f} rpm); raise pwm_frequency")
+    t.add("MOTOR_SPEED_FULLSCALE_RPM", fs, "rpm",
+          "Q15 full scale of every speed: 1.5 x the top speed rounded up to 1000 rpm (room for overshoot, "
+          "core check FW max <= 0.95 x full scale)", "{:.1f}")
+
+    # Lowest closed-loop speed: the estimator needs a back-EMF well above the
+    # voltage error of the dead time (square wave, fundamental 4/pi x 2/3 x
+    # Td fpwm Vbus), which the core compensates only approximately.
+    v_dt = 4.0 / math.pi * 2.0 / 3.0 * dt_frac * vbus
+    n_emf = 2.0 * v_dt / e_per_rpm
+    n_min = desc.n_min if desc.n_min is not None else round_up(max(n_emf, 0.08 * n_fw), 50.0)
+    if n_min >= n_nom:
+        raise Infeasible("application.min_speed" if desc.n_min is not None else top_field,
+                         f"lowest closed-loop speed {n_min:.0f} rpm is not below the nominal {n_nom:.0f} rpm")
+    t.add("MOTOR_SPEED_MIN_RPM", n_min, "rpm",
+          ("given (application.min_speed)" if desc.n_min is not None else
+           f"max(back-EMF = 2 x the dead-time voltage error {v_dt:.2f} V -> {n_emf:.0f} rpm, 8 % of the top "
+           f"speed), rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the "
+           f"ramp end"), "{:.1f}")
+    t.n_emf, t.v_dt = n_emf, v_dt
+
+    # ---- start-up -----------------------------------------------------------
+    i_lock = sig(min(0.6 * desc.i_rated, 0.6 * i_qmax), 3)
+    t.add("MOTOR_LOCK_CURRENT_A", i_lock, "A",
+          f"0.6 x the continuous current {min(desc.i_rated, i_qmax):.3g} A: pulls the rotor to the lock angle "
+          f"against cogging and friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst)")
+    j = desc.j
+    if j is not None:
+        wn = math.sqrt(pp * kt * i_lock / j)  # rotor swing in the lock torque spring, rad/s
+        t_lock = min(max(round_up(4.0 * TWO_PI / wn, 0.01), 0.1), 2.0)
+        t.add("MOTOR_LOCK_TIME_S", t_lock, "s",
+              f"4 periods of the rotor's swing about the lock angle, w = sqrt(p Kt I_lock / J) = {wn:.0f} rad/s "
+              f"(Kt = {kt * 1000:.2f} mN m/A, J = {j:.3g} kg m^2), within 0.1..2 s")
+    else:
+        t.add("MOTOR_LOCK_TIME_S", 0.25, "s", "no inertia given: AN1078's LOCKTIMEINSEC")
+    i_ramp = min(i_lock, i_qmax)
+    n_end = n_min
+    if j is not None:
+        alpha = 0.2 * kt * i_ramp / j  # rad/s^2: 20 % of the ramp torque accelerates
+        t_ramp_acc = n_end * RPM / alpha
+        t_ramp = min(max(round_up(t_ramp_acc, 0.05), 0.5), 10.0)
+        ramp_reason = (f"constant acceleration {alpha / RPM:.0f} rpm/s up to the ramp end: 20 % of the ramp torque "
+                       f"Kt x {i_ramp:.3g} A = {kt * i_ramp * 1000:.1f} mN m accelerates J (the rest is margin for load "
+                       f"and the lag of the forced angle) -> {t_ramp_acc:.3f} s, at least 0.5 s so the observer "
+                       f"converges before the hand-off")
+    else:
+        t_ramp = 1.0
+        ramp_reason = "no inertia given: 1 s to the ramp end (AN1078 used 5 s with a brake attached)"
+    t.add("MOTOR_RAMP_TIME_S", t_ramp, "s", ramp_reason)
+    t.add("MOTOR_RAMP_END_RPM", n_end, "rpm", "hand-off to closed loop at the lowest closed-loop speed", "{:.1f}")
+    t.add("MOTOR_RAMP_CURRENT_A", i_ramp, "A", "Iq during the open-loop ramp: the lock current")
+
+    # ---- observer ------------------------------------------------------------
+    e_top = e_per_rpm * n_fw
+    e_seen = min(e_top, vfrac * v_fs)
+    ks = sig(min(1.5 * e_seen, 0.9 * v_fs), 4)
+    t.add("MOTOR_SMC_GAIN_V", ks, "V",
+          f"Kslide = min(1.5 x the largest back-EMF the observer sees, 90 % of V_FS = {0.9 * v_fs:.3g} V); "
+          f"that back-EMF is min(Ke at the top speed = {e_top:.3g} V, the voltage limit {vfrac * v_fs:.3g} V: "
+          f"above nominal field weakening holds it there)")
+    f_ex = math.exp(-ts * r / l)
+    g_si = (1.0 - f_ex) / r  # A per V per period
+    band = sig(ks * g_si / f_ex, 3)
+    t.add("MOTOR_SMC_LINEAR_BAND_A", band, "A",
+          f"MaxSMCError = Kslide G / F (smc.h SMC_MAXERR_DEADBEAT: the linear band's loop gain G Kslide/MaxSMCError "
+          f"equals F, a dead-beat correction), G = (1 - F)/R = {g_si:.5f} A/V, F = {f_ex:.5f}")
+    if band <= i_fs / 32768.0 * 4:
+        raise Infeasible("motor.inductance", "the observer's linear band is below 4 LSB of the current scale")
+
+    # ---- current PI ----------------------------------------------------------
+    pm = 70.0
+    wc_max = math.radians(90.0 - pm) / (1.5 * ts)
+    if desc.wc is not None:
+        wc = desc.wc
+        wc_reason = f"given (application.current_bandwidth); the delay-limited maximum is {wc_max:.0f} rad/s"
+        if wc > wc_max * 1.5:
+            raise Infeasible("application.current_bandwidth",
+                             f"{wc:.0f} rad/s is beyond what {fpwm} Hz sampling allows (1.5 Ts delay: "
+                             f"{wc_max:.0f} rad/s for a {pm:.0f} deg phase margin)")
+    else:
+        wc = round_down(wc_max, 100.0)
+        wc_reason = (f"{pm:.0f} deg phase margin with the loop delay 1.5 Ts (compute + PWM update): "
+                     f"wc = (90 - {pm:.0f}) deg / (1.5 Ts)")
+    t.add("MOTOR_CURRENT_LOOP_BW_RAD_S", wc, "rad/s",
+          f"current-loop bandwidth, {wc / TWO_PI:.0f} Hz: {wc_reason}", "{:.1f}")
+    t.add("MOTOR_CURRENT_KP_V_PER_A", sig(l * wc, 4), "V/A",
+          f"Kp = L wc = {l * 1e3:.4g} mH x wc: pole-zero cancellation (the PI zero Ki/Kp = R/L cancels the "
+          f"winding pole, tau = {l / r * 1e3:.3g} ms), leaving a first-order loop of bandwidth wc")
+    t.add("MOTOR_CURRENT_KI_V_PER_AS", sig(r * wc, 4), "V/(A s)", f"Ki = R wc = {r:.4g} ohm x wc", "{:.6g}")
+
+    # ---- speed PI ------------------------------------------------------------
+    kp_si_to_rpm = RPM  # A per (rad/s) -> A per rpm
+    if j is not None:
+        ws = min(TWO_PI * spd_fc / 3.0, wc / 10.0)
+        kp = j * ws / kt
+        ki = kp * ws / 4.0
+        t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp * kp_si_to_rpm, 3), "A/rpm",
+              f"Kp = J ws / Kt: speed-loop crossover ws = {ws:.0f} rad/s = min(2 pi MC_SPEED_FILTER_HZ / 3, wc / 10) "
+              f"(the {spd_fc:g} Hz feedback filter lags 18 deg there), J = {j:.3g} kg m^2, Kt = 1.5 p psi = "
+              f"{kt * 1000:.2f} mN m/A")
+        t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(ki * kp_si_to_rpm, 3), "A/(rpm s)",
+              "Ki = Kp ws / 4: PI zero a quarter of the crossover (about 50 deg phase margin with the filter and "
+              "the 1.5 speed-loop periods of delay)")
+    else:
+        kp_rpm = i_qmax / (0.4 * n_fw)
+        t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp_rpm, 3), "A/rpm",
+              "no inertia given (safe default): a speed error of 40 % of the top speed asks for the full Iq limit")
+        t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(kp_rpm * 5.0, 3), "A/(rpm s)",
+              "no inertia given (safe default): integral time Kp/Ki = 0.2 s, slow enough for a heavy load")
+
+    t.n_top, t.e_top, t.e_per_rpm = n_top, e_top, e_per_rpm
+    return t

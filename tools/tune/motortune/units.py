@@ -1,0 +1,135 @@
+"""Quantities with units: "5.34 ohm", "3.84 mH", "7.3 V/krpm", "1.64 A".
+
+Every physical value in a motor description carries its unit, either in the
+string ("5.34 ohm") or, for a bare number, in the key name ("resistance_ohm").
+A unit that is not known for the quantity is an error that names the field;
+a bare number without a unit in its key is an error too (no silent guessing).
+"""
+
+import math
+import re
+
+
+class InputError(Exception):
+    """A problem with the description: the message starts with the field name."""
+
+    def __init__(self, field, message):
+        super().__init__(f"{field}: {message}")
+        self.field = field
+
+
+# Unit spellings (lower case, spaces and '*' / '.' between factors removed)
+# per quantity, to the SI factor. Plurals and common variants are accepted.
+_UNITS = {
+    "resistance": {
+        "ohm": 1.0, "ohms": 1.0, "\u03c9": 1.0, "\u2126": 1.0,
+        "mohm": 1e-3, "mohms": 1e-3, "milliohm": 1e-3, "milliohms": 1e-3,
+        "m\u03c9": 1e-3, "m\u2126": 1e-3,
+    },
+    "inductance": {
+        "h": 1.0, "henry": 1.0, "henries": 1.0, "henrys": 1.0,
+        "mh": 1e-3, "millihenry": 1e-3, "millihenries": 1e-3,
+        "uh": 1e-6, "\u00b5h": 1e-6, "\u03bch": 1e-6, "microhenry": 1e-6,
+    },
+    # back-EMF constant, to volts per 1000 rpm
+    "back_emf": {
+        "v/krpm": 1.0, "v/1000rpm": 1.0, "v/rpm": 1000.0,
+        "mv/rpm": 1.0, "v/(rad/s)": 1000.0 * 2.0 * math.pi / 60.0,
+        "vs/rad": 1000.0 * 2.0 * math.pi / 60.0, "v/rad/s": 1000.0 * 2.0 * math.pi / 60.0,
+    },
+    "current": {"a": 1.0, "amp": 1.0, "amps": 1.0, "ampere": 1.0, "amperes": 1.0, "ma": 1e-3},
+    "speed": {"rpm": 1.0, "krpm": 1000.0, "r/min": 1.0, "rev/min": 1.0},
+    "inertia": {
+        "kgm^2": 1.0, "kgm2": 1.0, "kgcm^2": 1e-4, "kgcm2": 1e-4,
+        "gcm^2": 1e-7, "gcm2": 1e-7, "kgmm^2": 1e-6, "kgmm2": 1e-6,
+        "oz-in-s^2": 7.0615518e-3, "ozins^2": 7.0615518e-3,
+    },
+    "frequency": {"hz": 1.0, "khz": 1e3},
+    "angular_rate": {"rad/s": 1.0, "hz": 2.0 * math.pi, "khz": 2.0 * math.pi * 1e3},
+    "time": {"s": 1.0, "sec": 1.0, "ms": 1e-3},
+    "voltage": {"v": 1.0, "volt": 1.0, "volts": 1.0},
+    "ratio": {"": 1.0, "%": 0.01},
+}
+
+# Key-name suffixes that give the unit of a bare number ("resistance_ohm = 5.34").
+_SUFFIX_UNITS = {
+    "resistance": {"_ohm": "ohm", "_mohm": "mohm"},
+    "inductance": {"_h": "h", "_mh": "mh", "_uh": "uh"},
+    "back_emf": {"_v_per_krpm": "v/krpm", "_v_per_rpm": "v/rpm"},
+    "current": {"_a": "a", "_ma": "ma"},
+    "speed": {"_rpm": "rpm", "_krpm": "krpm"},
+    "inertia": {"_kgm2": "kgm^2", "_kg_m2": "kgm^2", "_kgcm2": "kgcm^2", "_gcm2": "gcm^2"},
+    "frequency": {"_hz": "hz", "_khz": "khz"},
+    "angular_rate": {"_rad_s": "rad/s", "_hz": "hz"},
+    "time": {"_s": "s", "_ms": "ms"},
+    "voltage": {"_v": "v"},
+    "ratio": {"": ""},
+}
+
+_NUM_RE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+
+def _norm_unit(u):
+    u = u.strip().lower()
+    u = u.replace("\u00b2", "^2").replace("**", "^")
+    u = re.sub(r"[\s*\u00b7]", "", u)  # "kg m^2", "kg*m^2", "kg·m^2" -> "kgm^2"
+    return u
+
+
+def base_key(key, quantity):
+    """The key without a unit suffix ("resistance_ohm" -> "resistance")."""
+    for suf in sorted(_SUFFIX_UNITS.get(quantity, {}), key=len, reverse=True):
+        if suf and key.endswith(suf):
+            return key[: -len(suf)]
+    return key
+
+
+def parse(field, value, quantity, key=None):
+    """Value of `field` (a number or a "number unit" string) in SI units
+    (back-EMF: V per 1000 rpm; speed: rpm; angular rate: rad/s)."""
+    table = _UNITS[quantity]
+    key = key if key is not None else field.split(".")[-1]
+    if isinstance(value, bool):
+        raise InputError(field, f"expected a {quantity.replace('_', ' ')} with a unit, got {value!r}")
+    if isinstance(value, (int, float)):
+        unit = None
+        for suf, u in _SUFFIX_UNITS.get(quantity, {}).items():
+            if key.endswith(suf):
+                unit = u
+                break
+        if unit is None:
+            raise InputError(
+                field,
+                f"the number {value!r} needs a unit: write it as a string, e.g. "
+                f'"{value} {_example_unit(quantity)}"',
+            )
+        number, factor = float(value), table[unit]
+    elif isinstance(value, str):
+        m = _NUM_RE.match(value)
+        if not m:
+            raise InputError(field, f"cannot read {value!r} as a number and a unit")
+        number = float(m.group(1))
+        unit = _norm_unit(m.group(2))
+        if unit == "" and quantity != "ratio":
+            raise InputError(
+                field, f"{value!r} has no unit (e.g. \"{m.group(1)} {_example_unit(quantity)}\")"
+            )
+        factor = table.get(unit)
+        if factor is None:
+            known = ", ".join(sorted({k for k, v in table.items() if v is not None and k}))
+            raise InputError(
+                field, f"unknown unit {m.group(2)!r} for a {quantity.replace('_', ' ')} (use one of: {known})"
+            )
+    else:
+        raise InputError(field, f"expected a number with a unit, got {type(value).__name__}")
+    if not math.isfinite(number):
+        raise InputError(field, f"{value!r} is not a finite number")
+    return number * factor
+
+
+def _example_unit(quantity):
+    return {
+        "resistance": "ohm", "inductance": "mH", "back_emf": "V/krpm", "current": "A",
+        "speed": "rpm", "inertia": "kg m^2", "frequency": "kHz", "angular_rate": "rad/s",
+        "time": "s", "voltage": "V", "ratio": "%",
+    }[quantity]
