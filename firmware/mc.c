@@ -176,17 +176,13 @@ static void mc_begin_calibration(mc_t *mc, uint16_t wait)
     mc_enter(mc, MC_STATE_CALIBRATE);
 }
 
-static bool mc_bus_ok(const mc_t *mc)
-{
-    return mc->vbus > MC_VBUS_UV_Q15 && mc->vbus < MC_VBUS_OV_Q15;
-}
-
-/* A START: from STOPPED, or from FAULT once the cause is gone. */
+/* A START: from STOPPED, or from FAULT once the cause is gone. (An
+ * overvoltage never gets here: the protection trips first in every state.) */
 static void mc_start(mc_t *mc)
 {
-    if (!mc_bus_ok(mc)) {
+    if (mc->vbus <= MC_VBUS_UV_Q15) {
         mc->state = MC_STATE_STOPPED; /* let mc_fault record the new cause */
-        mc_fault(mc, (mc->vbus <= MC_VBUS_UV_Q15) ? MC_FAULT_UNDERVOLTAGE : MC_FAULT_OVERVOLTAGE);
+        mc_fault(mc, MC_FAULT_UNDERVOLTAGE);
         return;
     }
     mc->fault = MC_FAULT_NONE;
@@ -553,9 +549,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         default: /* STOPPED, FAULT: outputs stay off */
             break;
     }
-    if (mc->timer < MC_TIMER_MAX) {
-        mc->timer++;
-    }
+    mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
 
     /* 5. Outputs: every path writes all of them. */
     out->duty[0] = mc->duty[0];

@@ -138,12 +138,19 @@ static void test_start_should_calibrate_the_offsets_with_outputs_off_then_lock(v
 static void test_calibration_should_fault_when_an_offset_is_beyond_the_limit(void **state)
 {
     (void)state;
-    mc_request(&mc, MC_REQUEST_START);
     int16_t bad = (int16_t)(MC_OFFSET_MAX_Q15 + 1);
-    steps((long)MC_CALIB_PERIODS + 2, frame(0, bad, MC_VBUS_NOMINAL_Q15, 0));
-    assert_int_equal(st.state, MC_STATE_FAULT);
-    assert_int_equal(st.fault, MC_FAULT_OFFSET);
-    assert_off();
+    for (int phase = 0; phase < 2; phase++) {
+        for (int sign = -1; sign <= 1; sign += 2) {
+            mc_init(&mc);
+            mc_request(&mc, MC_REQUEST_START);
+            int16_t x = (int16_t)(sign * bad);
+            steps((long)MC_CALIB_PERIODS + 2, phase == 0 ? frame(x, 0, MC_VBUS_NOMINAL_Q15, 0)
+                                                         : frame(0, x, MC_VBUS_NOMINAL_Q15, 0));
+            assert_int_equal(st.state, MC_STATE_FAULT);
+            assert_int_equal(st.fault, MC_FAULT_OFFSET);
+            assert_off();
+        }
+    }
 }
 
 static void test_calibration_should_accept_an_offset_at_the_limit(void **state)

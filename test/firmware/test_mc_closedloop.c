@@ -246,6 +246,70 @@ static void test_stall_should_fault_within_50_ms_when_the_rotor_locks(void **sta
     }
 }
 
+static void test_a_back_emf_far_below_what_the_speed_implies_should_fault_as_a_stall(void **state)
+{
+    (void)state;
+    /* The rotor flux collapses (a demagnetised or wrong motor): the speed
+     * estimate still turns, but the back-EMF no longer matches it. */
+    start_at(1500.0);
+    run(2.0);
+    b.rig.plant.m.psi_vs *= 0.25;
+    long k = 0;
+    for (; k < PERIODS(0.2) && b.st.state != MC_STATE_FAULT; k++) {
+        mc_bench_step(&b);
+    }
+    printf("measured: flux at 25 %% at 1500 rpm -> FAULT code %u after %.1f ms\n", b.st.fault,
+           1000.0 * (double)k / PWM_FREQUENCY_HZ);
+    assert_int_equal(b.st.state, MC_STATE_FAULT);
+    assert_int_equal(b.st.fault, MC_FAULT_STALL_BEMF);
+}
+
+static void test_an_overload_beyond_the_current_limit_should_fault_as_lost_tracking(void **state)
+{
+    (void)state;
+    /* More load than MOTOR_CURRENT_MAX_A can hold: the speed PI saturates
+     * and the speed falls away from the reference. */
+    start_at(3000.0);
+    run(3.0);
+    b.rig.plant.load.active_nm = 0.125;
+    long k = 0;
+    double rpm_at_fault = 0.0;
+    for (; k < PERIODS(1.0) && b.st.state != MC_STATE_FAULT; k++) {
+        mc_bench_step(&b);
+        rpm_at_fault = b.rpm_sample;
+    }
+    printf("measured: overload at 3000 rpm -> FAULT code %u after %.1f ms at %.0f rpm\n",
+           b.st.fault, 1000.0 * (double)k / PWM_FREQUENCY_HZ, rpm_at_fault);
+    assert_int_equal(b.st.state, MC_STATE_FAULT);
+    assert_int_equal(b.st.fault, MC_FAULT_STALL_TRACK);
+    assert_true(rpm_at_fault < 3000.0 - MC_STALL_SPEED_ERROR_RPM);
+}
+
+static void test_the_hand_off_difference_should_bleed_to_zero_by_the_step_each_period(void **state)
+{
+    (void)state;
+    start_at(1500.0);
+    run(0.5);
+    const int16_t starts[] = {1000, -1000, (int16_t)(MC_BLEED_STEP / 2), 3000, -3000};
+    for (unsigned j = 0; j < 5U; j++) {
+        b.mc.theta_offset = starts[j];
+        int32_t expect = starts[j];
+        for (int k = 0; k < 5000 && expect != 0; k++) {
+            if (expect > MC_BLEED_STEP) {
+                expect -= MC_BLEED_STEP;
+            } else if (expect < -MC_BLEED_STEP) {
+                expect += MC_BLEED_STEP;
+            } else {
+                expect = 0;
+            }
+            mc_bench_step(&b);
+            assert_int_equal(b.mc.theta_offset, expect);
+        }
+        assert_int_equal(b.mc.theta_offset, 0);
+        run(0.3); /* let it settle again */
+    }
+}
+
 static void test_closed_loop_should_not_trip_through_speed_changes_and_load_steps(void **state)
 {
     (void)state;
@@ -302,6 +366,9 @@ int main(void)
         cmocka_unit_test(test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus),
         cmocka_unit_test(test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate),
         cmocka_unit_test(test_stall_should_fault_within_50_ms_when_the_rotor_locks),
+        cmocka_unit_test(test_a_back_emf_far_below_what_the_speed_implies_should_fault_as_a_stall),
+        cmocka_unit_test(test_an_overload_beyond_the_current_limit_should_fault_as_lost_tracking),
+        cmocka_unit_test(test_the_hand_off_difference_should_bleed_to_zero_by_the_step_each_period),
         cmocka_unit_test(test_closed_loop_should_not_trip_through_speed_changes_and_load_steps),
         cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
         cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
