@@ -176,6 +176,8 @@ void simcore_event(simcore_t *s, const sim_event_t *ev)
         case SIM_EV_HW_FAULT:
             simcore_request(s, MC_REQUEST_HW_FAULT);
             return;
+        case SIM_EV_MARK:
+            return;
         case SIM_EV_ZOOM:
             s->zoom_until_s = s->rig.t + ((ev->v1 > 0.0) ? ev->v1 : 0.02);
             return;
@@ -257,7 +259,9 @@ static void update_metrics(simcore_t *s)
     }
     for (k = 0; k < s->n_seg; k++) {
         simcore_segment_t *g = &s->seg[k];
-        if (n->t_s >= g->win_s && n->t_s < g->t1_s) {
+        /* half a period of slack: times are sums of periods, events exact */
+        double slack = 0.5 * s->rig.ts;
+        if (n->t_s >= g->win_s - slack && n->t_s < g->t1_s - slack) {
             g->n_all++;
             g->state_end = n->state;
             g->fault_end = n->fault;

@@ -31,6 +31,7 @@ static const ev_desc_t EVENTS[] = {
     {"deadtime", SIM_EV_DEADTIME, 1, 1},
     {"noise", SIM_EV_NOISE, 1, 1},
     {"zoom", SIM_EV_ZOOM, 0, 1},
+    {"mark", SIM_EV_MARK, 0, 0},
     {"end", SIM_EV_END, 0, 0},
 };
 

@@ -26,6 +26,7 @@
  *   hw_fault                the FLTA pin trips (MC_REQUEST_HW_FAULT)
  *   deadtime <us>           inverter dead time
  *   noise <codes>           ADC noise sigma
+ *   mark                    nothing happens: starts a new segment of the summary table
  *   zoom [s]                write every PWM period to the trace for [s] seconds
  *                           (default 0.02): the close-up panels of the plot
  *   end                     stop the simulation (required, last)
@@ -51,6 +52,7 @@ typedef enum {
     SIM_EV_DEADTIME,
     SIM_EV_NOISE,
     SIM_EV_ZOOM,
+    SIM_EV_MARK,
     SIM_EV_END
 } sim_event_kind_t;
 
