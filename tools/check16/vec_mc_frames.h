@@ -1,0 +1,30 @@
+/* vec_mc_frames.h - what vec_mc.c and gen_mc_frames.c share: frame count, bus and pot formulas. */
+#ifndef VEC_MC_FRAMES_H
+#define VEC_MC_FRAMES_H
+
+#include <stdint.h>
+
+#include "mc.h"
+
+/* Frames replayed, and the frame at which START is requested. */
+#define MC_FRAMES_N     6000U
+#define MC_FRAMES_START 10U
+
+/* The bus: nominal with a small deterministic triangle ripple (+-16 LSB),
+ * so the ripple compensation's division sees changing inputs. */
+static inline int16_t mc_frames_bus(uint32_t n)
+{
+    int16_t tri = (int16_t)(n % 64U);
+    if (tri >= 32) {
+        tri = (int16_t)(63 - tri);
+    }
+    return (int16_t)(MC_VBUS_NOMINAL_Q15 - 16 + tri);
+}
+
+/* The pot: 30 % of travel, then full travel from frame 5000 on. */
+static inline int16_t mc_frames_pot(uint32_t n)
+{
+    return (n < 5000U) ? (int16_t)9830 : (int16_t)32767;
+}
+
+#endif /* VEC_MC_FRAMES_H */
