@@ -1,4 +1,5 @@
-/* q15_dsp.h - the multiply/divide primitives, XC16 built-ins on the dsPIC, bit-identical C elsewhere. */
+/* q15_dsp.h - the multiply/divide primitives, XC16 built-ins on the dsPIC, bit-identical C
+ * elsewhere. */
 #ifndef Q15_DSP_H
 #define Q15_DSP_H
 
@@ -12,10 +13,12 @@
  *                        |result| <= 2^30, cannot overflow.
  *   q15_dsp_divsd(n, d)  32 / 16 -> 16 signed quotient, truncated toward
  *                        zero (div.sd). The caller guarantees d != 0 and
- *                        that the quotient fits in int16_t; the dsPIC
- *                        traps on d == 0 and returns garbage on overflow,
- *                        so the portable twin asserts the same contract
- *                        instead of defining behaviour the chip lacks.
+ *                        that the quotient fits in int16_t: the dsPIC
+ *                        traps on d == 0 and returns garbage on overflow.
+ *                        The portable twin has the same contract and does
+ *                        not check it (outside it, e.g. d == 0, the host
+ *                        build is undefined, which UBSan reports in tests);
+ *                        every caller documents how it keeps to it.
  *
  * The portable bodies widen before multiplying, which is what makes them
  * correct where int is 16 bits (avr-gcc, XC16): `a * b` of two int16_t is a
