@@ -102,7 +102,7 @@ static q15_t smc_switch(const smc_params_t *p, int32_t err)
  * mh <= 2^8, so mh kspeed 2^shift is compared against 2^15 before it is
  * formed, and ml kspeed < 2^30 is shifted right by 15 - shift (>= 0).
  */
-static q15_t smc_speed_scale(const smc_params_t *p, int32_t sum)
+q15_t smc_speed_from_steps(const smc_params_t *p, int32_t sum)
 {
     uint32_t mag = (sum < 0) ? ((uint32_t)0U - (uint32_t)sum) : (uint32_t)sum;
     uint32_t mh = mag >> 15;
@@ -134,7 +134,7 @@ static q15_t smc_speed_scale(const smc_params_t *p, int32_t sum)
  * Q27 keeps every term below 16 in magnitude (|u| < 1.1, |B1| < 8,
  * mdc < 4, |B2| < 1), so no sum can overflow.
  */
-static angle_q15_t smc_compensation(const smc_params_t *p, q15_t k, q15_t x)
+angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x)
 {
     int32_t x1 = smc_shl32((int32_t)x, 12U); /* Q27 */
     int32_t x2 = q15_dsp_mulss(x, x) >> 3;   /* Q30 -> Q27 */
@@ -182,8 +182,9 @@ static void smc_speed_refresh(smc_t *s)
     const smc_params_t *p = s->p;
     q15_t aw = q15_abs_sat(s->omega);
     q15_t x = q15_mul(aw, p->k_per_omega);
-    q15_t k = (x > p->k_min) ? x : p->k_min;
-    angle_q15_t lead = smc_compensation(p, k, x);
+    q15_t kx = lpf_update(&s->k_lpf, x, (q15_t)(p->k_speed_lpf >> SMC_K_LPF_SHIFT));
+    q15_t k = (kx > p->k_min) ? kx : p->k_min;
+    angle_q15_t lead = smc_phase_lead(p, k, x);
     ab_q15_t ef = smc_e_final(s);
     bool emf_ok = true;
 
@@ -232,12 +233,16 @@ void smc_reset(smc_t *s)
     lpf_reset(&s->e_beta, 0);
     lpf_reset(&s->ef_alpha, 0);
     lpf_reset(&s->ef_beta, 0);
+    lpf_reset(&s->w_alpha, 0);
+    lpf_reset(&s->w_beta, 0);
     lpf_reset(&s->omega_lpf, 0);
+    lpf_reset(&s->k_lpf, 0);
     s->dtheta_sum = 0;
     s->count = 0U;
     s->theta_raw = 0;
     s->theta = 0;
     s->lag = 0;
+    s->lag_valid = false;
     s->omega_raw = 0;
     s->omega = 0;
     smc_speed_refresh(s);
@@ -247,6 +252,7 @@ void smc_reset(smc_t *s)
 void smc_preset_speed(smc_t *s, q15_t omega)
 {
     lpf_reset(&s->omega_lpf, omega);
+    lpf_reset(&s->k_lpf, q15_mul(q15_abs_sat(omega), s->p->k_per_omega));
     s->omega_raw = omega;
     s->omega = omega;
     s->dtheta_sum = 0;
@@ -256,26 +262,19 @@ void smc_preset_speed(smc_t *s, q15_t omega)
 }
 
 /*
- * The present lag of theta_raw behind the back-EMF itself (note 8). In the
- * linear band z(n) = c (E(n-1) - e(n-1)) + p z(n-1) exactly, so
- * c E(n-1) = z(n) - p z(n-1) + c e(n-1): an unfiltered back-EMF whose angle
- * does not depend on K. Its angle minus theta_raw is the lag the stages
- * have right now, including their transients.
+ * The model back-EMF, unfiltered (note 8). In the linear band
+ * z(n) = c (E(n-1) - e(n-1)) + p z(n-1) exactly, so
+ * c E(n-1) = z(n) - p z(n-1) + c e(n-1): a back-EMF whose angle does not
+ * depend on K. Q15 of E_FS times c (> 0: the angle is what matters),
+ * saturated.
  */
-static angle_q15_t smc_lag(const smc_t *s, ab_q15_t z_prev, ab_q15_t e_prev)
+static q15_t smc_emf_raw(const smc_params_t *p, q15_t z, q15_t z_prev, q15_t e_prev)
 {
-    const smc_params_t *p = s->p;
     /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
     q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
-    /* Q15 + Q15 x Q15 + Q15 x Q12 / 2^12 -> Q15 of E_FS, in 32 bits. */
-    int32_t wa = (int32_t)s->z.alpha -
-                 ((q15_dsp_mulss(p->tf_b2, z_prev.alpha) + (int32_t)0x4000) >> 15) +
-                 ((q15_dsp_mulss(c, e_prev.alpha) + (int32_t)0x800) >> 12);
-    int32_t wb = (int32_t)s->z.beta -
-                 ((q15_dsp_mulss(p->tf_b2, z_prev.beta) + (int32_t)0x4000) >> 15) +
-                 ((q15_dsp_mulss(c, e_prev.beta) + (int32_t)0x800) >> 12);
-    angle_q15_t emf_angle = smc_atan2_32((wa == Q31_MIN) ? Q31_MAX : -wa, wb);
-    return angle_sub(emf_angle, s->theta_raw);
+    int32_t w = (int32_t)z - ((q15_dsp_mulss(p->tf_b2, z_prev) + (int32_t)0x4000) >> 15) +
+                ((q15_dsp_mulss(c, e_prev) + (int32_t)0x800) >> 12);
+    return q15_sat(w);
 }
 
 void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
@@ -298,6 +297,12 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
     (void)lpf_update(&s->ef_alpha, s->e.alpha, s->k);
     (void)lpf_update(&s->ef_beta, s->e.beta, s->k);
 
+    if (p->tf_xadv != 0) {
+        q15_t kw = q15_shl_sat(s->k, SMC_EMF_RAW_K_SHIFT);
+        (void)lpf_update(&s->w_alpha, smc_emf_raw(p, s->z.alpha, z_prev.alpha, e_prev.alpha), kw);
+        (void)lpf_update(&s->w_beta, smc_emf_raw(p, s->z.beta, z_prev.beta, e_prev.beta), kw);
+    }
+
     /* theta_raw = atan2(-ef_alpha, ef_beta): the back-EMF turned back by
      * 90 degrees points at the rotor flux. -state cannot overflow except for
      * -2^31, which is clamped (one part in 2^31). */
@@ -311,11 +316,22 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
     s->count++;
     if (s->count >= p->irp_percalc) {
         if (p->tf_xadv != 0) {
-            angle_q15_t lag = smc_lag(s, z_prev, e_prev);
-            s->dtheta_sum += (int32_t)angle_sub(lag, s->lag);
+            /* The lag of theta_raw behind the (lightly filtered) model
+             * back-EMF: its change over the window is what the stages'
+             * transients added to the angle steps (note 8). */
+            int32_t wa = s->w_alpha.state;
+            angle_q15_t lag = angle_sub(
+                smc_atan2_32((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state), s->theta_raw);
+            int32_t dl = s->lag_valid ? (int32_t)angle_sub(lag, s->lag) : 0;
+            s->lag_valid = true;
+            if (dl > SMC_LAG_DEADZONE) {
+                s->dtheta_sum += dl - SMC_LAG_DEADZONE;
+            } else if (dl < -SMC_LAG_DEADZONE) {
+                s->dtheta_sum += dl + SMC_LAG_DEADZONE;
+            }
             s->lag = lag;
         }
-        s->omega_raw = smc_speed_scale(p, s->dtheta_sum);
+        s->omega_raw = smc_speed_from_steps(p, s->dtheta_sum);
         s->omega = lpf_update(&s->omega_lpf, s->omega_raw, p->k_speed_lpf);
         s->dtheta_sum = 0;
         s->count = 0U;

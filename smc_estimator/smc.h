@@ -294,6 +294,9 @@ typedef struct {
     lpf_t e_beta;
     lpf_t ef_alpha; /* second stage e_final, Q31 of E_FS */
     lpf_t ef_beta;
+    lpf_t w_alpha; /* model back-EMF from the correction (note 8), smoothed, Q31 of E_FS */
+    lpf_t w_beta;
+    lpf_t k_lpf;           /* x = |omega| 2 pi Ts filtered again: K before its floor, Q31 */
     lpf_t omega_lpf;       /* filtered speed, Q31 of omega_fs */
     int32_t dtheta_sum;    /* sum of theta_raw steps this window, angle counts */
     uint16_t count;        /* periods in this window, 0..irp_percalc-1 */
@@ -307,7 +310,13 @@ typedef struct {
     q15_t emf_mag;         /* |ef| (Q15 of E_FS), refreshed every window */
     q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
     bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
+    bool lag_valid;        /* lag holds a measurement (false until the first window end) */
 } smc_t;
+
+/* Fixed design constants of the speed path (notes 7-8). */
+#define SMC_LAG_DEADZONE    1024 /* lag steps below 1024 counts (5.6 deg) per window are noise */
+#define SMC_K_LPF_SHIFT     2    /* K follows the speed through a filter 4 times slower */
+#define SMC_EMF_RAW_K_SHIFT 2    /* the model back-EMF is smoothed with 4 K */
 
 /* Band of emf_ratio (Q12) inside which the back-EMF counts as consistent
  * with the speed: 0.5 .. 2.0 of the expected amplitude. */
@@ -337,6 +346,17 @@ void smc_preset_speed(smc_t *s, q15_t omega);
  * speed below the Nyquist limit (|delta theta| < pi per period) wraps; the
  * speed saturates at +-omega_fs. No division in the per-period path. */
 void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
+
+/* The phase lead (angle counts) that cancels the lag of the two stages and
+ * the loop delay for a positive frequency x (electrical rad per PWM period,
+ * Q15, 0 <= x < 1) with stage coefficient k (Q15, >= 1): notes 2-4.
+ * smc_update adds it (negated, plus pi, for reverse rotation) to theta_raw.
+ * Scaling: Q27 arithmetic with 16 x 16 products only; two CORDIC calls. */
+angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x);
+
+/* Speed (Q15 of omega_fs, signed, saturated at +-32767) from a window's sum
+ * of angle steps (angle counts, |sum| <= 256 * 32768): note 7. */
+q15_t smc_speed_from_steps(const smc_params_t *p, int32_t sum);
 
 /* Read-outs. */
 static inline angle_q15_t smc_theta(const smc_t *s)

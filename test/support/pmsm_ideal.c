@@ -3,6 +3,7 @@
 #include "pmsm_ideal.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -130,7 +131,7 @@ static cplx_t deadtime_error(const pmsm_ideal_t *s, cplx_t i)
  * the current at each sub-step's start.
  */
 static void advance(const pmsm_ideal_t *s, cplx_t *i, double *theta, double *omega, cplx_t v,
-                    int dead_time)
+                    int dead_time, cplx_t *dv_avg)
 {
     const double h = s->d.ts_s / (double)PMSM_SUBSTEPS;
     const double a = s->m.r_ohm / s->m.l_h;
@@ -146,7 +147,11 @@ static void advance(const pmsm_ideal_t *s, cplx_t *i, double *theta, double *ome
         cplx_t emf;
         cplx_t term;
         if (dead_time) {
-            vk = c_add(vk, deadtime_error(s, *i));
+            cplx_t dv = deadtime_error(s, *i);
+            vk = c_add(vk, dv);
+            if (dv_avg != NULL) {
+                *dv_avg = c_add(*dv_avg, c_scale(dv, 1.0 / (double)PMSM_SUBSTEPS));
+            }
         }
         term = c_div(c_sub(c_expj(wmid * h), c_make(ea, 0.0)), c_make(a, wmid));
         emf = c_mul(c_mul(c_make(0.0, wmid * s->m.psi_vs / s->m.l_h), c_expj(th0)), term);
@@ -202,8 +207,8 @@ static cplx_t drive_command(pmsm_ideal_t *s, cplx_t v_now)
     cplx_t iref;
     cplx_t v;
     double mag;
-    advance(s, &i, &th, &w, v_now, 0);
-    advance(s, &i, &th, &w, c_make(0.0, 0.0), 0); /* zero-input response */
+    advance(s, &i, &th, &w, v_now, 0, NULL);
+    advance(s, &i, &th, &w, c_make(0.0, 0.0), 0, NULL); /* zero-input response */
     s->id_a = fw_id(s, w, iq);
     iref = c_mul(c_make(s->id_a, iq), c_expj(th));
     v = c_scale(c_sub(iref, i), 1.0 / gam);
@@ -219,11 +224,15 @@ static void ideal_period(pmsm_ideal_t *s)
     cplx_t i = c_make(s->i_re, s->i_im);
     cplx_t v_now = c_make(s->v_now_re, s->v_now_im);
     cplx_t v_next = drive_command(s, v_now);
-    advance(s, &i, &s->theta, &s->omega, v_now, s->d.deadtime_frac > 0.0);
+    cplx_t dv = c_make(0.0, 0.0);
+    advance(s, &i, &s->theta, &s->omega, v_now, s->d.deadtime_frac > 0.0, &dv);
     s->i_re = i.re;
     s->i_im = i.im;
-    s->v_prev_re = v_now.re;
-    s->v_prev_im = v_now.im;
+    /* What the estimator is fed: the command, or (feed_applied) the voltage
+     * the inverter actually applied, i.e. a perfect dead-time compensation
+     * of the estimator input. */
+    s->v_prev_re = v_now.re + (s->d.feed_applied ? dv.re : 0.0);
+    s->v_prev_im = v_now.im + (s->d.feed_applied ? dv.im : 0.0);
     s->v_now_re = v_next.re;
     s->v_now_im = v_next.im;
     s->n++;

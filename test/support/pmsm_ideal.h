@@ -29,7 +29,9 @@
  *   i_meas   the current at t_n in Q15 of I_FS, plus optional Gaussian noise
  *            (noise_lsb), rounded to the ADC grid (adc_lsb counts of Q15 per
  *            ADC step, e.g. 64 for a 10-bit ADC; 1 = plain Q15 rounding);
- *   v_fed    the command that was applied over [t_(n-1), t_n], Q15 of V_FS.
+ *   v_fed    the command that was applied over [t_(n-1), t_n], Q15 of V_FS
+ *            (with feed_applied: that command plus the period's mean
+ *            dead-time error, i.e. the voltage really applied).
  * The plant itself receives the command plus the dead-time-like error:
  * each phase voltage is reduced by deadtime_frac * vbus_v in the direction
  * of that phase's current (v_k -= deadtime_frac * Vbus * sign(i_k)).
@@ -55,6 +57,7 @@ typedef struct {
     double vbus_v;        /* DC bus (for the dead-time error) */
     double deadtime_frac; /* dead time / PWM period (0 = none) */
     uint32_t seed;        /* noise PRNG seed, non-zero */
+    int feed_applied;     /* 1: v_fed is the voltage actually applied (command + dead-time error) */
 } pmsm_drive_t;
 
 typedef struct {
