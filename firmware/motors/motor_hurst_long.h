@@ -57,11 +57,11 @@
 #ifndef MOTOR_SPEED_FW_MAX_RPM
 #define MOTOR_SPEED_FW_MAX_RPM 3000.0
 #endif
-/* max(back-EMF = 2 x the dead-time voltage error 0.81 V -> 387 rpm, 8 % of the top speed),
+/* max(back-EMF = 2.5 x the dead-time voltage error 0.81 V -> 483 rpm, 8 % of the top speed),
  * rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the ramp
  * end */
 #ifndef MOTOR_SPEED_MIN_RPM
-#define MOTOR_SPEED_MIN_RPM 400.0
+#define MOTOR_SPEED_MIN_RPM 500.0
 #endif
 /* Q15 full scale of every speed: 1.5 x the top speed rounded up to 1000 rpm (room for
  * overshoot, core check FW max <= 0.95 x full scale) */
@@ -95,13 +95,15 @@
 #endif
 /* constant acceleration 16449 rpm/s up to the ramp end: 20 % of the ramp torque Kt x 2.14 A =
  * 129.2 mN m accelerates J (the rest is margin for load and the lag of the forced angle) ->
- * 0.024 s, at least 0.5 s so the observer converges before the hand-off */
+ * 0.030 s; at least 1 s, so the rotor's swing from the lock dies into the ramp and the
+ * observer converges before the hand-off (0.5 s lost 1 to 2 of the simulator's 100
+ * random-angle starts under load) */
 #ifndef MOTOR_RAMP_TIME_S
-#define MOTOR_RAMP_TIME_S 0.5
+#define MOTOR_RAMP_TIME_S 1.0
 #endif
 /* hand-off to closed loop at the lowest closed-loop speed */
 #ifndef MOTOR_RAMP_END_RPM
-#define MOTOR_RAMP_END_RPM 400.0
+#define MOTOR_RAMP_END_RPM 500.0
 #endif
 /* Iq during the open-loop ramp: the lock current */
 #ifndef MOTOR_RAMP_CURRENT_A
@@ -139,16 +141,17 @@
 #endif
 
 /* ---- speed PI -------------------------------------------------------------------------------- */
-/* Kp = J ws / Kt: speed-loop crossover ws = 63 rad/s = min(2 pi MC_SPEED_FILTER_HZ / 3, wc /
- * 10) (the 30 Hz feedback filter lags 18 deg there), J = 1.5e-05 kg m^2, Kt = 1.5 p psi =
+/* Kp = J ws / Kt: speed-loop crossover ws = 94 rad/s = min(2 pi MC_SPEED_FILTER_HZ / 2, wc /
+ * 10) (the 30 Hz feedback filter lags 27 deg there), J = 1.5e-05 kg m^2, Kt = 1.5 p psi =
  * 60.37 mN m/A */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.00163
+#define MOTOR_SPEED_KP_A_PER_RPM 0.00245
 #endif
-/* Ki = Kp ws / 4: PI zero a quarter of the crossover (about 50 deg phase margin with the
- * filter and the 1.5 speed-loop periods of delay) */
+/* Ki = Kp ws / 3: PI zero at a third of the crossover; with the filter and 1.5 speed-loop
+ * periods of delay about 38 deg of phase margin (a larger real J keeps it, a smaller one loses
+ * it), chosen so a 50 % load step recovers within 100 ms in the simulator */
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.0257
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.077
 #endif
 
 /* ---- data for tools (not used by the core) --------------------------------------------------- */

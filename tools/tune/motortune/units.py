@@ -118,7 +118,7 @@ def parse(field, value, quantity, key=None):
         if factor is None:
             known = ", ".join(sorted({k for k, v in table.items() if v is not None and k}))
             raise InputError(
-                field, f"unknown unit {m.group(2)!r} for a {quantity.replace('_', ' ')} (use one of: {known})"
+                field, f"unknown unit {m.group(2)!r} for {quantity.replace('_', ' ')} (use one of: {known})"
             )
     else:
         raise InputError(field, f"expected a number with a unit, got {type(value).__name__}")

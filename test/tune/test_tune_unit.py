@@ -1,0 +1,437 @@
+"""Unit tests of tools/tune: derivations vs hand calculations, bad input, the
+field-weakening table, the --check round trip, and the generated headers
+against the core (they compile, and the committed ones are up to date).
+
+Run: python3 -m unittest -v test_tune_unit   (from test/tune; CTest does it)
+"""
+
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
+TUNE = os.path.join(REPO, "tools", "tune", "tune")
+EXAMPLES = os.path.join(REPO, "tools", "tune", "examples")
+sys.path.insert(0, os.path.join(REPO, "tools", "tune"))
+
+from motortune import cheader, derive, describe  # noqa: E402
+from motortune.derive import Infeasible  # noqa: E402
+from motortune.units import InputError  # noqa: E402
+
+# name of the example -> (profile name, board)
+EXAMPLE_PROFILES = {"hurst075": ("hurst075", "mclv"), "hurst300": ("hurst_long", "mclv"),
+                    "hispeed": ("hs2p", "mchv")}
+
+HURST_TOML = """\
+name = "hurst_t"
+board = "mclv"
+pwm_frequency = "20 kHz"
+[motor]
+pole_pairs = 5
+resistance = "5.34 ohm"
+resistance_kind = "line-to-line"
+inductance = "3.84 mH"
+inductance_kind = "line-to-line"
+back_emf = "7.3 V/krpm"
+back_emf_kind = "peak line-to-line"
+rated_current = "1.64 A"
+current_kind = "peak"
+rated_speed = "2700 rpm"
+peak_current = "3.0 A"
+inertia = "7.5e-6 kg m^2"
+[application]
+max_speed = "5300 rpm"
+fw_load_current = "0.2 A"
+"""
+
+
+def scratch():
+    base = os.environ.get("TUNE_SCRATCH")
+    if base:
+        os.makedirs(base, exist_ok=True)
+    return tempfile.mkdtemp(prefix="tune_", dir=base)
+
+
+def run_tune(*args):
+    return subprocess.run([sys.executable, TUNE, *args], capture_output=True, text=True)
+
+
+def desc_from(text):
+    import tomllib
+    return describe.parse(tomllib.loads(text))
+
+
+def measured(fmt, *a):
+    print("measured: " + fmt % a)
+
+
+class HurstHandCalculation(unittest.TestCase):
+    """AN1078's Hurst (5.34 ohm, 3.84 mH line to line, 20 kHz) worked by hand."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.d = desc_from(HURST_TOML)
+        cls.t = derive.derive(cls.d)
+        cls.dir = scratch()
+        cls.h = os.path.join(cls.dir, "motor_hurst_t.h")
+        r = run_tune("-o", cls.h, cls._toml(cls.dir))
+        assert r.returncode == 0, r.stderr
+        cls.core = cheader.derive_core(cheader.profile_env(cls.h, "mclv"))
+
+    @staticmethod
+    def _toml(dirname):
+        p = os.path.join(dirname, "hurst_t.toml")
+        with open(p, "w") as f:
+            f.write(HURST_TOML)
+        return p
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def row(self, name):
+        for r in self.core.rows:
+            if r[0] == name:
+                return r
+        self.fail(f"--check has no row {name}")
+
+    def test_line_to_line_readings_should_be_halved_to_per_phase_values(self):
+        self.assertAlmostEqual(self.d.r_ph, 2.67, places=12)
+        self.assertAlmostEqual(self.d.l_ph, 1.92e-3, places=15)
+
+    def test_observer_F_and_G_should_match_an1078_equation_3(self):
+        ts = 1.0 / 20000.0
+        f_euler = 1.0 - ts * 2.67 / 1.92e-3  # AN1078 Eq. 3: 0.9304 (0.930469 unrounded)
+        self.assertAlmostEqual(self.row("F (AN1078 Eq. 2: 1 - Ts R/L)")[1], f_euler, places=12)
+        self.assertAlmostEqual(f_euler, 0.9305, places=4)
+        self.assertAlmostEqual(self.row("G (AN1078 Eq. 2: Ts/L)")[1], 0.0260417, places=7)  # Eq. 3: 0.026
+        # The core discretises exactly: F = exp(-Ts R/L), G = (1 - F)/R in V_FS/I_FS units.
+        f = math.exp(-ts * 2.67 / 1.92e-3)
+        g = (1.0 - f) / 2.67 * (24.0 / math.sqrt(3.0)) / 4.4
+        name, eng, _, q, _, _ = self.row("smc F = exp(-Ts R/L)")
+        self.assertAlmostEqual(eng, f, places=9)
+        self.assertEqual(q, round(f * 32768))
+        name, eng, _, q, _, _ = self.row("smc G = (1-F)/R * V_FS/I_FS")
+        self.assertAlmostEqual(eng, g, places=9)
+        self.assertEqual(q, round(g * 32768))
+        measured("Hurst F Euler %.6f (AN1078 0.9304), core F %.6f = Q15 %d, G Ts/L %.6f A/V (AN1078 "
+                 "0.026), core G %.6f = Q15 %d", f_euler, f, round(f * 32768), ts / 1.92e-3, g, round(g * 32768))
+
+    def test_kslide_should_be_the_limited_back_emf_with_margin_and_the_band_dead_beat(self):
+        v_fs = 24.0 / math.sqrt(3.0)
+        e_top = 7.3 / math.sqrt(3.0) * 5.3  # 22.34 V at 5300 rpm, above what the bus can apply
+        e_seen = min(e_top, 0.95 * v_fs)
+        ks = min(1.5 * e_seen, 0.9 * v_fs)
+        self.assertAlmostEqual(self.t["MOTOR_SMC_GAIN_V"], ks, delta=0.01)
+        ts = 5e-5
+        f = math.exp(-ts * 2.67 / 1.92e-3)
+        band = ks * (1.0 - f) / 2.67 / f
+        self.assertAlmostEqual(self.t["MOTOR_SMC_LINEAR_BAND_A"], band, delta=0.001)
+        c = self.row("smc loop gain c = G Kz")[1]
+        self.assertAlmostEqual(c, f, delta=0.01 * f)  # dead-beat: c = F within the rounding
+        measured("Kslide %.3f V (hand %.3f), band %.4f A (hand %.4f), loop gain c %.4f vs F %.4f",
+                 self.t["MOTOR_SMC_GAIN_V"], ks, self.t["MOTOR_SMC_LINEAR_BAND_A"], band, c, f)
+
+    def test_current_pi_should_cancel_the_winding_pole(self):
+        wc = self.t["MOTOR_CURRENT_LOOP_BW_RAD_S"]
+        self.assertLessEqual(wc, math.radians(20.0) / (1.5 * 5e-5))  # 70 deg phase margin
+        self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] / self.t["MOTOR_CURRENT_KI_V_PER_AS"],
+                               1.92e-3 / 2.67, delta=1e-3 * 1.92e-3 / 2.67)
+        self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"], 1.92e-3 * wc, delta=1e-3 * 1.92e-3 * wc)
+        # Q15 in the core: Kp * I_FS / V_FS as mantissa and shift, Ki * Ts * I_FS / V_FS.
+        kp_ = self.t["MOTOR_CURRENT_KP_V_PER_A"] * 4.4 / (24.0 / math.sqrt(3.0))
+        s = 0
+        while kp_ >= 2 ** s:
+            s += 1
+        self.assertEqual(self.row("MOTOR_CURRENT_KP_V_PER_A")[3], round(kp_ / 2 ** s * 32768))
+        measured("current loop wc %.0f rad/s: Kp %.4g V/A, Ki %.5g V/(A s), Q15 Kp %d << %d",
+                 wc, self.t["MOTOR_CURRENT_KP_V_PER_A"], self.t["MOTOR_CURRENT_KI_V_PER_AS"],
+                 self.row("MOTOR_CURRENT_KP_V_PER_A")[3], s)
+
+    def test_speed_pi_should_follow_from_the_inertia(self):
+        psi = 7.3 / math.sqrt(3.0) / (1000.0 * 2 * math.pi / 60.0 * 5)
+        kt = 1.5 * 5 * psi
+        ws = 2 * math.pi * cheader.board_env("mclv").get("MC_SPEED_FILTER_HZ") / 2.0
+        kp = 7.5e-6 * ws / kt * 2 * math.pi / 60.0
+        self.assertAlmostEqual(self.t["MOTOR_SPEED_KP_A_PER_RPM"], kp, delta=0.005 * kp)
+        self.assertAlmostEqual(self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], kp * ws / 3.0, delta=0.005 * kp * ws / 3)
+        measured("speed loop ws %.1f rad/s: Kp %.4g A/rpm (hand %.4g), Ki %.4g A/(rpm s) (hand %.4g)",
+                 ws, self.t["MOTOR_SPEED_KP_A_PER_RPM"], kp, self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], kp * ws / 3)
+
+    def test_nominal_speed_should_be_where_the_back_emf_meets_the_bus(self):
+        # |V|^2 = (w L Iq)^2 + (R Iq + w psi)^2 = V^2 at Id = 0: a quadratic in w, solved here
+        # directly (the tool bisects on the speed).
+        r, l, iq = 2.67, 1.92e-3, 0.2
+        psi = 7.3 / math.sqrt(3.0) / (1000.0 * 2 * math.pi / 60.0 * 5)
+        v = 0.95 * 24.0 / math.sqrt(3.0) * (1.0 - 0.05 - 2e-6 * 20000)
+        a, b, c = (l * iq) ** 2 + psi ** 2, 2 * r * iq * psi, (r * iq) ** 2 - v * v
+        w = (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
+        n = w / (2 * math.pi / 60.0) / 5
+        self.assertAlmostEqual(self.t.n_bus, n, delta=0.01)
+        self.assertEqual(self.t["MOTOR_SPEED_NOMINAL_RPM"], math.floor(n / 10.0) * 10.0)
+        measured("Hurst nominal speed %.1f rpm (hand %.1f rpm, AN1078 hand-tuned 2700)", self.t.n_bus, n)
+
+    def test_limits_should_respect_the_board(self):
+        self.assertLess(self.t["MOTOR_OVERCURRENT_A"], 0.9 * 4.4 + 1e-9)
+        self.assertLess(self.t["MOTOR_CURRENT_MAX_A"], self.t["MOTOR_OVERCURRENT_A"])
+        self.assertLessEqual(self.t["MOTOR_CURRENT_MAX_A"], 1.64)
+        self.assertEqual(self.core.failures, [])
+
+
+class FieldWeakeningTable(unittest.TestCase):
+    def check_table(self, t):
+        d = t.desc
+        tab, speeds = t.fw_table, t.fw_speeds
+        self.assertEqual(len(tab), 16)
+        self.assertEqual(tab[0], 0.0)
+        for k in range(1, 16):
+            self.assertLessEqual(tab[k], tab[k - 1], "monotone")
+        psi, r, l, pp, iq = t.psi, d.r_ph, d.l_ph, d.pole_pairs, t.i_load
+        worst = 0.0
+        for n, i_d in zip(speeds, tab):
+            self.assertLessEqual(math.hypot(i_d, iq), t.i_peak + 1e-9, "current limit")
+            self.assertGreater(i_d, -t.i_fs, "inside the current scale")
+            w = n * 2 * math.pi / 60.0 * pp
+            v = math.hypot(r * i_d - w * l * iq, r * iq + w * (psi + l * i_d))
+            # the table is rounded to 1 mA: the voltage may exceed the budget by that much
+            dv = math.hypot(r, w * l) * 0.0005
+            self.assertLessEqual(v, t.v_ss + dv + 1e-9, f"voltage at {n:.0f} rpm")
+            if i_d < 0.0:  # smallest |Id|: 2 mA less field weakening is over the budget
+                i2 = i_d + 0.002
+                v2 = math.hypot(r * i2 - w * l * iq, r * iq + w * (psi + l * i2))
+                self.assertGreater(v2, t.v_ss, f"Id at {n:.0f} rpm is not the smallest")
+            worst = max(worst, v - t.v_ss)
+        self.assertEqual(speeds[-1], t["MOTOR_SPEED_FW_MAX_RPM"])
+        return worst
+
+    def test_hurst_table_should_be_monotone_within_limits_and_reach_the_top_speed(self):
+        t = derive.derive(desc_from(HURST_TOML))
+        worst = self.check_table(t)
+        self.assertEqual(t["MOTOR_SPEED_FW_MAX_RPM"], 5300.0)
+        measured("Hurst FW table: Id %.3f A at %.0f rpm, worst voltage over budget %.4f V",
+                 t.fw_table[-1], t.fw_speeds[-1], worst)
+
+    def test_every_example_table_should_be_monotone_within_limits(self):
+        for ex in EXAMPLE_PROFILES:
+            with self.subTest(ex):
+                t = derive.derive(describe.load(os.path.join(EXAMPLES, ex + ".toml")))
+                self.check_table(t)
+
+    def test_no_field_weakening_when_the_bus_reaches_the_top_speed(self):
+        t = derive.derive(describe.load(os.path.join(EXAMPLES, "hispeed.toml")))
+        self.assertEqual(t["MOTOR_SPEED_NOMINAL_RPM"], t["MOTOR_SPEED_FW_MAX_RPM"])
+        self.assertEqual(t.fw_table, [0.0] * 16)
+        self.assertGreater(t.n_bus, 17000.0)
+
+    def test_a_speed_the_bus_cannot_reach_should_be_an_error_naming_max_speed(self):
+        with self.assertRaises(Infeasible) as cm:
+            derive.derive(desc_from(HURST_TOML.replace('"5300 rpm"', '"9000 rpm"')))
+        self.assertEqual(cm.exception.field, "application.max_speed")
+        self.assertIn("even with field weakening", str(cm.exception))
+        # the default load (a quarter of the Iq limit) cannot reach 5300 rpm either
+        with self.assertRaises(Infeasible):
+            derive.derive(desc_from(HURST_TOML.replace('fw_load_current = "0.2 A"\n', "")))
+
+    def test_hurst300_on_the_mclv_should_be_derated_not_refused(self):
+        t = derive.derive(describe.load(os.path.join(EXAMPLES, "hurst300.toml")))
+        self.assertTrue(t.warnings and "derated" in t.warnings[0])
+        self.assertLess(t["MOTOR_CURRENT_MAX_A"], 4.88)
+        self.assertLessEqual(t["MOTOR_OVERCURRENT_A"], 0.9 * 4.4 + 1e-9)
+        self.assertLessEqual(t["MOTOR_CURRENT_MAX_A"], 0.9 * t["MOTOR_OVERCURRENT_A"] + 1e-9)
+        measured("Hurst300 on the MCLV: Iq limit %.3g A of the rated 4.88 A (%.0f %%), trip %.3g A",
+                 t["MOTOR_CURRENT_MAX_A"], 100 * t["MOTOR_CURRENT_MAX_A"] / 4.88, t["MOTOR_OVERCURRENT_A"])
+
+
+class BadInput(unittest.TestCase):
+    """Each bad description: exit code non-zero, exactly one line on stderr naming the field,
+    no header written."""
+
+    def setUp(self):
+        self.dir = scratch()
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def expect_error(self, toml_text, field, fragment=""):
+        p = os.path.join(self.dir, "m.toml")
+        with open(p, "w") as f:
+            f.write(toml_text)
+        out = os.path.join(self.dir, "motor_out.h")
+        r = run_tune("-o", out, p)
+        lines = r.stderr.strip().splitlines()
+        self.assertNotEqual(r.returncode, 0)
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn(f": {field}: ", lines[0])
+        self.assertIn(fragment, lines[0])
+        self.assertFalse(os.path.exists(out))
+        self.assertEqual([f for f in os.listdir(self.dir) if f.endswith(".h")], [], "no temp file left")
+        print("measured: error line: " + lines[0])
+
+    def test_missing_field(self):
+        self.expect_error(HURST_TOML.replace('rated_speed = "2700 rpm"\n', ""), "motor.rated_speed", "missing")
+
+    def test_missing_section(self):
+        self.expect_error('name = "x"\nboard = "mclv"\n', "motor.pole_pairs", "missing")
+
+    def test_negative_resistance(self):
+        self.expect_error(HURST_TOML.replace('"5.34 ohm"', '"-5.34 ohm"'), "motor.resistance", "> 0")
+
+    def test_unit_typo(self):
+        self.expect_error(HURST_TOML.replace('"5.34 ohm"', '"5.34 ohn"'), "motor.resistance", "unknown unit 'ohn'")
+
+    def test_unit_of_the_wrong_quantity(self):
+        self.expect_error(HURST_TOML.replace('"3.84 mH"', '"3.84 ohm"'), "motor.inductance", "unknown unit")
+
+    def test_number_without_a_unit(self):
+        self.expect_error(HURST_TOML.replace('"3.84 mH"', "3.84"), "motor.inductance", "needs a unit")
+
+    def test_field_name_typo(self):
+        self.expect_error(HURST_TOML.replace("resistance =", "resistence ="), "motor.resistence",
+                          "did you mean resistance")
+
+    def test_unknown_kind(self):
+        self.expect_error(HURST_TOML.replace('resistance_kind = "line-to-line"', 'resistance_kind = "diagonal"'),
+                          "motor.resistance_kind")
+
+    def test_unknown_board(self):
+        self.expect_error(HURST_TOML.replace('board = "mclv"', 'board = "mcxx"'), "board", "no firmware/boards")
+
+    def test_impossible_speed(self):
+        self.expect_error(HURST_TOML.replace('"5300 rpm"', '"9000 rpm"'), "application.max_speed",
+                          "even with field weakening")
+
+    def test_inductance_too_small_for_the_pwm(self):
+        self.expect_error(HURST_TOML.replace('"3.84 mH"', '"3.84 uH"'), "motor.inductance")
+
+    def test_not_toml(self):
+        self.expect_error("name = \n", "file", "not valid TOML")
+
+    def test_hand_tuned_names_are_refused(self):
+        p = os.path.join(self.dir, "m.toml")
+        with open(p, "w") as f:
+            f.write(HURST_TOML.replace('name = "hurst_t"', 'name = "hurst"'))
+        r = run_tune(p)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("name: ", r.stderr)
+
+
+class UnitsAndKinds(unittest.TestCase):
+    def test_equivalent_spellings_should_give_the_same_values(self):
+        a = desc_from(HURST_TOML)
+        b = desc_from(HURST_TOML.replace('"5.34 ohm"', '"5340 mohm"').replace('"3.84 mH"', '"3840 uH"')
+                      .replace('resistance = "5340 mohm"', 'resistance = "5340 mOhm"'))
+        c = desc_from(HURST_TOML.replace('resistance = "5.34 ohm"', "resistance_ohm = 5.34")
+                      .replace('"5.34 ohm"', '"5.34 ohms"'))
+        for x in (b, c):
+            self.assertAlmostEqual(x.r_ph, a.r_ph, places=12)
+            self.assertAlmostEqual(x.l_ph, a.l_ph, places=15)
+
+    def test_per_phase_and_rms_kinds_should_convert(self):
+        a = desc_from(HURST_TOML)
+        b = desc_from(HURST_TOML.replace('"5.34 ohm"', '"2.67 ohm"').replace(
+            'resistance_kind = "line-to-line"', 'resistance_kind = "per-phase"').replace(
+            '"7.3 V/krpm"', f'"{7.3 / math.sqrt(2):.9f} V/krpm"').replace(
+            'back_emf_kind = "peak line-to-line"', 'back_emf_kind = "rms line-to-line"'))
+        self.assertAlmostEqual(b.r_ph, a.r_ph, places=12)
+        self.assertAlmostEqual(b.ke_ll, a.ke_ll, places=6)
+        c = desc_from(HURST_TOML.replace('"7.3 V/krpm"', '"7.3 mV/rpm"'))
+        self.assertAlmostEqual(c.ke_ll, 7.3, places=12)
+
+
+class GeneratedHeaders(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = scratch()
+        cls.out = {}
+        for ex, (name, board) in EXAMPLE_PROFILES.items():
+            h = os.path.join(cls.dir, f"motor_{name}.h")
+            r = run_tune("-o", h, os.path.join(EXAMPLES, ex + ".toml"))
+            assert r.returncode == 0, r.stderr
+            cls.out[ex] = (h, board, r)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_headers_should_define_every_macro_of_the_hand_tuned_profile(self):
+        raw_hand, x_hand = cheader.read_defines([os.path.join(REPO, "firmware", "motors", "motor_hurst.h")])
+        want = {n for n in raw_hand if not n.endswith("_H")} | set(x_hand)
+        for ex, (h, board, _) in self.out.items():
+            with self.subTest(ex):
+                raw, xt = cheader.read_defines([h])
+                missing = want - set(raw) - set(xt)
+                self.assertEqual(missing, set(), f"{ex} lacks {sorted(missing)}")
+
+    def test_check_should_round_trip_what_the_generator_wrote(self):
+        for ex, (h, board, _) in self.out.items():
+            with self.subTest(ex):
+                t = derive.derive(describe.load(os.path.join(EXAMPLES, ex + ".toml")))
+                r = run_tune("--check", h)
+                self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+                self.assertIn("every check of mc_derived.h / smc.h / mc.c passes", r.stdout)
+                core = cheader.derive_core(cheader.profile_env(h, board))
+                rows = {row[0]: row for row in core.rows}
+                worst = 0.0
+                for v in t.values:
+                    if v.macro not in rows or rows[v.macro][3] is None:
+                        continue
+                    _, eng, unit, q, dec, _ = rows[v.macro]
+                    self.assertAlmostEqual(eng, v.number, delta=abs(v.number) * 5e-4 + 1e-12, msg=v.macro)
+                    if unit in ("A", "rpm", "V", "V/A", "A/rpm", "A/(rpm s)", "V/(A s)") and v.number:
+                        rel = abs(dec - v.number) / abs(v.number)
+                        worst = max(worst, rel)
+                        self.assertLess(rel, 5e-3, v.macro)  # Q15 resolution at these magnitudes
+                for k, a in enumerate(t.fw_table):
+                    row = [rw for rw in core.rows if rw[0].startswith(f"FW Id[{k:2d}]")][0]
+                    self.assertAlmostEqual(row[1], a, places=9)
+                    self.assertAlmostEqual(row[4], a, delta=t.i_fs / 32768.0)
+                measured("%s: --check decodes every generated value within %.2e relative", ex, worst)
+
+    def test_headers_should_compile_with_the_core(self):
+        if shutil.which("gcc") is None:
+            self.skipTest("no gcc")
+        for ex, (h, board, _) in self.out.items():
+            with self.subTest(ex):
+                cmd = ["gcc", "-std=c99", "-fsyntax-only", "-Wall", "-Wextra", "-Werror", "-Wconversion",
+                       "-Wsign-conversion", "-Wshadow", f"-I{REPO}/firmware", f"-I{REPO}/foc",
+                       f"-I{REPO}/smc_estimator", f"-DMC_BOARD_{board.upper()}",
+                       f'-DMC_MOTOR_HEADER="{h}"', os.path.join(REPO, "firmware", "mc.c")]
+                r = subprocess.run(cmd, capture_output=True, text=True)
+                self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_committed_profiles_should_match_the_tool(self):
+        for ex, (h, board, _) in self.out.items():
+            name = EXAMPLE_PROFILES[ex][0]
+            committed = os.path.join(REPO, "firmware", "motors", f"motor_{name}.h")
+            with self.subTest(ex), open(h) as a, open(committed) as b:
+                self.assertEqual(a.read(), b.read(),
+                                 f"firmware/motors/motor_{name}.h is stale: run tools/tune/tune "
+                                 f"tools/tune/examples/{ex}.toml")
+
+    def test_check_should_decode_the_hand_tuned_profiles(self):
+        for name, board in (("hurst", "mclv"), ("hurst300", "mclv"), ("hispeed", "mchv")):
+            with self.subTest(name):
+                r = run_tune("--check", os.path.join(REPO, "firmware", "motors", f"motor_{name}.h"),
+                             "--board", board)
+                self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+                self.assertIn("MOTOR_SMC_GAIN_V", r.stdout)
+
+    def test_check_should_report_a_value_the_core_would_reject(self):
+        h, board, _ = self.out["hurst075"]
+        bad = os.path.join(self.dir, "motor_bad.h")
+        with open(h) as f:
+            text = f.read().replace("#define MOTOR_CURRENT_MAX_A 1.64", "#define MOTOR_CURRENT_MAX_A 4.0")
+        with open(bad, "w") as f:
+            f.write(text)
+        r = run_tune("--check", bad)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("CHECK FAILED  MC_OVERCURRENT_A", r.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
