@@ -93,7 +93,7 @@ typedef struct {
     uint16_t irp_percalc; /* PWM periods per speed calculation, 1..256 */
     q15_t k_speed_lpf;    /* speed filter coefficient at the speed-loop rate, Q15 */
     q15_t emf_gain;       /* expected |ef| (Q15 of E_FS) per unit |omega| (Q15): mantissa, */
-    uint8_t emf_shift;    /* ... and shift; emf_gain 0 = no back-EMF consistency check */
+    uint8_t emf_shift;    /* ... and shift (always 3); emf_gain 0 = no back-EMF check */
     /* The observer's transfer function (notes 3-4), Q12 unless said: */
     q15_t tf_mdc; /* constant term of the in-loop stage's denominator, per unit K */
     q15_t tf_b10; /* its u coefficient B1 = tf_b10 + K tf_b1k */
@@ -129,6 +129,18 @@ typedef struct {
      : (x) < 32768.0 ? 15                                                                          \
                      : 16)
 
+/* The same for 0 <= x < 128 only (8 comparisons: keeps the expansion small). */
+#define SMC_SHIFT7_OF(x)                                                                           \
+    ((x) < 1.0    ? 0                                                                              \
+     : (x) < 2.0  ? 1                                                                              \
+     : (x) < 4.0  ? 2                                                                              \
+     : (x) < 8.0  ? 3                                                                              \
+     : (x) < 16.0 ? 4                                                                              \
+     : (x) < 32.0 ? 5                                                                              \
+     : (x) < 64.0 ? 6                                                                              \
+                  : 7)
+#define SMC_MANT7_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT7_OF(x)))
+
 /* Mantissa of x for the shift SMC_SHIFT_OF(x). */
 #define SMC_MANT_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT_OF(x)))
 
@@ -137,29 +149,12 @@ typedef struct {
 
 /* exp(-y) for 0 <= y <= 1 as a constant expression (Taylor, 13 terms,
  * error < 2e-11). */
+/* exp(-y) for 0 < y <= 1 as a constant expression: the (3,3) Pade
+ * approximant, relative error < 3e-7 at y = 1 and < 1e-13 at y = 0.07 (the
+ * Hurst motor); it keeps the macro expansion small (y appears 6 times). */
 #define SMC_EXPNEG_(y)                                                                             \
-    (1.0 -                                                                                         \
-     (y) *                                                                                         \
-         (1.0 -                                                                                    \
-          (y) / 2.0 *                                                                              \
-              (1.0 -                                                                               \
-               (y) / 3.0 *                                                                         \
-                   (1.0 -                                                                          \
-                    (y) / 4.0 *                                                                    \
-                        (1.0 -                                                                     \
-                         (y) / 5.0 *                                                               \
-                             (1.0 -                                                                \
-                              (y) / 6.0 *                                                          \
-                                  (1.0 -                                                           \
-                                   (y) / 7.0 *                                                     \
-                                       (1.0 -                                                      \
-                                        (y) / 8.0 *                                                \
-                                            (1.0 -                                                 \
-                                             (y) / 9.0 *                                           \
-                                                 (1.0 - (y) / 10.0 *                               \
-                                                            (1.0 - (y) / 11.0 *                    \
-                                                                       (1.0 - (y) / 12.0 *         \
-                                                                                  1.0))))))))))))
+    ((1.0 - (y) * (0.5 - (y) * (0.1 - (y) / 120.0))) /                                             \
+     (1.0 + (y) * (0.5 + (y) * (0.1 + (y) / 120.0))))
 
 /* The derived quantities, in double (engineering units in, ratios out). */
 #define SMC_Y_(r, l, ts) ((double)(ts) * (double)(r) / (double)(l))
@@ -182,29 +177,26 @@ typedef struct {
 #define SMC_P_(r, l, ts, vfs, ifs, ks, me) (SMC_F_(r, l, ts) - SMC_C_(r, l, ts, vfs, ifs, ks, me))
 #define SMC_MDC_(r, l, ts, vfs, ifs, ks, me)                                                       \
     (SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                          \
-         ? 1.0 + SMC_C_(r, l, ts, vfs, ifs, ks, me) - SMC_P_(r, l, ts, vfs, ifs, ks, me)           \
+         ? 1.0 + 2.0 * SMC_C_(r, l, ts, vfs, ifs, ks, me) - SMC_F_(r, l, ts)                       \
          : 2.0)
 #define SMC_B10_(r, l, ts, vfs, ifs, ks, me)                                                       \
-    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? 1.0 - SMC_P_(r, l, ts, vfs, ifs, ks, me) : 1.0)
+    (SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                          \
+         ? 1.0 - SMC_F_(r, l, ts) + SMC_C_(r, l, ts, vfs, ifs, ks, me)                             \
+         : 1.0)
 #define SMC_B1K_(r, l, ts, vfs, ifs, ks, me)                                                       \
     (SMC_LIN_(r, l, ts, vfs, ifs, ks, me)                                                          \
-         ? -(1.0 + SMC_C_(r, l, ts, vfs, ifs, ks, me) - 2.0 * SMC_P_(r, l, ts, vfs, ifs, ks, me))  \
+         ? 2.0 * SMC_F_(r, l, ts) - 1.0 - 3.0 * SMC_C_(r, l, ts, vfs, ifs, ks, me)                 \
          : -1.0)
 #define SMC_B2_(r, l, ts, vfs, ifs, ks, me)                                                        \
     (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? SMC_P_(r, l, ts, vfs, ifs, ks, me) : 0.0)
 #define SMC_XADV_(r, l, ts, vfs, ifs, ks, me)                                                      \
     (SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? 0.5 / 3.141592653589793 : 0.0)
-/* Low-speed gain |ef| / |e| of the two stages (note 5): c / |mdc + j b10| / sqrt(2)
- * (c = 1 in relay mode), the modulus by alpha-max-plus-beta-min (within 4 %). */
-#define SMC_AMBM_(a, b)                                                                            \
-    ((a) > (b) ? 0.96043387 * (a) + 0.39782473 * (b) : 0.96043387 * (b) + 0.39782473 * (a))
-#define SMC_STAGE_GAIN_(r, l, ts, vfs, ifs, ks, me)                                                \
-    ((SMC_LIN_(r, l, ts, vfs, ifs, ks, me) ? SMC_C_(r, l, ts, vfs, ifs, ks, me) : 1.0) /           \
-     SMC_AMBM_(SMC_MDC_(r, l, ts, vfs, ifs, ks, me), SMC_B10_(r, l, ts, vfs, ifs, ks, me)) /       \
-     1.4142135623730951)
-#define SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs)                                             \
-    ((double)(ke) * (double)(wfs) / ((double)(vfs)*SMC_EMF_FS_RATIO) *                             \
-     SMC_STAGE_GAIN_(r, l, ts, vfs, ifs, ks, me))
+/* Low-speed gain |ef| / |E| of the two stages (note 5): about 0.30 with the
+ * dead-beat band (c = F), 0.32 in relay mode, 0.30..0.41 for c in 0.5..F;
+ * one constant is enough for a 0.5 .. 2 consistency band. */
+#define SMC_STAGE_GAIN 0.31
+#define SMC_EMFG_(ke, wfs, vfs)                                                                    \
+    ((double)(ke) * (double)(wfs) / ((double)(vfs)*SMC_EMF_FS_RATIO) * SMC_STAGE_GAIN)
 
 /* MaxSMCError (fraction of I_FS) that makes the linear band dead-beat
  * (c = F, p = 0; note 3): the recommended choice. */
@@ -243,8 +235,8 @@ typedef struct {
             (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_2Vfs_over_Ifs_must_be_in_1e_4_to_128,          \
                               SMC_GE_(r, l, ts, vfs, ifs) >= 1e-4 &&                               \
                                   SMC_GE_(r, l, ts, vfs, ifs) < 128.0) +                           \
-                    SMC_MANT_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                     \
-            /* g_shift */ (uint8_t)SMC_SHIFT_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */         \
+                    SMC_MANT7_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                    \
+            /* g_shift */ (uint8_t)SMC_SHIFT7_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */        \
             (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_2_of_V_FS, (ks) > 0.0 && (ks) < 2.0) +       \
                     Q15(SMC_KSE_(ks))), /* max_err */                                              \
             (q15_t)(SMC_CHECK(smc_MaxSMCError_must_be_in_1_LSB_to_1,                               \
@@ -271,11 +263,10 @@ typedef struct {
                               SMC_KSLPF_(ts, irp, fspd) > 0.0 &&                                   \
                                   SMC_KSLPF_(ts, irp, fspd) < 1.0) +                               \
                     Q15(SMC_KSLPF_(ts, irp, fspd))), /* emf_gain */                                \
-            (q15_t)(SMC_CHECK(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_128,                      \
-                              SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs) >= 0.0 &&             \
-                                  SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs) < 128.0) +        \
-                    SMC_MANT_OF(SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs))),                  \
-            /* emf_shift */ (uint8_t)SMC_SHIFT_OF(SMC_EMFG_(r, l, ts, vfs, ifs, ks, me, ke, wfs)), \
+            (q15_t)(SMC_CHECK(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_8,                        \
+                              SMC_EMFG_(ke, wfs, vfs) >= 0.0 && SMC_EMFG_(ke, wfs, vfs) < 8.0) +   \
+                    Q15(SMC_EMFG_(ke, wfs, vfs) / 8.0)),                                           \
+            /* emf_shift */ (uint8_t)3,                                                            \
             /* tf_mdc */ SMC_Q12(SMC_MDC_(r, l, ts, vfs, ifs, ks, me)),                            \
             /* tf_b10 */ SMC_Q12(SMC_B10_(r, l, ts, vfs, ifs, ks, me)),                            \
             /* tf_b1k */ SMC_Q12(SMC_B1K_(r, l, ts, vfs, ifs, ks, me)),                            \
