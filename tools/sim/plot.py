@@ -76,6 +76,13 @@ def main():
     ax.plot(t, d["speed_ref_rpm"], color="k", ls="--", lw=1.2, label="reference (ramped)")
     ax.plot(t, d["speed_est_rpm"], color="tab:orange", lw=1.0, label="estimated")
     ax.plot(t, d["speed_rpm"], color="tab:blue", lw=1.2, label="true (plant)")
+    # Scale to the true speed and the references; an estimate that runs
+    # away while it is not used (stopped, lock) is clipped, not allowed to
+    # squash the rest.
+    hi = max(np.max(d["speed_rpm"]), np.max(d["speed_ref_rpm"]), np.max(d["speed_target_rpm"]))
+    lo = min(0.0, np.min(d["speed_rpm"]))
+    pad = 0.08 * max(hi - lo, 100.0)
+    ax.set_ylim(lo - pad, hi + pad)
     ax.set_ylabel("speed [rpm]")
     ax.set_title("mechanical speed (background: yellow LOCK, orange OPEN_LOOP, "
                  "green CLOSED_LOOP, red FAULT)", fontsize=9)
