@@ -118,9 +118,14 @@
 #ifndef MC_ESTIMATOR_MIN_RPM
 #define MC_ESTIMATOR_MIN_RPM (0.8 * MOTOR_RAMP_END_RPM)
 #endif
+/* Speed-PI Kp at low speed: MOTOR_SPEED_KP_A_PER_RPM times |speed ref| /
+ * MOTOR_SPEED_KP_FULL_RPM below that speed, never less than this fraction. */
+#ifndef MC_SPEED_KP_MIN_FRACTION
+#define MC_SPEED_KP_MIN_FRACTION 0.25
+#endif
 /* Cut-off of the estimated-speed filter (the speed loop's feedback). */
 #ifndef MC_SPEED_FILTER_HZ
-#define MC_SPEED_FILTER_HZ 30.0
+#define MC_SPEED_FILTER_HZ 50.0
 #endif
 
 /* ---- protections ------------------------------------------------------------------- */

@@ -57,6 +57,17 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "slow for the speed range)");
 #define MC_ADV_K Q15(MC_ADV_K_)
 
+/* Speed-PI Kp schedule (mc_speed_loop): factor sched in Q15 = |speed_ref| /
+ * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
+ * for |speed_ref| < MC_KP_FULL_Q15, so the product stays below 2^30. */
+#define MC_KP_FULL_Q15  MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM)
+#define MC_KP_SCHED_ONE Q15(1.0)
+#define MC_KP_SCHED_MIN Q15(MC_SPEED_KP_MIN_FRACTION)
+#define MC_KP_SCHED_K_  (32768.0 * 32767.0 / (double)MC_KP_FULL_Q15)
+MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
+         "must be at least 16 Q15 counts of speed");
+#define MC_KP_SCHED_K ((int32_t)(MC_KP_SCHED_K_ + 0.5))
+
 /* Total current the speed loop may ask for with field weakening active: 90 %
  * of the software trip, so |(Id, Iq)| never reaches it in steady state. */
 #define MC_I_TOTAL_Q15 MC_Q15_AMPS(0.9 * MC_OVERCURRENT_A)
@@ -271,6 +282,17 @@ static bool mc_speed_loop(mc_t *mc)
         iq_max = MC_IQ_MAX_Q15;
     }
     pi_set_limits(&mc->pi_w, (q15_t)(-iq_max), iq_max);
+    /* Kp and Ki scheduled on the reference: full above MOTOR_SPEED_KP_FULL_RPM,
+     * proportional below it (at least MC_KP_SCHED_MIN): the estimated
+     * speed is noisiest at low speed, where a full Kp turns that noise into
+     * current and speed ripple. */
+    q15_t sched = MC_KP_SCHED_ONE;
+    if (mc->speed_ref < MC_KP_FULL_Q15) {
+        int32_t f = ((int32_t)q15_abs_sat(mc->speed_ref) * MC_KP_SCHED_K) >> 15;
+        sched = (f < MC_KP_SCHED_MIN) ? MC_KP_SCHED_MIN : (q15_t)f;
+    }
+    mc->pi_w.p.kp = q15_mul(MC_SPD_KP, sched);
+    mc->pi_w.p.ki = q15_mul(MC_SPD_KI, sched);
     mc->i_ref.q = pi_update(&mc->pi_w, mc->speed_ref, w);
 #endif
 
@@ -321,12 +343,25 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     sincos_q15_t sc = sincos_compute(mc->theta);
     mc->i_dq = park_forward(mc->i_ab, sc);
 
+    /* The references are meant on the estimated rotor axes; while the
+     * hand-off difference is bled off the transforms run at the estimated
+     * angle plus theta_offset, so turn the references by -theta_offset into
+     * that frame (note 1): the current vector, hence the torque, does not
+     * depend on how far the bleed has come. */
+    dq_q15_t ref = mc->i_ref;
+    if (mc->theta_offset != 0) {
+        ab_q15_t r;
+        r.alpha = mc->i_ref.d;
+        r.beta = mc->i_ref.q;
+        ref = park_forward(r, sincos_compute(mc->theta_offset));
+    }
+
     /* d first, then q gets what is left of the voltage circle (AN1078). */
     dq_q15_t v;
-    v.d = pi_update(&mc->pi_d, mc->i_ref.d, mc->i_dq.d);
+    v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
     q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
     pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
-    v.q = pi_update(&mc->pi_q, mc->i_ref.q, mc->i_dq.q);
+    v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
 #if defined(ENVOLTRIPPLE)
     v = ripple_compensate_dq(v, mc->vbus, MC_VBUS_NOMINAL_Q15);
 #endif

@@ -88,7 +88,10 @@
 #define MOTOR_CURRENT_KI_V_PER_AS (MOTOR_RS_OHM * MOTOR_CURRENT_LOOP_BW_RAD_S)
 #endif
 
-/* ---- speed PI ---------------------------------------------------------------- */
+/* ---- speed PI (Kp is full above MOTOR_SPEED_KP_FULL_RPM, scaled down below) --- */
+#ifndef MOTOR_SPEED_KP_FULL_RPM
+#define MOTOR_SPEED_KP_FULL_RPM 6000.0
+#endif
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
 #define MOTOR_SPEED_KP_A_PER_RPM 0.0005
 #endif
@@ -105,8 +108,9 @@
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
 #define MOTOR_FW_ID_TABLE_A(X)                                                                     \
     X(0.0)                                                                                         \
+    X(0.0)                                                                                         \
     X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0)     \
-        X(0.0) X(0.0)
+        X(0.0)
 #endif
 
 #endif /* MOTOR_HISPEED_H */

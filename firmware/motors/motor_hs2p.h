@@ -135,17 +135,24 @@
 #endif
 
 /* ---- speed PI -------------------------------------------------------------------------------- */
-/* Kp = J ws / Kt: speed-loop crossover ws = 94 rad/s = min(2 pi MC_SPEED_FILTER_HZ / 2, wc /
- * 10) (the 30 Hz feedback filter lags 27 deg there), J = 2e-05 kg m^2, Kt = 1.5 p psi = 82.70
- * mN m/A */
-#ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.00239
+/* speed-PI Kp is full above this speed and reduced below it (the core's gain schedule): 3 x
+ * the lowest closed-loop speed, where the back-EMF is 3 x its smallest usable value and the
+ * estimated speed is clean enough for the full gain (the hand-tuned profiles use the same
+ * ratio) */
+#ifndef MOTOR_SPEED_KP_FULL_RPM
+#define MOTOR_SPEED_KP_FULL_RPM 14300.0
 #endif
-/* Ki = Kp ws / 3: PI zero at a third of the crossover; with the filter and 1.5 speed-loop
- * periods of delay about 38 deg of phase margin (a larger real J keeps it, a smaller one loses
- * it), chosen so a 50 % load step recovers within 100 ms in the simulator */
+/* Kp = J ws / Kt with the speed-loop crossover ws = 151 rad/s, J = 2e-05 kg m^2, Kt = 1.5 p
+ * psi = 82.70 mN m/A. ws gives 45 deg of phase margin with the PI zero at ws/3 (-18 deg), the
+ * 100 Hz speed feedback filter (MC_SPEED_FILTER_HZ, -atan(ws/wf)) and 1.5 speed-loop periods
+ * of delay (-ws Td): 45 deg phase margin: 151 rad/s. A larger real J lowers ws and keeps the
+ * margin; a smaller one raises ws and loses it. */
+#ifndef MOTOR_SPEED_KP_A_PER_RPM
+#define MOTOR_SPEED_KP_A_PER_RPM 0.00384
+#endif
+/* Ki = Kp ws / 3: PI zero at a third of the crossover */
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.075
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.194
 #endif
 
 /* ---- data for tools (not used by the core) --------------------------------------------------- */

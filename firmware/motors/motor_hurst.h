@@ -85,12 +85,15 @@
 #define MOTOR_CURRENT_KI_V_PER_AS (MOTOR_RS_OHM * MOTOR_CURRENT_LOOP_BW_RAD_S)
 #endif
 
-/* ---- speed PI ---------------------------------------------------------------- */
+/* ---- speed PI (Kp is full above MOTOR_SPEED_KP_FULL_RPM, scaled down below) --- */
+#ifndef MOTOR_SPEED_KP_FULL_RPM
+#define MOTOR_SPEED_KP_FULL_RPM 1500.0
+#endif
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.001
+#define MOTOR_SPEED_KP_A_PER_RPM 0.003
 #endif
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.01
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.08
 #endif
 
 /* ---- field weakening: Id (A) at 16 speeds evenly spaced from
@@ -106,8 +109,9 @@
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
 #define MOTOR_FW_ID_TABLE_A(X)                                                                     \
     X(0.000)                                                                                       \
-    X(-0.320) X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) X(-1.852) X(-2.021)      \
-        X(-2.181) X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
+    X(-0.320)                                                                                      \
+    X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) X(-1.852) X(-2.021) X(-2.181)      \
+        X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
 #endif
 
 #endif /* MOTOR_HURST_H */

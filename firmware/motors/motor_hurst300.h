@@ -86,7 +86,10 @@
 #define MOTOR_CURRENT_KI_V_PER_AS (MOTOR_RS_OHM * MOTOR_CURRENT_LOOP_BW_RAD_S)
 #endif
 
-/* ---- speed PI ---------------------------------------------------------------- */
+/* ---- speed PI (Kp is full above MOTOR_SPEED_KP_FULL_RPM, scaled down below) --- */
+#ifndef MOTOR_SPEED_KP_FULL_RPM
+#define MOTOR_SPEED_KP_FULL_RPM 1500.0
+#endif
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
 #define MOTOR_SPEED_KP_A_PER_RPM 0.003
 #endif
@@ -104,8 +107,9 @@
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
 #define MOTOR_FW_ID_TABLE_A(X)                                                                     \
     X(0.000)                                                                                       \
-    X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(-0.210) X(-0.499)    \
-        X(-0.783) X(-1.063) X(-1.339) X(-1.610) X(-1.876)
+    X(0.000)                                                                                       \
+    X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(-0.210) X(-0.499) X(-0.783)   \
+        X(-1.063) X(-1.339) X(-1.610) X(-1.876)
 #endif
 
 #endif /* MOTOR_HURST300_H */
