@@ -27,6 +27,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->ke_scale = 1.0;
     cfg->j_scale = 1.0;
     cfg->theta0_rad = 0.0;
+    cfg->rpm0 = 0.0;
     cfg->deadtime_s = -1.0;
     cfg->noise_codes = -1.0;
     cfg->vbus_v = -1.0;
@@ -126,7 +127,7 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
     rp.substeps = cfg->substeps;
     rp.theta_e0 = cfg->theta0_rad;
-    rp.omega0_m = 0.0;
+    rp.omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
     rp.fan_rated_rpm = s->mp->rated_rpm;
     sim_rig_init(&s->rig, &rp);
     mc_init(&s->mc);

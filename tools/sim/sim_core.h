@@ -28,6 +28,7 @@ typedef struct {
     double ke_scale;    /* plant flux linkage */
     double j_scale;     /* plant inertia */
     double theta0_rad;  /* initial electrical angle */
+    double rpm0;        /* initial mechanical speed, rpm (a spinning rotor) */
     double deadtime_s;  /* < 0: the board's */
     double noise_codes; /* < 0: the board's */
     double vbus_v;      /* < 0: the board's */

@@ -6,6 +6,9 @@
 #include <time.h>
 
 #include "sim_core.h"
+#ifdef SIM_HAVE_PTY
+#include "sim_pty.h"
+#endif
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -15,19 +18,27 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: sim [options] <scenario.txt>\n"
+            "       sim --pty [options]   the live data monitor on a pseudo-terminal "
+            "(docs/monitor.md)\n"
             "  --motor NAME      simulated motor (default hurst; %s)\n"
             "  --board NAME      simulated board (default mclv)\n"
             "  --csv FILE        write the trace (default: none)\n"
             "  --decim N         one CSV row every N PWM periods (default 10)\n"
             "  --substeps N      RK4 steps per PWM period (default 4)\n"
             "  --theta0 DEG      initial electrical rotor angle (default 0)\n"
+            "  --rpm0 RPM        initial rotor speed (default 0: at rest)\n"
             "  --deadtime US     inverter dead time (default: the board's, 2 us)\n"
             "  --noise LSB       ADC noise sigma in codes (default: the board's, 1)\n"
             "  --vbus V          DC bus (default: the board's)\n"
             "  --seed N          noise seed\n"
             "  --rs-scale X --l-scale X --ke-scale X --j-scale X\n"
             "                    plant parameters times X (mismatch with UserParms.h)\n"
-            "  --no-progress     no progress line on stderr\n",
+            "  --no-progress     no progress line on stderr\n"
+            "  --pty             no scenario: serve the monitor protocol on a pty\n"
+            "  --realtime X      with --pty: X times real time (default 1; 0 = free-running)\n"
+            "  --baud N          with --pty: emulated UART rate (default 38400)\n"
+            "  --duration S      with --pty: stop after S simulated seconds\n"
+            "  --truth FILE      with --pty: true speed at every recorded sample (CSV)\n",
             sim_profiles_list());
 }
 
@@ -53,6 +64,11 @@ int main(int argc, char **argv)
     int i;
     clock_t c0;
     double wall;
+#ifdef SIM_HAVE_PTY
+    sim_pty_cfg_t pty;
+    int use_pty = 0;
+    sim_pty_cfg_default(&pty);
+#endif
 
     simcore_cfg_default(&cfg);
     cfg.progress = true;
@@ -63,6 +79,12 @@ int main(int argc, char **argv)
             cfg.progress = false;
             continue;
         }
+#ifdef SIM_HAVE_PTY
+        if (strcmp(a, "--pty") == 0) {
+            use_pty = 1;
+            continue;
+        }
+#endif
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage();
             return 0;
@@ -88,6 +110,8 @@ int main(int argc, char **argv)
             cfg.substeps = atoi(v);
         } else if (strcmp(a, "--theta0") == 0) {
             cfg.theta0_rad = atof(v) * M_PI / 180.0;
+        } else if (strcmp(a, "--rpm0") == 0) {
+            cfg.rpm0 = atof(v);
         } else if (strcmp(a, "--deadtime") == 0) {
             cfg.deadtime_s = atof(v) * 1e-6;
         } else if (strcmp(a, "--noise") == 0) {
@@ -104,11 +128,34 @@ int main(int argc, char **argv)
             cfg.ke_scale = atof(v);
         } else if (strcmp(a, "--j-scale") == 0) {
             cfg.j_scale = atof(v);
+#ifdef SIM_HAVE_PTY
+        } else if (strcmp(a, "--realtime") == 0) {
+            pty.speed = atof(v);
+        } else if (strcmp(a, "--baud") == 0) {
+            pty.baud = atol(v);
+        } else if (strcmp(a, "--duration") == 0) {
+            pty.duration_s = atof(v);
+        } else if (strcmp(a, "--truth") == 0) {
+            pty.truth_path = v;
+#endif
         } else {
             usage();
             return 2;
         }
     }
+#ifdef SIM_HAVE_PTY
+    if (use_pty) {
+        cfg.progress = false;
+        if (pty.baud <= 0L) {
+            usage();
+            return 2;
+        }
+        if (simcore_init(&s, &cfg) != 0) {
+            return 2;
+        }
+        return sim_pty_run(&s, &pty);
+    }
+#endif
     if (scen_path == NULL) {
         usage();
         return 2;
