@@ -106,11 +106,11 @@
  * speed = FW max speed, as AN1078 says to disable it. ------------------------ */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
-#define MOTOR_FW_ID_TABLE_A(X)                                                                     \
-    X(0.0)                                                                                         \
-    X(0.0)                                                                                         \
-    X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0)     \
-        X(0.0)
+/* clang-format off */
+#define MOTOR_FW_ID_TABLE_A(X) \
+    X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) \
+    X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0) X(0.0)
+/* clang-format on */
 #endif
 
 #endif /* MOTOR_HISPEED_H */

@@ -107,11 +107,11 @@
  * reference is continuous at the nominal speed. (AN1078 reaches -2.1 A.) - */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
-#define MOTOR_FW_ID_TABLE_A(X)                                                                     \
-    X(0.000)                                                                                       \
-    X(-0.320)                                                                                      \
-    X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) X(-1.852) X(-2.021) X(-2.181)      \
-        X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
+/* clang-format off */
+#define MOTOR_FW_ID_TABLE_A(X) \
+    X(0.000) X(-0.320) X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) \
+    X(-1.852) X(-2.021) X(-2.181) X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
+/* clang-format on */
 #endif
 
 #endif /* MOTOR_HURST_H */

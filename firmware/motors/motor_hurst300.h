@@ -105,11 +105,11 @@
  * psi = 8.05 mWb and a load Iq = 1.0 A. --------------------------------- */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
-#define MOTOR_FW_ID_TABLE_A(X)                                                                     \
-    X(0.000)                                                                                       \
-    X(0.000)                                                                                       \
-    X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(-0.210) X(-0.499) X(-0.783)   \
-        X(-1.063) X(-1.339) X(-1.610) X(-1.876)
+/* clang-format off */
+#define MOTOR_FW_ID_TABLE_A(X) \
+    X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) X(0.000) \
+    X(0.000) X(-0.210) X(-0.499) X(-0.783) X(-1.063) X(-1.339) X(-1.610) X(-1.876)
+/* clang-format on */
 #endif
 
 #endif /* MOTOR_HURST300_H */
