@@ -119,7 +119,6 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     t0_wall = wall_s();
     while (stop_requested == 0 && (cfg->duration_s <= 0.0 || s->rig.t < cfg->duration_s)) {
         uint8_t in[64];
-        ssize_t got;
 
         /* the ISR, once per PWM period */
         for (k = 0; k < periods_per_ms; k++) {
@@ -139,8 +138,7 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
 
         /* the main loop, once per millisecond */
         while (monitor_rx_ready(&mon)) {
-            got = read(master, in, 1);
-            if (got != 1) {
+            if (read(master, in, 1) != 1) {
                 break;
             }
             monitor_rx_byte(&mon, in[0]);
