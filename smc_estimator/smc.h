@@ -20,13 +20,14 @@
  *   theta_raw(n) = atan2(-ef_alpha, ef_beta)                 CORDIC, foc/cordic.h
  *   theta(n) = theta_raw(n) + comp(omega) (+ pi when omega < 0)
  *
- * with F = 1 - Ts R / L and G = Ts / L (per-phase R and L), K = Kslf =
- * omega Ts (the cut-off at the electrical frequency), floored at the value of
- * the minimum closed-loop speed. Every IRP_PERCALC periods the angle steps
- * of theta_raw are summed in 32 bits, scaled to a speed, filtered, and the
- * new speed sets K, the compensation comp (derived in notes 2-5 from the
- * observer's discrete transfer functions and the loop delay) and the
- * validity flag.
+ * with F = exp(-Ts R / L) and G = (1 - F) / R (per-phase R and L; AN1078's
+ * 1 - Ts R / L and Ts / L are their first-order truncations, note 2),
+ * K = Kslf = omega Ts (the cut-off at the electrical frequency), floored at
+ * the value of the minimum closed-loop speed. Every IRP_PERCALC periods the
+ * angle steps of theta_raw (plus the lag correction of note 8) are summed in
+ * 32 bits, scaled to a speed and filtered, and the new speed sets K (note
+ * 7), the compensation comp (derived in notes 3-4 from the observer's
+ * discrete transfer functions and the loop delay) and the validity flag.
  *
  * Units and formats (the interface agreed with the mc core):
  *   currents   Q15 of I_FS (A), the ADC current full scale
@@ -58,10 +59,14 @@
  *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
  *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
  *
- * Cost (make bench, host callgrind; dsPIC: no division and no float in the
- * per-period path): see smc.c. Once every IRP_PERCALC periods the speed
- * update adds one 32 x 16 scaling, two CORDIC arctangents (the compensation)
- * and one 32 / 16 division (the back-EMF consistency figure).
+ * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 702 min,
+ * 785 mean, 2047 max (the window end); state 72 bytes and parameters 38
+ * bytes with 16-bit pointers (avr-gcc, as on the dsPIC). Per period: 2 model
+ * steps, 2 switches, 6 first-order updates (32-bit states) and one CORDIC;
+ * no division, no float. Once every IRP_PERCALC periods: one more CORDIC
+ * (the lag), the speed scaling, the compensation (two CORDIC calls and
+ * about twenty 16 x 16 products) and one 32 / 16 division (the back-EMF
+ * consistency figure).
  */
 
 /* The back-EMF quantities (z, e, e_final, Kslide, the amplitude) are Q15 of
@@ -385,7 +390,121 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
 /*
  * Notes
  *
- * 1. Timing. (to be completed: the derivation of the compensation.)
+ * 1. Timing and indices. Period n runs from t_n to t_(n+1). The ADC samples
+ *    i(t_n) at its start; the voltage applied over [t_(n-1), t_n] is the one
+ *    the core computed in period n-2 (PWM update at the period boundary),
+ *    and it is what carried the current from i(t_(n-1)) to i(t_n). The model
+ *    step in smc_update(n) therefore uses v_applied with e and z from call
+ *    n-1, and compares the result with i_meas(n). The outputs of call n
+ *    refer to t_n.
+ *
+ * 2. Discretisation and scales. With the voltage constant over a period the
+ *    exact (zero-order-hold) solution of L di/dt = v - R i - e is
+ *    i(n) = F i(n-1) + G (v(n-1) - Ebar(n-1)), F = exp(-Ts R/L),
+ *    G = (1 - F)/R, where Ebar(m) is the back-EMF weighted over [t_m,
+ *    t_(m+1)]. AN1078's F = 1 - Ts R/L, G = Ts/L truncate both series; for
+ *    the Hurst motor (Ts R/L = 0.0695) that makes G 3.5 % too large, which
+ *    a double-precision run shows as a constant +0.25 degree bias; the exact
+ *    values cost nothing (compile time) and remove it. Above the base speed
+ *    (field weakening) the back-EMF exceeds the inverter's V_FS (22 V peak
+ *    at 5300 rpm against V_FS = 13.9 V on 24 V), and the correction z must
+ *    carry about 0.65 of it (note 5), so z, e, e_final and Kslide use
+ *    E_FS = 2 V_FS; G is scaled to match (G E_FS / I_FS).
+ *
+ * 3. The observer's transfer function (linear band, |err| < MaxSMCError).
+ *    Write Ebar(m) = E(t_m) exp(j x / 2) with x = omega Ts: for a rotating
+ *    back-EMF the ZOH weighting is the value at mid-period to within
+ *    0.05 degree (up to omega L / R = 2). With eps = i_est - i, c = G Kz
+ *    (Kz = Kslide / MaxSMCError) and p = F - c:
+ *      eps(n) = F eps(n-1) + G (Ebar(n-1) - e(n-1) - z(n-1)), z(n) = Kz eps(n)
+ *      =>  z = D (Ebar - e),  D = c q^-1 / (1 - p q^-1)
+ *    The first stage e = Lk z, Lk = K / (1 - (1 - K) q^-1), is inside this
+ *    loop, so e = H1 Ebar with
+ *      H1 = Lk D / (1 + Lk D) = K c q^-1 / [(1 - (1-K) q^-1)(1 - p q^-1) + K c q^-1]
+ *    and the second stage is plain: H2 = Lk. At q^-1 = exp(-j x), with
+ *    u = 1 - exp(-j x) = (1 - cos x) + j sin x, the denominators are
+ *      D1 = K (1 + c - p) + B1 u + B2 u^2,   B1 = 1 - p - K (1 + c - 2p),
+ *                                            B2 = p (1 - K)
+ *      D2 = K + (1 - K) u
+ *    (this form has no cancellation: its constant term is exactly the DC
+ *    value, so coefficients in Q12/Q15 are enough). Hence
+ *      e_final(n) = H1 H2 exp(j x / 2) E(t_n),
+ *      arg = -x (the q^-1 of D) + x / 2 (ZOH) - arg D1 - arg D2,
+ *    and the lead that puts theta on the rotor at t_n is
+ *      comp(K, x) = arg D1 + arg D2 + x / 2.
+ *    The constants mdc = 1 + c - p, B1 = b10 + K b1k, p and the x / 2 term
+ *    are computed by SMC_PARAMS_INIT; smc_phase_lead evaluates the rest once
+ *    per speed window (1 - cos x and sin x by their Taylor series in Q27,
+ *    two CORDIC arctangents). Measured: smc_phase_lead is within 0.017
+ *    degree of the formula in double, and the formula within 0.05 degree of
+ *    the lag of a double-precision copy of the observer run on the exact
+ *    plant (test_smc.c). For the Hurst settings (dead-beat band, note 5) the
+ *    lag is 71.5 degrees at 500 rpm and 63.1 at 5300 rpm: a constant 90
+ *    would over-compensate by 18 to 27 degrees. The plain-filter reading of
+ *    the first stage (45 degrees per stage) is wrong because e is fed back
+ *    into the model: it only has to absorb what z does not carry.
+ *    With K floored (below the minimum speed) the same formula holds with
+ *    K > x, so theta stays defined there; for reverse rotation the stages'
+ *    response is the complex conjugate, so the lead is negated (and pi added,
+ *    note 6).
+ *
+ * 4. Relay mode. When c >= 1 + F the linear band is unstable as a linear
+ *    loop (|p| >= 1): the correction chatters between +-Kslide (AN1078's
+ *    published gains, Kslide 0.85 and MaxSMCError 0.005 of full scale, are
+ *    in this mode). Only the average of z is then defined, by the ideal
+ *    sliding condition z = Ebar - e, which gives D1 = 2K + (1 - K) u, B2 = 0
+ *    and no q^-1 or ZOH term (the relay's switching lag and the ZOH half
+ *    period cancel to within about a degree in simulation). The chatter
+ *    leaves 2 to 12 degrees of ripple and bias (test_smc.c); the lag
+ *    correction of note 8 is off in this mode.
+ *
+ * 5. Choosing Kslide and MaxSMCError. Recommended: MaxSMCError =
+ *    SMC_MAXERR_DEADBEAT(...) = Kslide G / F, which makes c = F and p = 0:
+ *    the model error is corrected in one period (dead-beat), z(n) =
+ *    F (Ebar(n-1) - e(n-1)), and the loop is linear and ripple-free. In
+ *    steady state |e| is about 0.48 |E| and |z| about 0.65 |E|; to recover
+ *    from any state (e near 0 while the motor turns) Kslide must exceed the
+ *    largest back-EMF: 1.8 V_FS for the Hurst up to 5300 rpm on 24 V. The
+ *    low-speed gain |e_final / E| of the two stages is then about 0.30
+ *    (c / |mdc + j b10| / sqrt 2); SMC_STAGE_GAIN (0.31) turns Ke into the
+ *    expected amplitude for the consistency figure emf_ratio.
+ *
+ * 6. Angles. theta_raw = atan2(-ef_alpha, ef_beta) (the back-EMF leads the
+ *    rotor flux by 90 degrees); for omega < 0 the back-EMF is reversed, so pi
+ *    is added. theta estimates the rotor angle at t_n; for the inverse Park
+ *    of a voltage applied over [t_(n+1), t_(n+2)] the core may add
+ *    1.5 omega Ts (the loop delay on the output side is the core's).
+ *
+ * 7. Speed. The angle steps (angle_sub, each in [-pi, pi)) are summed in an
+ *    int32 over IRP_PERCALC <= 256 periods, so the sum (at most 2^23) cannot
+ *    overflow at any speed below the Nyquist limit (a 16-bit sum over 1 ms
+ *    wraps above 30,000 electrical rpm; 17,000 rpm with 2 pole pairs is
+ *    34,000). omega = sum / (2 IRP Ts omega_fs) in Q15, computed as two
+ *    16 x 16 products and saturated at +-32767, then a first-order filter
+ *    (speed_lpf_hz, at the speed-loop rate). The stages' lag depends on
+ *    x / K: a speed error changes K, which turns theta_raw, which the next
+ *    window reads as speed (a positive loop of gain about 0.9 at the stages'
+ *    time constant). K therefore follows |omega| through a further filter
+ *    4 times slower (SMC_K_LPF_SHIFT); since comp uses the actual K and the
+ *    estimated x separately, a lagging K costs no steady accuracy.
+ *
+ * 8. Lag correction of the speed. In the linear band the correction gives
+ *    the back-EMF without any filter: z(n) - p z(n-1) + c e(n-1) =
+ *    c Ebar(n-1) (note 3). It is smoothed with 4 K (SMC_EMF_RAW_K_SHIFT)
+ *    and at each window end its angle minus theta_raw is the lag the stages
+ *    have at that moment, transients included. The change of that lag over
+ *    the window, beyond a dead zone of SMC_LAG_DEADZONE (5.6 degrees, above
+ *    the noise of a 10-bit ADC), is added to the window's angle sum: it
+ *    removes the stages' transients (start-up from a wrong state, K changes)
+ *    from the speed: worst convergence from random initial states at 1000
+ *    and 3500 rpm 25 and 15 ms, against 35 and 36 ms without it, while the
+ *    steady-state speed keeps the smoothness of theta_raw.
+ *
+ * 9. Validity. valid = |omega| >= omega_min and, when Ke is given,
+ *    0.5 <= emf_ratio <= 2. Below the minimum speed K stays at its floor,
+ *    the speed and the angle keep being computed (saturating, never
+ *    wrapping) but valid is false; a stalled rotor with a speed estimate
+ *    left over drops the flag through the speed and the ratio.
  */
 
 #endif /* SMC_H */

@@ -49,6 +49,10 @@ static const smc_params_t hurst_r07l07 = HURST_PARAMS(0.7 * HURST_R, 0.7 * HURST
 static const smc_params_t hurst_r13l13 = HURST_PARAMS(1.3 * HURST_R, 1.3 * HURST_L);
 static const smc_params_t hurst_r07l13 = HURST_PARAMS(0.7 * HURST_R, 1.3 * HURST_L);
 static const smc_params_t hurst_r13l07 = HURST_PARAMS(1.3 * HURST_R, 0.7 * HURST_L);
+/* No Ke given: validity from the speed alone. */
+static const smc_params_t hurst_noke =
+    SMC_PARAMS_INIT(HURST_R, HURST_L, TS, HURST_VFS, HURST_IFS, HURST_KS,
+                    HURST_ME(HURST_R, HURST_L), HURST_WFS, HURST_FMIN, 20, 100.0, 0.0);
 /* AN1078's published gains (Kslide 0.85, band 0.005 of full scale): the
  * relay (chattering) mode. */
 static const smc_params_t hurst_relay =
@@ -547,6 +551,27 @@ test_smc_should_become_valid_above_the_minimum_speed_and_saturate_past_full_scal
     printf("measured: 9000 rpm on an 8000 rpm scale: omega %d (saturated)\n", smc_omega(&s));
 }
 
+static void test_smc_should_judge_validity_by_speed_alone_without_ke(void **state)
+{
+    bench_t b = bench_hurst();
+    pmsm_ideal_t m;
+    smc_t s;
+    long n;
+    (void)state;
+    assert_int_equal(hurst_noke.emf_gain, 0);
+    pmsm_ideal_init(&m, &b.motor, &b.drive, 1000.0, 0.0);
+    smc_init(&s, &hurst_noke);
+    for (n = 0; n < 3000; n++) {
+        ab_q15_t i;
+        ab_q15_t v;
+        pmsm_ideal_step(&m, &i, &v);
+        smc_update(&s, i, v);
+    }
+    assert_true(smc_valid(&s));
+    assert_int_equal(smc_emf_ratio(&s), SMC_EMF_RATIO_ONE);
+    assert_true(fabs(angle_err_deg(&s, &m)) <= 2.0);
+}
+
 static void test_smc_should_flag_a_stalled_rotor_through_the_emf_ratio(void **state)
 {
     /* The estimator is preset to 2000 rpm but the motor stands still with
@@ -851,6 +876,7 @@ int main(void)
         cmocka_unit_test(test_smc_should_report_not_valid_below_the_minimum_speed_without_overflow),
         cmocka_unit_test(
             test_smc_should_become_valid_above_the_minimum_speed_and_saturate_past_full_scale),
+        cmocka_unit_test(test_smc_should_judge_validity_by_speed_alone_without_ke),
         cmocka_unit_test(test_smc_should_flag_a_stalled_rotor_through_the_emf_ratio),
         cmocka_unit_test(test_smc_should_stay_within_20_degrees_with_the_published_relay_gains),
     };
