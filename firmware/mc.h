@@ -100,18 +100,23 @@ typedef enum {
 
 /* ---- fault codes (mc_status_t.fault) ------------------------------------ *
  * The code of the first fault that tripped; it stays until a START clears
- * it (a START is refused while the cause is still present: over/under-voltage
- * still measured, or the FLTA pin still reported). */
+ * it. A START while the cause is still present ends in FAULT again at once:
+ * a bus still at or below the undervoltage threshold (code 2), still at or
+ * above the overvoltage one (code 3, the protection runs first in every
+ * state). The core cannot see the FLTA pin: the HAL posts
+ * MC_REQUEST_HW_FAULT again while the pin is still asserted. */
 #define MC_FAULT_NONE         0U /* no fault */
-#define MC_FAULT_OVERCURRENT  1U /* |ia|, |ib| or |ic| above MC_OVERCURRENT_A in one sample */
-#define MC_FAULT_UNDERVOLTAGE 2U /* Vbus below MC_VBUS_UNDERVOLTAGE_V while running */
-#define MC_FAULT_OVERVOLTAGE  3U /* Vbus above MC_VBUS_OVERVOLTAGE_V (any state) */
+#define MC_FAULT_OVERCURRENT  1U /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */
+#define MC_FAULT_UNDERVOLTAGE 2U /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */
+#define MC_FAULT_OVERVOLTAGE  3U /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */
 #define MC_FAULT_HARDWARE     4U /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
 #define MC_FAULT_START_FAILED 5U /* no valid estimate at the end of the ramp, retries used up */
-#define MC_FAULT_STALL_SPEED  6U /* closed loop: estimated speed below the minimum */
-#define MC_FAULT_STALL_BEMF   7U /* closed loop: estimated back-EMF inconsistent with speed */
-#define MC_FAULT_STALL_TRACK  8U /* closed loop: speed error persisting (loss of sync) */
-#define MC_FAULT_OFFSET       9U /* current offset out of range at calibration (amplifier) */
+#define MC_FAULT_STALL_SPEED  6U /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, MC_STALL_TIME_S \
+                                  */
+#define MC_FAULT_STALL_BEMF 7U   /* closed loop: back-EMF inconsistent with speed, MC_STALL_TIME_S \
+                                  */
+#define MC_FAULT_STALL_TRACK 8U  /* closed loop: speed error with the speed PI saturated */
+#define MC_FAULT_OFFSET      9U  /* current offset out of range at calibration (amplifier) */
 
 /* ---- status ---------------------------------------------------------------- */
 
@@ -119,16 +124,19 @@ typedef struct {
     mc_state_t state;
     uint16_t fault;    /* 0 = none; MC_FAULT_* above */
     int16_t theta_est; /* electrical angle used by the Park transforms, Q15: -32768..32767 =
-                          -pi..pi (the estimator's in CLOSED_LOOP, the forced one before) */
+                          -pi..pi (CLOSED_LOOP: the estimator's plus the hand-off
+                          difference being bled off; LOCK, OPEN_LOOP: the forced one) */
     int16_t speed_est; /* mechanical speed, Q15 of MC_SPEED_FULLSCALE_RPM */
     int16_t speed_ref; /* same scale (the ramped reference the speed loop follows) */
-    int16_t id, iq;    /* Q15 of BOARD_I_FULLSCALE_A */
-    int16_t vd, vq;    /* Q15 of the SVGen full scale (MC_VOLTAGE_FULLSCALE_V) */
+    int16_t id, iq;    /* measured, on the axes at theta_est, Q15 of BOARD_I_FULLSCALE_A */
+    int16_t vd, vq;    /* commanded (after the circle limit and ripple compensation),
+                          Q15 of the SVGen full scale (MC_VOLTAGE_FULLSCALE_V) */
     /* additions */
     int16_t vbus;           /* DC bus, Q15 of BOARD_VBUS_FULLSCALE_V (last sample) */
     uint8_t start_retries;  /* failed start-up attempts since the last START request */
     bool estimator_valid;   /* the estimator reports a usable angle */
-    int16_t id_ref, iq_ref; /* current references, Q15 of BOARD_I_FULLSCALE_A */
+    int16_t id_ref, iq_ref; /* current references on the estimated rotor axes, Q15 of
+                               BOARD_I_FULLSCALE_A */
     int16_t speed_target;   /* speed reference before the ramp, Q15 of MC_SPEED_FULLSCALE_RPM */
     int16_t theta_forced;   /* open-loop angle, Q15 binary angle */
     int16_t bemf;           /* estimated back-EMF magnitude, Q15 of the SVGen full scale */
