@@ -1,6 +1,8 @@
 /* app.c - the main loop of the dsPIC application (see app.h). */
 #include "app.h"
 
+#include <stddef.h>
+
 #include "q15.h"
 
 Q15_STATIC_ASSERT((APP_TX_QUEUE_SIZE & (APP_TX_QUEUE_SIZE - 1U)) == 0U && APP_TX_QUEUE_SIZE <= 256U,
@@ -27,6 +29,9 @@ void app_init(app_t *app)
     app->status.speed_est = 0;
     app->tx_head = 0;
     app->tx_tail = 0;
+    app->uart_client = NULL;
+    app->client_tx_held = false;
+    app->client_tx = 0;
     hal_led_set(HAL_LED_RUN, false);
     hal_led_set(HAL_LED_FAULT, false);
 }
@@ -181,9 +186,42 @@ static void queue_telemetry(app_t *app)
     }
 }
 
+void app_set_uart_client(app_t *app, const app_uart_client_t *client)
+{
+    app->uart_client = client;
+    app->client_tx_held = false;
+}
+
+/* The UART belongs to the client: its bytes out, received bytes in while it
+ * can answer them, then its main-loop work. */
+static void service_client(app_t *app, const app_uart_client_t *cl)
+{
+    uint8_t c;
+    for (;;) {
+        if (!app->client_tx_held) {
+            if (!cl->tx_byte(cl->ctx, &app->client_tx)) {
+                break;
+            }
+            app->client_tx_held = true;
+        }
+        if (!hal_uart_put(app->client_tx)) {
+            break;
+        }
+        app->client_tx_held = false;
+    }
+    while (cl->rx_ready(cl->ctx) && hal_uart_get(&c)) {
+        cl->rx_byte(cl->ctx, c);
+    }
+    cl->poll(cl->ctx);
+}
+
 void app_service_uart(app_t *app)
 {
     uint8_t c;
+    if (app->uart_client != NULL) {
+        service_client(app, app->uart_client);
+        return;
+    }
     while (app->tx_tail != app->tx_head && hal_uart_put(app->tx[app->tx_tail])) {
         app->tx_tail = (uint8_t)((app->tx_tail + 1U) & (APP_TX_QUEUE_SIZE - 1U));
     }
@@ -250,6 +288,10 @@ void app_tick_1ms(app_t *app)
         }
     }
 
+    if (app->uart_client != NULL) {
+        app->uart_client->tick_1ms(app->uart_client->ctx);
+        return;
+    }
     app->telemetry_ms = (uint16_t)(app->telemetry_ms + 1U);
     if (app->telemetry_ms >= APP_TELEMETRY_PERIOD_MS) {
         app->telemetry_ms = 0;

@@ -34,6 +34,12 @@
  * (decimal; state = mc_state_t, speeds in Q15 of MC_SPEED_FULLSCALE_RPM,
  * ia offset-corrected in Q15 of BOARD_I_FULLSCALE_A, D = double-speed mode). Commands, one byte
  * each: 'g' MC_REQUEST_START, 's' MC_REQUEST_STOP, 'p' MC_REQUEST_REF_POT (and double speed off).
+ *
+ * A UART client (app_set_uart_client, e.g. the live data monitor of
+ * firmware/monitor, docs/monitor.md) takes the UART over: the status line and
+ * the one-byte commands stop; received bytes go to the client while it is
+ * ready for them (a byte it is not ready for stays in the UART), bytes it
+ * queues go out as the UART takes them, and it gets a tick every 1 ms.
  */
 
 #include <stdbool.h>
@@ -54,6 +60,16 @@ typedef struct {
     uint8_t steady; /* ms the raw level has differed from `level` */
 } app_button_t;
 
+/* A protocol that owns the UART (all callbacks required, ctx passed back). */
+typedef struct {
+    void *ctx;
+    bool (*rx_ready)(void *ctx);               /* true: rx_byte may be called */
+    void (*rx_byte)(void *ctx, uint8_t byte);  /* one received byte */
+    bool (*tx_byte)(void *ctx, uint8_t *byte); /* next byte to send; false: none */
+    void (*tick_1ms)(void *ctx);               /* once per elapsed millisecond */
+    void (*poll)(void *ctx);                   /* once per main-loop pass */
+} app_uart_client_t;
+
 typedef struct {
     app_button_t s2, s3;
     bool double_speed;     /* S3 mode */
@@ -65,11 +81,17 @@ typedef struct {
     uint16_t fault_shown;  /* fault code the pattern is showing */
     mc_status_t status;    /* last snapshot */
     uint8_t tx[APP_TX_QUEUE_SIZE];
-    uint8_t tx_head, tx_tail; /* head: next free, tail: next to send */
+    uint8_t tx_head, tx_tail;             /* head: next free, tail: next to send */
+    const app_uart_client_t *uart_client; /* NULL: the text protocol above */
+    bool client_tx_held;                  /* client_tx holds a byte the UART refused */
+    uint8_t client_tx;
 } app_t;
 
 /* Everything to rest: buttons released, normal speed, LEDs off. */
 void app_init(app_t *app);
+
+/* Hands the UART to a client (NULL: back to the text protocol). */
+void app_set_uart_client(app_t *app, const app_uart_client_t *client);
 
 /* One main-loop pass: the 1 ms work if a tick elapsed, then the UART. */
 void app_poll(app_t *app);
