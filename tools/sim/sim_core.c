@@ -382,8 +382,9 @@ void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *na
         g->t0_s = e->t_s;
         snprintf(g->label, sizeof(g->label), "%s", sim_event_name(e->kind));
         if (e->kind == SIM_EV_SPEED || e->kind == SIM_EV_SPEED_RAMP) {
-            if (e->v1 == SIM_SPEED_MAX) {
-                snprintf(g->label, sizeof(g->label), "%s max", sim_event_name(e->kind));
+            if (e->v1 == SIM_SPEED_MAX || e->v1 == SIM_SPEED_MIN) {
+                snprintf(g->label, sizeof(g->label), "%s %s", sim_event_name(e->kind),
+                         (e->v1 == SIM_SPEED_MAX) ? "max" : "min");
             } else {
                 snprintf(g->label, sizeof(g->label), "%s %.0f", sim_event_name(e->kind), e->v1);
             }
