@@ -182,7 +182,9 @@ static void smc_speed_refresh(smc_t *s)
     const smc_params_t *p = s->p;
     q15_t aw = q15_abs_sat(s->omega);
     q15_t x = q15_mul(aw, p->k_per_omega);
-    q15_t kx = lpf_update(&s->k_lpf, x, (q15_t)(p->k_speed_lpf >> SMC_K_LPF_SHIFT));
+    uint8_t ksh = (s->startup > 0U) ? SMC_K_LPF_SHIFT_START : SMC_K_LPF_SHIFT;
+    q15_t kx = lpf_update(&s->k_lpf, x, (q15_t)(p->k_speed_lpf >> ksh));
+
     q15_t k = (kx > p->k_min) ? kx : p->k_min;
     angle_q15_t lead = smc_phase_lead(p, k, x);
     ab_q15_t ef = smc_e_final(s);
@@ -243,6 +245,7 @@ void smc_reset(smc_t *s)
     s->theta = 0;
     s->lag = 0;
     s->lag_valid = false;
+    s->startup = SMC_STARTUP_WINDOWS;
     s->omega_raw = 0;
     s->omega = 0;
     smc_speed_refresh(s);
@@ -257,6 +260,7 @@ void smc_preset_speed(smc_t *s, q15_t omega)
     s->omega = omega;
     s->dtheta_sum = 0;
     s->count = 0U;
+    s->startup = SMC_STARTUP_WINDOWS;
     smc_speed_refresh(s);
     s->theta = angle_add(s->theta_raw, s->comp);
 }
@@ -323,11 +327,16 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
             angle_q15_t lag = angle_sub(
                 smc_atan2_32((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state), s->theta_raw);
             int32_t dl = s->lag_valid ? (int32_t)angle_sub(lag, s->lag) : 0;
+            int32_t dz;
+            if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {
+                s->startup = SMC_STARTUP_WINDOWS; /* a transient: track it closely */
+            }
+            dz = (s->startup > 0U) ? (int32_t)0 : (int32_t)SMC_LAG_DEADZONE;
             s->lag_valid = true;
-            if (dl > SMC_LAG_DEADZONE) {
-                s->dtheta_sum += dl - SMC_LAG_DEADZONE;
-            } else if (dl < -SMC_LAG_DEADZONE) {
-                s->dtheta_sum += dl + SMC_LAG_DEADZONE;
+            if (dl > dz) {
+                s->dtheta_sum += dl - dz;
+            } else if (dl < -dz) {
+                s->dtheta_sum += dl + dz;
             }
             s->lag = lag;
         }
@@ -336,6 +345,9 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
         s->dtheta_sum = 0;
         s->count = 0U;
         smc_speed_refresh(s);
+        if (s->startup > 0U) {
+            s->startup--;
+        }
     }
 
     s->theta = angle_add(s->theta_raw, s->comp);

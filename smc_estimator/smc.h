@@ -307,12 +307,16 @@ typedef struct {
     q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
     bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
     bool lag_valid;        /* lag holds a measurement (false until the first window end) */
+    uint8_t startup;       /* windows left in the start-up phase (note 8) */
 } smc_t;
 
 /* Fixed design constants of the speed path (notes 7-8). */
-#define SMC_LAG_DEADZONE    1024 /* lag steps below 1024 counts (5.6 deg) per window are noise */
-#define SMC_K_LPF_SHIFT     2    /* K follows the speed through a filter 4 times slower */
-#define SMC_EMF_RAW_K_SHIFT 2    /* the model back-EMF is smoothed with 4 K */
+#define SMC_LAG_DEADZONE      1024 /* settled: lag steps below 5.6 deg per window are noise */
+#define SMC_LAG_TRANSIENT     5461 /* a lag step above 30 deg starts a tracking phase */
+#define SMC_STARTUP_WINDOWS   32U  /* tracking phase after reset, preset or a transient */
+#define SMC_K_LPF_SHIFT       2U   /* settled: K follows the speed 4 times slower */
+#define SMC_K_LPF_SHIFT_START 1U   /* tracking: 2 times slower */
+#define SMC_EMF_RAW_K_SHIFT   2    /* the model back-EMF is smoothed with 4 K */
 
 /* Band of emf_ratio (Q12) inside which the back-EMF counts as consistent
  * with the speed: 0.5 .. 2.0 of the expected amplitude. */
