@@ -115,6 +115,26 @@ q15_t mc_pot_to_torque(int16_t pot)
     return (q15_t)((p * MC_IQ_MAX_Q15) >> 15);
 }
 
+uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
+{
+    cnt[0] = (q15_abs_sat(in->speed) < MC_STALL_SPEED_Q15) ? (uint16_t)(cnt[0] + 1U) : 0U;
+    bool emf_bad = (in->emf_ratio > MC_STALL_BEMF_HI_Q12) ||
+                   (!in->fw_active && in->emf_ratio < MC_STALL_BEMF_LO_Q12);
+    cnt[1] = emf_bad ? (uint16_t)(cnt[1] + 1U) : 0U;
+    bool track_bad = q15_abs_sat(in->speed_err) > MC_STALL_SPEED_ERR_Q15 && in->saturated;
+    cnt[2] = track_bad ? (uint16_t)(cnt[2] + 1U) : 0U;
+    if (cnt[0] >= MC_STALL_TICKS) {
+        return MC_FAULT_STALL_SPEED;
+    }
+    if (cnt[1] >= MC_STALL_TICKS) {
+        return MC_FAULT_STALL_BEMF;
+    }
+    if (cnt[2] >= MC_STALL_TRACK_TICKS) {
+        return MC_FAULT_STALL_TRACK;
+    }
+    return MC_FAULT_NONE;
+}
+
 /* ---- the mailbox ------------------------------------------------------------- */
 
 static bool mc_take(mc_t *mc, mc_request_t r)
@@ -297,30 +317,20 @@ static bool mc_speed_loop(mc_t *mc)
 #endif
 
     /* Stall / loss of synchronisation (note 2). */
-    q15_t aw = q15_abs_sat(w);
-    uint16_t *c = mc->stall_cnt;
-    c[0] = (aw < MC_STALL_SPEED_Q15) ? (uint16_t)(c[0] + 1U) : 0U;
-    q15_t ratio = smc_emf_ratio(&mc->smc);
-    bool fw_active = q15_abs_sat(mc->speed_ref) > mc_fw_params.speed_nominal;
-    bool emf_bad = (ratio > MC_STALL_BEMF_HI_Q12) || (!fw_active && ratio < MC_STALL_BEMF_LO_Q12);
-    c[1] = emf_bad ? (uint16_t)(c[1] + 1U) : 0U;
+    mc_stall_in_t si;
+    si.speed = w;
+    si.emf_ratio = smc_emf_ratio(&mc->smc);
+    si.fw_active = q15_abs_sat(mc->speed_ref) > mc_fw_params.speed_nominal;
 #if defined(TORQUEMODE)
-    c[2] = 0U;
+    si.speed_err = 0;
+    si.saturated = false;
 #else
-    q15_t err = q15_abs_sat(q15_sub_sat(mc->speed_ref, w));
-    bool saturated = (mc->i_ref.q >= mc->pi_w.p.out_max) || (mc->i_ref.q <= mc->pi_w.p.out_min);
-    c[2] = (err > MC_STALL_SPEED_ERR_Q15 && saturated) ? (uint16_t)(c[2] + 1U) : 0U;
+    si.speed_err = q15_sub_sat(mc->speed_ref, w);
+    si.saturated = (mc->i_ref.q >= mc->pi_w.p.out_max) || (mc->i_ref.q <= mc->pi_w.p.out_min);
 #endif
-    if (c[0] >= MC_STALL_TICKS) {
-        mc_fault(mc, MC_FAULT_STALL_SPEED);
-        return false;
-    }
-    if (c[1] >= MC_STALL_TICKS) {
-        mc_fault(mc, MC_FAULT_STALL_BEMF);
-        return false;
-    }
-    if (c[2] >= MC_STALL_TRACK_TICKS) {
-        mc_fault(mc, MC_FAULT_STALL_TRACK);
+    uint16_t code = mc_stall_check(mc->stall_cnt, &si);
+    if (code != MC_FAULT_NONE) {
+        mc_fault(mc, code);
         return false;
     }
     return true;

@@ -40,4 +40,25 @@ q15_t mc_pot_to_speed(int16_t pot);
  * pot * MC_IQ_MAX_Q15 / 32768, floor; negative readings count as 0. */
 q15_t mc_pot_to_torque(int16_t pot);
 
+/* Inputs of one stall check (one speed-loop run in CLOSED_LOOP). */
+typedef struct {
+    q15_t speed;     /* estimated speed, Q15 of MC_SPEED_FULLSCALE_RPM */
+    q15_t emf_ratio; /* estimator back-EMF / expected at that speed, Q12 (4096 = 1) */
+    bool fw_active;  /* the speed reference is in field weakening */
+    q15_t speed_err; /* speed reference - estimated speed, Q15 speed */
+    bool saturated;  /* the speed PI output is at a limit */
+} mc_stall_in_t;
+
+/*
+ * The stall / loss-of-synchronisation detector. cnt[0..2] count consecutive
+ * runs of each condition (reset when it clears):
+ *   [0] |speed| < MC_STALL_SPEED_Q15                       -> STALL_SPEED
+ *   [1] emf_ratio > MC_STALL_BEMF_HI_Q12, or, outside field weakening,
+ *       emf_ratio < MC_STALL_BEMF_LO_Q12                   -> STALL_BEMF
+ *   [2] |speed_err| > MC_STALL_SPEED_ERR_Q15 and saturated -> STALL_TRACK
+ * [0] and [1] trip at MC_STALL_TICKS consecutive runs, [2] at
+ * MC_STALL_TRACK_TICKS. Returns the fault code, MC_FAULT_NONE if none.
+ */
+uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in);
+
 #endif /* MC_INTERNAL_H */

@@ -571,6 +571,89 @@ static void test_duty_to_voltage_should_match_the_double_precision_reconstructio
     assert_int_equal(z.alpha, 0);
 }
 
+/* ---- stall detector thresholds --------------------------------------------------------------- */
+
+static mc_stall_in_t healthy(void)
+{
+    mc_stall_in_t in;
+    in.speed = MC_Q15_RPM(1500.0);
+    in.emf_ratio = 4096;
+    in.fw_active = false;
+    in.speed_err = 0;
+    in.saturated = false;
+    return in;
+}
+
+/* Runs the detector n times with `bad`, then once healthy; returns the
+ * first fault code seen. */
+static uint16_t run_stall(const mc_stall_in_t *bad, unsigned n)
+{
+    uint16_t cnt[3] = {0U, 0U, 0U};
+    mc_stall_in_t ok = healthy();
+    for (unsigned k = 0; k < n; k++) {
+        uint16_t code = mc_stall_check(cnt, bad);
+        if (code != MC_FAULT_NONE) {
+            return code;
+        }
+    }
+    return mc_stall_check(cnt, &ok);
+}
+
+static void
+test_stall_speed_should_trip_below_the_threshold_after_the_persistence_time(void **state)
+{
+    (void)state;
+    mc_stall_in_t in = healthy();
+    for (int sign = -1; sign <= 1; sign += 2) {
+        in.speed = (q15_t)(sign * (MC_STALL_SPEED_Q15 - 1));
+        assert_int_equal(run_stall(&in, MC_STALL_TICKS), MC_FAULT_STALL_SPEED);
+        assert_int_equal(run_stall(&in, MC_STALL_TICKS - 1U), MC_FAULT_NONE);
+        in.speed = (q15_t)(sign * MC_STALL_SPEED_Q15); /* at the threshold: not below */
+        assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+    }
+    printf("measured: stall speed %d LSB = %.0f rpm for %u speed-loop runs = %.0f ms\n",
+           MC_STALL_SPEED_Q15, MC_STALL_SPEED_Q15 * MC_SPEED_FULLSCALE_RPM / 32768.0,
+           (unsigned)MC_STALL_TICKS, 1000.0 * MC_STALL_TICKS / MC_SPEED_LOOP_HZ);
+}
+
+static void test_stall_bemf_should_trip_outside_its_band_and_ignore_the_low_side_in_fw(void **state)
+{
+    (void)state;
+    mc_stall_in_t in = healthy();
+    in.emf_ratio = (q15_t)(MC_STALL_BEMF_LO_Q12 - 1);
+    assert_int_equal(run_stall(&in, MC_STALL_TICKS), MC_FAULT_STALL_BEMF);
+    assert_int_equal(run_stall(&in, MC_STALL_TICKS - 1U), MC_FAULT_NONE);
+    in.fw_active = true; /* weakened flux: a low ratio is expected */
+    assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+    in.fw_active = false;
+    in.emf_ratio = MC_STALL_BEMF_LO_Q12;
+    assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+    in.emf_ratio = MC_STALL_BEMF_HI_Q12;
+    assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+    in.emf_ratio = (q15_t)(MC_STALL_BEMF_HI_Q12 + 1);
+    in.fw_active = true;
+    assert_int_equal(run_stall(&in, MC_STALL_TICKS), MC_FAULT_STALL_BEMF);
+    assert_int_equal(run_stall(&in, MC_STALL_TICKS - 1U), MC_FAULT_NONE);
+}
+
+static void
+test_stall_track_should_need_both_the_speed_error_and_a_saturated_speed_loop(void **state)
+{
+    (void)state;
+    mc_stall_in_t in = healthy();
+    for (int sign = -1; sign <= 1; sign += 2) {
+        in.speed_err = (q15_t)(sign * (MC_STALL_SPEED_ERR_Q15 + 1));
+        in.saturated = true;
+        assert_int_equal(run_stall(&in, MC_STALL_TRACK_TICKS), MC_FAULT_STALL_TRACK);
+        assert_int_equal(run_stall(&in, MC_STALL_TRACK_TICKS - 1U), MC_FAULT_NONE);
+        in.saturated = false;
+        assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+        in.saturated = true;
+        in.speed_err = (q15_t)(sign * MC_STALL_SPEED_ERR_Q15);
+        assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -614,6 +697,12 @@ int main(void)
             test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band, setup),
         cmocka_unit_test_setup(
             test_duty_to_voltage_should_match_the_double_precision_reconstruction, setup),
+        cmocka_unit_test(
+            test_stall_speed_should_trip_below_the_threshold_after_the_persistence_time),
+        cmocka_unit_test(
+            test_stall_bemf_should_trip_outside_its_band_and_ignore_the_low_side_in_fw),
+        cmocka_unit_test(
+            test_stall_track_should_need_both_the_speed_error_and_a_saturated_speed_loop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
