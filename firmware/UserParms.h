@@ -39,6 +39,12 @@
 #include "motors/motor_hurst.h"
 #endif
 
+/* Motor-profile values added after the first profiles were written, with
+ * defaults that keep an older profile's behaviour. */
+#ifndef MOTOR_SPEED_KP_FULL_RPM
+#define MOTOR_SPEED_KP_FULL_RPM MOTOR_SPEED_MIN_RPM /* no low-speed gain schedule */
+#endif
+
 /* ---- operating mode -------------------------------------------------------- */
 
 /* TORQUEMODE: the pot (or mc_set_reference) sets the Iq reference directly,
