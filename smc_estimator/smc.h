@@ -59,8 +59,8 @@
  *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
  *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
  *
- * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 702 min,
- * 785 mean, 2047 max (the window end); state 72 bytes and parameters 38
+ * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 515 min,
+ * 786 mean, 2064 max (the window end); state 73 bytes and parameters 38
  * bytes with 16-bit pointers (avr-gcc, as on the dsPIC). Per period: 2 model
  * steps, 2 switches, 6 first-order updates (32-bit states) and one CORDIC;
  * no division, no float. Once every IRP_PERCALC periods: one more CORDIC
@@ -459,7 +459,7 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *    sliding condition z = Ebar - e, which gives D1 = 2K + (1 - K) u, B2 = 0
  *    and no q^-1 or ZOH term (the relay's switching lag and the ZOH half
  *    period cancel to within about a degree in simulation). The chatter
- *    leaves 2 to 12 degrees of ripple and bias (test_smc.c); the lag
+ *    leaves 2 to 13 degrees of ripple and bias (test_smc.c); the lag
  *    correction of note 8 is off in this mode.
  *
  * 5. Choosing Kslide and MaxSMCError. Recommended: MaxSMCError =
@@ -489,20 +489,26 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *    x / K: a speed error changes K, which turns theta_raw, which the next
  *    window reads as speed (a positive loop of gain about 0.9 at the stages'
  *    time constant). K therefore follows |omega| through a further filter
- *    4 times slower (SMC_K_LPF_SHIFT); since comp uses the actual K and the
- *    estimated x separately, a lagging K costs no steady accuracy.
+ *    4 times slower (SMC_K_LPF_SHIFT; 2 times in the tracking phase of note
+ *    8); since comp uses the actual K and the estimated x separately, a
+ *    lagging K costs no steady accuracy.
  *
  * 8. Lag correction of the speed. In the linear band the correction gives
  *    the back-EMF without any filter: z(n) - p z(n-1) + c e(n-1) =
  *    c Ebar(n-1) (note 3). It is smoothed with 4 K (SMC_EMF_RAW_K_SHIFT)
  *    and at each window end its angle minus theta_raw is the lag the stages
  *    have at that moment, transients included. The change of that lag over
- *    the window, beyond a dead zone of SMC_LAG_DEADZONE (5.6 degrees, above
- *    the noise of a 10-bit ADC), is added to the window's angle sum: it
- *    removes the stages' transients (start-up from a wrong state, K changes)
- *    from the speed: worst convergence from random initial states at 1000
- *    and 3500 rpm 25 and 15 ms, against 35 and 36 ms without it, while the
- *    steady-state speed keeps the smoothness of theta_raw.
+ *    the window is added to the window's angle sum, which removes the
+ *    stages' transients (a wrong initial state, K moving) from the speed.
+ *    Its noise is that of an unfiltered back-EMF, so it is used in full only
+ *    in a tracking phase of SMC_STARTUP_WINDOWS windows, started by
+ *    smc_reset, smc_preset_speed or a lag step above SMC_LAG_TRANSIENT
+ *    (30 degrees), during which K also follows the speed faster
+ *    (SMC_K_LPF_SHIFT_START). Settled, only the part beyond a dead zone of
+ *    SMC_LAG_DEADZONE (5.6 degrees, above the noise of a 10-bit ADC) is
+ *    added, and the speed keeps the smoothness of theta_raw. Measured
+ *    (Hurst, worst of 24 initial states): 24.6 ms to 2 degrees at 500 rpm,
+ *    15.1 ms at 1000 rpm; without the correction (trial run) 56 and 35 ms.
  *
  * 9. Validity. valid = |omega| >= omega_min and, when Ke is given,
  *    0.5 <= emf_ratio <= 2. Below the minimum speed K stays at its floor,
