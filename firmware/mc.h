@@ -111,12 +111,10 @@ typedef enum {
 #define MC_FAULT_OVERVOLTAGE  3U /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */
 #define MC_FAULT_HARDWARE     4U /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
 #define MC_FAULT_START_FAILED 5U /* no valid estimate at the end of the ramp, retries used up */
-#define MC_FAULT_STALL_SPEED  6U /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, MC_STALL_TIME_S \
-                                  */
-#define MC_FAULT_STALL_BEMF 7U   /* closed loop: back-EMF inconsistent with speed, MC_STALL_TIME_S \
-                                  */
-#define MC_FAULT_STALL_TRACK 8U  /* closed loop: speed error with the speed PI saturated */
-#define MC_FAULT_OFFSET      9U  /* current offset out of range at calibration (amplifier) */
+#define MC_FAULT_STALL_SPEED  6U /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, persisting */
+#define MC_FAULT_STALL_BEMF   7U /* closed loop: back-EMF inconsistent with speed, persisting */
+#define MC_FAULT_STALL_TRACK  8U /* closed loop: speed error with the speed PI saturated */
+#define MC_FAULT_OFFSET       9U /* current offset out of range at calibration (amplifier) */
 
 /* ---- status ---------------------------------------------------------------- */
 
