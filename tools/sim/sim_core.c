@@ -86,6 +86,60 @@ double simcore_pot_for_rpm(double rpm)
     return pot;
 }
 
+/* A motor or board the simulator has no profile for (one written by
+ * tools/tune, say) is simulated with the firmware's own data for it, which
+ * the core build sees through UserParms.h; what the firmware does not know
+ * (inertia, friction, amplifier offsets) is assumed, and said so. */
+static const sim_motor_profile_t *motor_from_firmware(const char *name)
+{
+#if defined(MOTOR_RS_OHM) && defined(MOTOR_LS_H) && defined(MOTOR_KE_VPK_LL_PER_KRPM)
+    static sim_motor_profile_t mp;
+    mp.name = name;
+    mp.alias = NULL;
+    mp.desc = "firmware profile data, J 1e-5 kg m^2 and friction assumed";
+    mp.rs_ohm = (double)MOTOR_RS_OHM;
+    mp.l_h = (double)MOTOR_LS_H;
+    mp.ke_ll = (double)MOTOR_KE_VPK_LL_PER_KRPM;
+    mp.pole_pairs = (int)MOTOR_POLE_PAIRS;
+    mp.j_kgm2 = 1e-5;
+    mp.b_nms = 1e-5;
+    mp.coulomb_nm = 1e-3;
+    mp.rated_a = (double)MOTOR_CURRENT_MAX_A;
+    mp.rated_rpm = (double)MOTOR_SPEED_NOMINAL_RPM;
+    mp.max_rpm = (double)MOTOR_SPEED_FW_MAX_RPM;
+    fprintf(stderr,
+            "sim: no simulator profile '%s': simulating the firmware's motor data "
+            "(inertia and friction assumed)\n",
+            name);
+    return &mp;
+#else
+    (void)name;
+    return NULL;
+#endif
+}
+
+static const sim_board_profile_t *board_from_firmware(const char *name)
+{
+#if defined(BOARD_VBUS_NOMINAL_V) && defined(BOARD_DEADTIME_NS)
+    static sim_board_profile_t bp;
+    bp.name = name;
+    bp.desc = "firmware board data, amplifier offsets and noise assumed";
+    bp.vbus_v = (double)BOARD_VBUS_NOMINAL_V;
+    bp.deadtime_s = (double)BOARD_DEADTIME_NS * 1e-9;
+    bp.pwm_hz = (double)PWM_FREQUENCY_HZ;
+    bp.i_fs_a = (double)BOARD_I_FULLSCALE_A;
+    bp.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
+    bp.offset_a_codes = 6.0;
+    bp.offset_b_codes = -4.0;
+    bp.noise_codes = 1.0;
+    fprintf(stderr, "sim: no simulator profile '%s': simulating the firmware's board data\n", name);
+    return &bp;
+#else
+    (void)name;
+    return NULL;
+#endif
+}
+
 int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
 {
     sim_rig_params_t rp;
@@ -93,6 +147,12 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     s->cfg = *cfg;
     s->mp = sim_motor_profile(cfg->motor);
     s->bp = sim_board_profile(cfg->board);
+    if (s->mp == NULL) {
+        s->mp = motor_from_firmware(cfg->motor);
+    }
+    if (s->bp == NULL) {
+        s->bp = board_from_firmware(cfg->board);
+    }
     if (s->mp == NULL || s->bp == NULL) {
         fprintf(stderr, "sim: unknown %s '%s' (%s)\n", (s->mp == NULL) ? "motor" : "board",
                 (s->mp == NULL) ? cfg->motor : cfg->board, sim_profiles_list());
