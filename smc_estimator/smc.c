@@ -1,5 +1,4 @@
-/* smc.c - sliding-mode current observer: rotor angle and speed from alpha/beta currents and
- * voltages. */
+/* smc.c - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages. */
 #include "smc.h"
 
 #include "cordic.h"

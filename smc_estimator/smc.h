@@ -1,5 +1,4 @@
-/* smc.h - sliding-mode current observer: rotor angle and speed from alpha/beta currents and
- * voltages. */
+/* smc.h - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages. */
 #ifndef SMC_H
 #define SMC_H
 

@@ -1,5 +1,4 @@
-/* pmsm_ideal.c - an ideal PMSM and sensored drive in double precision, producing what an estimator
- * sees. */
+/* pmsm_ideal.c - ideal PMSM and sensored drive in double precision: what an estimator sees. */
 #include "pmsm_ideal.h"
 
 #include <math.h>

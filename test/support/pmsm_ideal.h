@@ -1,5 +1,4 @@
-/* pmsm_ideal.h - an ideal PMSM and sensored drive in double precision, producing what an estimator
- * sees. */
+/* pmsm_ideal.h - ideal PMSM and sensored drive in double precision: what an estimator sees. */
 #ifndef PMSM_IDEAL_H
 #define PMSM_IDEAL_H
 
