@@ -17,6 +17,7 @@ COV_DIR  := $(BUILD)/cov
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
+	@echo "make sim PTY=1    the same motor behind the monitor protocol on a pty, for tools/scope"
 	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, coverage, sanitized and plain tests"
 	@echo "make unit         build and run the host tests (plain build)"
 	@echo "make asan         build and run the host tests under ASan + UBSan"
@@ -67,8 +68,9 @@ format:
 bench: build
 	@tools/bench/run $(HOST_DIR) $(BUILD)/bench
 
+# PTY=1: no scenario, the live data monitor on a pseudo-terminal for tools/scope (docs/monitor.md).
 sim: bootstrap build
-	@tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD)
+	@$(if $(PTY),$(HOST_DIR)/tools/sim/sim --pty --motor $(MOTOR) --board $(BOARD),tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD))
 
 firmware:
 	@+FIRMWARE_OUT=$(BUILD)/firmware tools/firmware_build $(if $(findstring n,$(firstword -$(MAKEFLAGS))),--print) $(BOARD) $(MOTOR)

@@ -32,6 +32,8 @@ def parse_args(argv):
     ap.add_argument("--snapshot", action="store_true",
                     help="one full-rate snapshot into the device buffer instead of a stream")
     ap.add_argument("--start-rpm", type=float, help="set the speed reference (remote) and start the motor")
+    ap.add_argument("--from-start", action="store_true",
+                    help="headless: start recording first, then start the motor (records the start-up)")
     ap.add_argument("--settle", type=float, default=0.5,
                     help="with --start-rpm: seconds to wait after the reference is reached (default 0.5)")
     ap.add_argument("--start-timeout", type=float, default=20.0, help="seconds to reach closed loop")
@@ -100,7 +102,7 @@ def start_motor(args, mon):
     time.sleep(args.settle)
 
 
-def record(args, mon, names, decim):
+def record(args, mon, names, decim, after_start=None):
     """Headless recording: returns (index list, raw rows)."""
     f_pwm = mon.info["f_pwm"]
     mon.select(names, decim)
@@ -111,6 +113,8 @@ def record(args, mon, names, decim):
         mon.start(mp.MODE_SNAPSHOT, mp.TRIG_NOW)
     else:
         mon.start(mp.MODE_STREAM, mp.TRIG_NOW)
+    if after_start is not None:
+        after_start()
     t_end = time.monotonic() + args.duration * 3 + 10
     done = False
     while not done and time.monotonic() < t_end:
@@ -271,10 +275,16 @@ def main(argv=None):
             name, _, val = s.partition("=")
             mon.set_param(name, int(val, 0))
         decim = choose_decim(args, mon, len(names))
+        go = None
         if args.start_rpm is not None:
-            start_motor(args, mon)
+            if args.from_start and args.headless:
+                def go():
+                    mon.set_speed(args.start_rpm)
+                    mon.motor(mp.MOTOR_START)
+            else:
+                start_motor(args, mon)
         if args.headless:
-            idx, rows = record(args, mon, names, decim)
+            idx, rows = record(args, mon, names, decim, go)
             f_pwm = mon.info["f_pwm"]
             print(f"scope: {len(rows)} samples of {','.join(names)} every {decim} periods "
                   f"({f_pwm / decim:g} Hz), {len(rows) * decim / f_pwm:.3f} s")
