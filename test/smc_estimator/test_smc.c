@@ -845,9 +845,64 @@ static void test_smc_update_should_saturate_at_the_input_extremes(void **state)
     }
 }
 
+static void
+test_pmsm_ideal_should_track_its_current_reference_with_the_steady_state_voltage(void **state)
+{
+    /* The harness itself: at 2000 rpm (no field weakening) the sampled
+     * current is iq j exp(j theta) to within the Q15 rounding, and the fed
+     * voltage matches the phasor (R + j w L) I + j w psi exp(j theta) taken at
+     * mid-period (the ZOH average) within 0.1 % of its amplitude. */
+    bench_t b = bench_hurst();
+    pmsm_ideal_t m;
+    err_stats_t ei;
+    err_stats_t ev;
+    long n;
+    double w = 2000.0 / 60.0 * 2.0 * M_PI * HURST_PP;
+    double prev_theta = 0.0;
+    (void)state;
+    err_stats_init(&ei);
+    err_stats_init(&ev);
+    pmsm_ideal_init(&m, &b.motor, &b.drive, 2000.0, 0.3);
+    for (n = 0; n < 2000; n++) {
+        ab_q15_t i;
+        ab_q15_t v;
+        double th;
+        pmsm_ideal_step(&m, &i, &v);
+        th = pmsm_ideal_theta(&m);
+        {
+            double ia = -0.5 * sin(th) / HURST_IFS * 32768.0;
+            double ib = 0.5 * cos(th) / HURST_IFS * 32768.0;
+            err_stats_add(&ei, hypot(i.alpha - ia, i.beta - ib), th);
+        }
+        if (n > 0) {
+            /* v_fed(n) was applied over [t_(n-1), t_n]: phasor at mid-period. */
+            double thm = prev_theta + 0.5 * w * TS;
+            double sn = sin(thm);
+            double cs = cos(thm);
+            double iq = 0.5;
+            /* I = iq j e^(j thm); V = (R + j w L) I + j w psi e^(j thm). */
+            double ire = -iq * sn;
+            double iim = iq * cs;
+            double vre = HURST_R * ire - w * HURST_L * iim - w * b.motor.psi_vs * sn;
+            double vim = HURST_R * iim + w * HURST_L * ire + w * b.motor.psi_vs * cs;
+            double amp = hypot(vre, vim);
+            double got_re = v.alpha / 32768.0 * HURST_VFS;
+            double got_im = v.beta / 32768.0 * HURST_VFS;
+            err_stats_add(&ev, hypot(got_re - vre, got_im - vim) / amp * 100.0, thm);
+        }
+        prev_theta = th;
+    }
+    err_stats_print("pmsm_ideal current vs reference", &ei, "LSB");
+    err_stats_print("pmsm_ideal voltage vs steady-state phasor", &ev, "%");
+    assert_true(ei.max_abs <= 1.0);
+    assert_true(ev.max_abs <= 0.1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(
+            test_pmsm_ideal_should_track_its_current_reference_with_the_steady_state_voltage),
         cmocka_unit_test(test_smc_params_should_match_their_double_precision_definitions),
         cmocka_unit_test(test_smc_phase_lead_should_match_the_transfer_function_in_double),
         cmocka_unit_test(
