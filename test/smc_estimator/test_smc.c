@@ -130,6 +130,9 @@ typedef struct {
     double err_mean;  /* mean angle error, deg */
     double speed_max; /* max |speed error| / speed, % */
     double conv_ms;   /* last instant |error| > 2 deg, from the start, ms */
+    long invalid;     /* periods of the measurement with valid == false */
+    double ratio_min; /* smallest and largest emf_ratio seen (1 = as Ke predicts) */
+    double ratio_max;
 } steady_t;
 
 /* Run at rpm from a reset estimator: settle_ms, then measure over one
@@ -145,6 +148,7 @@ static steady_t run_steady(const smc_params_t *p, const bench_t *b, double rpm, 
     long n_meas = (long)(turn_s / TS) + 1;
     double sum = 0.0;
     memset(&r, 0, sizeof r);
+    r.ratio_min = 1e9;
     pmsm_ideal_init(&m, &b->motor, &b->drive, rpm, 0.4);
     smc_init(&s, p);
     for (n = 0; n < n_settle + n_meas; n++) {
@@ -159,6 +163,10 @@ static steady_t run_steady(const smc_params_t *p, const bench_t *b, double rpm, 
         }
         if (n >= n_settle) {
             double se = fabs(omega_rpm(&s, b) - rpm) / fabs(rpm) * 100.0;
+            double ratio = (double)smc_emf_ratio(&s) / 4096.0;
+            r.invalid += smc_valid(&s) ? 0 : 1;
+            r.ratio_min = (ratio < r.ratio_min) ? ratio : r.ratio_min;
+            r.ratio_max = (ratio > r.ratio_max) ? ratio : r.ratio_max;
             sum += e;
             if (fabs(e) > r.err_max) {
                 r.err_max = fabs(e);
@@ -186,15 +194,18 @@ test_smc_should_hold_the_angle_within_2_degrees_and_the_speed_within_1_percent_f
     err_stats_init(&ang);
     err_stats_init(&spd);
     printf("measured: hurst steady state (settle 150 ms, then one mechanical turn)\n");
-    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms\n");
+    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms   "
+           "emf ratio\n");
     for (k = 0; k < sizeof rpms / sizeof rpms[0]; k++) {
         steady_t r = run_steady(&hurst, &b, rpms[k], 150.0);
-        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f\n", rpms[k],
-               r.err_max, r.err_mean, r.speed_max, r.conv_ms);
+        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f     "
+               "%.2f..%.2f\n",
+               rpms[k], r.err_max, r.err_mean, r.speed_max, r.conv_ms, r.ratio_min, r.ratio_max);
         err_stats_add(&ang, r.err_max, rpms[k]);
         err_stats_add(&spd, r.speed_max, rpms[k]);
         assert_true(r.err_max <= 2.0);
         assert_true(r.speed_max <= 1.0);
+        assert_int_equal(r.invalid, 0);
     }
     err_stats_print("hurst angle error over 500..5300 rpm", &ang, "deg");
     err_stats_print("hurst speed error over 500..5300 rpm", &spd, "%");
@@ -210,14 +221,17 @@ test_smc_should_hold_the_angle_within_2_degrees_on_a_2_pole_pair_motor_up_to_170
     (void)state;
     err_stats_init(&ang);
     printf("measured: hispeed (2 pp, 1.2 ohm, 4 mH, 10 V/krpm, 320 V) steady state\n");
-    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms\n");
+    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms   "
+           "emf ratio\n");
     for (k = 0; k < sizeof rpms / sizeof rpms[0]; k++) {
         steady_t r = run_steady(&hispeed, &b, rpms[k], 60.0);
-        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f\n", rpms[k],
-               r.err_max, r.err_mean, r.speed_max, r.conv_ms);
+        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f     "
+               "%.2f..%.2f\n",
+               rpms[k], r.err_max, r.err_mean, r.speed_max, r.conv_ms, r.ratio_min, r.ratio_max);
         err_stats_add(&ang, r.err_max, rpms[k]);
         assert_true(r.err_max <= 2.0);
         assert_true(r.speed_max <= 1.0);
+        assert_int_equal(r.invalid, 0);
     }
     err_stats_print("hispeed angle error over 2000..17000 rpm", &ang, "deg");
 }
