@@ -156,6 +156,38 @@ test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation(void
     assert_true(ang.max_abs < 20.0);
 }
 
+static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target(void **state)
+{
+    (void)state;
+    start_at(1000.0);
+    run(1.0);
+    set_pot_rpm(3000.0);
+    int16_t prev = b.st.speed_ref;
+    long runs = 0;
+    for (long k = 0; k < PERIODS(3.0); k++) {
+        mc_bench_step(&b);
+        int16_t d = (int16_t)(b.st.speed_ref - prev);
+        /* At most one step per speed-loop run; a full step while the
+         * target (the pot, with its ADC noise) is more than a step away. */
+        assert_true(abs(d) <= MC_SPEED_RAMP_STEP);
+        if (b.st.speed_target - prev > MC_SPEED_RAMP_STEP && b.mc.speed_div == 0U) {
+            assert_int_equal(d, MC_SPEED_RAMP_STEP);
+            runs++;
+        }
+        prev = b.st.speed_ref;
+    }
+    double rate = (double)runs * MC_SPEED_RAMP_STEP * MC_SPEED_FULLSCALE_RPM / 32768.0 /
+                  ((double)runs / MC_SPEED_LOOP_HZ);
+    printf("measured: speed reference ramp %.0f rpm/s (MC_SPEED_RAMP_RPM_PER_S = %.0f), %ld runs\n",
+           rate, MC_SPEED_RAMP_RPM_PER_S, runs);
+    /* Arrived: within the pot's ADC noise (one pot code moves the target
+     * by about 19 LSB of speed; 64 LSB = 16 rpm). The rate is the step
+     * rounded to whole Q15 counts: 4 LSB per run = 977 rpm/s for 1000. */
+    assert_true(abs(b.st.speed_ref - b.st.speed_target) <= 64);
+    assert_true(fabs(rate - MC_SPEED_RAMP_RPM_PER_S) < 0.03 * MC_SPEED_RAMP_RPM_PER_S);
+    assert_true(fabs(b.rpm_sample - mc_rpm_of_q15(b.st.speed_target)) < 30.0);
+}
+
 /* ---- voltage: ripple compensation and circle limit ------------------------------- */
 
 static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(void **state)
@@ -363,6 +395,7 @@ int main(void)
         cmocka_unit_test(test_core_should_reach_top_speed_with_field_weakening_from_the_table),
         cmocka_unit_test(
             test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation),
+        cmocka_unit_test(test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target),
         cmocka_unit_test(test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus),
         cmocka_unit_test(test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate),
         cmocka_unit_test(test_stall_should_fault_within_50_ms_when_the_rotor_locks),
