@@ -7,8 +7,29 @@
  * interrupt, whose vector (hal/dspic33f/hal_isr.c) reads each conversion
  * set, runs mc_step() and writes the duties, once per PWM period. The main
  * loop is the slow rest (app.h): buttons, pot, LEDs, UART, fault latch.
- * Built only by `make firmware` / MPLAB X; the host tests cover app.c.
+ *
+ * The UART speaks the live data monitor's protocol (firmware/monitor,
+ * docs/monitor.md, host side tools/scope): its recorder observes the motor
+ * from the ADC interrupt, after the duties are written. Build with
+ * -DAPP_NO_MONITOR for the plain text status line of app.h instead (and
+ * 725 bytes less RAM).
+ *
+ * Built only by `make firmware` / MPLAB X; the host tests cover app.c, and
+ * test/hal's hostcc test links this file into the whole image.
  */
+
+#if !defined(APP_NO_MONITOR)
+#include "monitor/monitor_app.h"
+
+static monitor_t monitor;
+static app_uart_client_t monitor_client;
+
+/* The recorder, once per PWM period in the ADC interrupt (constant time). */
+static void monitor_observer(void *ctx, const mc_t *mc)
+{
+    (void)monitor_sample((monitor_t *)ctx, mc);
+}
+#endif
 
 static app_t app;
 
@@ -17,6 +38,12 @@ int main(void)
     hal_init();
     app_init(&app);
     hal_motor_start();
+#if !defined(APP_NO_MONITOR)
+    monitor_init(&monitor, hal_motor_core());
+    monitor_app_client(&monitor, &monitor_client);
+    app_set_uart_client(&app, &monitor_client);
+    hal_motor_observe(monitor_observer, &monitor);
+#endif
     for (;;) {
         app_poll(&app);
     }

@@ -114,4 +114,16 @@ void hal_motor_request(mc_request_t request);
 void hal_motor_set_reference(int16_t ref);
 void hal_motor_status(mc_status_t *status);
 
+/* An observer of the running motor (e.g. the data monitor's recorder,
+ * firmware/monitor): called by the ADC interrupt once per period, after the
+ * duties are written, so it never delays them. It runs in the interrupt:
+ * constant time, no waiting, no UART. NULL removes it. */
+typedef void (*hal_motor_observer_t)(void *ctx, const mc_t *mc);
+void hal_motor_observe(hal_motor_observer_t fn, void *ctx);
+
+/* The running motor itself, for code that calls the core's own lock-free
+ * entry points from the main loop (mc.h note 1), such as the monitor.
+ * Everything else uses the hal_motor_* calls above. */
+mc_t *hal_motor_core(void);
+
 #endif /* HAL_H */

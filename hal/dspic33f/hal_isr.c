@@ -1,4 +1,6 @@
 /* hal_isr.c - the ADC interrupt trampoline and the mailbox to the one running motor. */
+#include <stddef.h>
+
 #include <xc.h>
 
 #include "hal_dspic33f.h"
@@ -15,10 +17,15 @@
  */
 static mc_t motor;
 
+/* The optional observer (hal_motor_observe), read by the interrupt. */
+static hal_motor_observer_t observer;
+static void *observer_ctx;
+
 /* Vector of the ADC: the four results are ready (SMPI = 0, one interrupt
  * per special-event conversion set). Clearing the flag first means an
  * overrun (a step longer than a period) re-enters at once instead of
- * silently skipping a period. */
+ * silently skipping a period. The observer, if any, comes after the
+ * duties, so it can never delay them. */
 void HAL_ISR _ADC1Interrupt(void)
 {
     mc_adc_frame_t frame;
@@ -28,6 +35,9 @@ void HAL_ISR _ADC1Interrupt(void)
     hal_adc_read(&frame);
     mc_step(&motor, &frame, &out);
     hal_pwm_write(&out);
+    if (observer != NULL) {
+        observer(observer_ctx, &motor);
+    }
 }
 
 void hal_motor_start(void)
@@ -57,4 +67,19 @@ void hal_motor_status(mc_status_t *status)
     hal_irq_state_t s = hal_critical_enter();
     mc_status(&motor, status);
     hal_critical_exit(s);
+}
+
+/* Both words change together: masked, so the interrupt never sees a new
+ * function with the old context. */
+void hal_motor_observe(hal_motor_observer_t fn, void *ctx)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    observer = fn;
+    observer_ctx = ctx;
+    hal_critical_exit(s);
+}
+
+mc_t *hal_motor_core(void)
+{
+    return &motor;
 }

@@ -164,6 +164,35 @@ static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void 
     assert_int_equal(SRbits.IPL, 0);
 }
 
+static unsigned observed;
+
+static void observer_spy(void *ctx, const mc_t *mc)
+{
+    assert_ptr_equal(ctx, &observed);
+    check_same_motor((mc_t *)(uintptr_t)mc);
+    /* After the duties: the registers already hold this period's output. */
+    assert_int_equal(P1DC1, 7);
+    assert_int_equal(P1DC3, 9);
+    observed++;
+}
+
+static void test_adc_isr_should_call_the_observer_after_the_duties_until_removed(void **state)
+{
+    (void)state;
+    observed = 0;
+    hal_motor_observe(observer_spy, &observed);
+    assert_int_equal(SRbits.IPL, 0);
+    expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);
+    _ADC1Interrupt();
+    assert_int_equal(observed, 1);
+    assert_ptr_equal(hal_motor_core(), seen_mc); /* the main loop's handle is the ISR's motor */
+    hal_motor_observe(NULL, NULL);
+    setup(NULL);
+    expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);
+    _ADC1Interrupt();
+    assert_int_equal(observed, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -171,6 +200,8 @@ int main(void)
             test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties,
             setup),
         cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
+                               setup),
+        cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
                                setup),
         cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
                                setup),
