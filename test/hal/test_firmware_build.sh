@@ -166,6 +166,9 @@ EOS
   nm "$tmp/out/mclv.elf" | grep -q ' T _ADC1Interrupt$' || fail "no _ADC1Interrupt in the image"
   nm "$tmp/out/mclv.elf" | grep -q ' T main$' || fail "no main in the image"
   nm "$tmp/out/mclv.elf" | grep -q ' T monitor_sample$' || fail "no monitor in the image"
+  (cd "$root" && gcc -std=c99 -Wall -Wextra -Werror -Wconversion -Wsign-conversion -Wshadow \
+    -DAPP_NO_MONITOR -DMC_BOARD_MCLV -DMC_MOTOR_HURST -Ifoc -Ismc_estimator -Ifirmware \
+    -c firmware/main.c -o "$tmp/main_nomon.o") || fail "main.c does not compile with -DAPP_NO_MONITOR"
   timeout 1 "$tmp/out/mclv.elf" >/dev/null 2>&1
   rc=$?
   echo "measured: host-compiled image: $(grep -c ' -c ' "$tmp/stdout") objects linked, run 1 s -> exit $rc (124 = still looping)"
