@@ -50,6 +50,11 @@ typedef int16_t angle_q15_t;
 #define Q15_CAT(a, b)  Q15_CAT_(a, b)
 #if defined(__GNUC__) && ((__GNUC__ > 4) || (__GNUC__ == 4 && __GNUC_MINOR__ >= 6))
 #define Q15_STATIC_ASSERT(cond, msg) _Static_assert(cond, msg)
+#elif defined(__COUNTER__)
+/* __COUNTER__ (gcc >= 4.3, so every XC16) keeps two asserts on the same line
+ * number of two headers from declaring the same typedef. */
+#define Q15_STATIC_ASSERT(cond, msg)                                                               \
+    typedef char Q15_CAT(static_assert_failed_, __COUNTER__)[(cond) ? 1 : -1]
 #else
 #define Q15_STATIC_ASSERT(cond, msg)                                                               \
     typedef char Q15_CAT(static_assert_failed_line_, __LINE__)[(cond) ? 1 : -1]
