@@ -60,10 +60,10 @@ check-16bit:
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/check16/run $(BUILD)/check16
 
 lint:
-	@tools/lint
+	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint
 
 format:
-	@tools/lint --fix
+	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint --fix
 
 bench: build
 	@tools/bench/run $(HOST_DIR) $(BUILD)/bench
