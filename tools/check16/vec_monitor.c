@@ -159,13 +159,13 @@ static void vec_protocol(void)
 {
     uint8_t f[64];
     uint32_t k;
-    uint8_t i, n, t;
+    uint8_t i, t;
     emit_section("monitor_protocol");
     vec_seed(0x3071U);
     mc_init(&mc);
     monitor_init(&mon, &mc);
     for (k = 0; k < 3000UL; k++) {
-        n = build_request(f);
+        uint8_t n = build_request(f);
         emit_u8(n);
         emit_u8(n > 2U ? f[2] : 0U);
         emit_u16(crc_bytes(f, n));
