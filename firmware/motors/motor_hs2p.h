@@ -77,10 +77,12 @@
 #endif
 
 /* ---- start-up (AN1078 "Motor start-up") ------------------------------------------------------ */
-/* 4 periods of the rotor's swing about the lock angle, w = sqrt(p Kt I_lock / J) = 111 rad/s
- * (Kt = 82.70 mN m/A, J = 2e-05 kg m^2), within 0.1..2 s */
+/* 8 periods of the rotor's small swing about the lock angle, w = sqrt(p Kt I_lock / J) = 111
+ * rad/s (Kt = 82.70 mN m/A, J = 2e-05 kg m^2), within 0.1..2 s: a rotor that starts near the
+ * unstable point 180 deg away takes several small-swing periods to fall in (4 periods failed a
+ * start from 160 deg in the simulator) */
 #ifndef MOTOR_LOCK_TIME_S
-#define MOTOR_LOCK_TIME_S 0.23
+#define MOTOR_LOCK_TIME_S 0.46
 #endif
 /* 0.6 x the continuous current 2.5 A: pulls the rotor to the lock angle against cogging and
  * friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst) */
@@ -119,8 +121,11 @@
 #endif
 
 /* ---- current PI (d and q) -------------------------------------------------------------------- */
-/* current-loop bandwidth, 732 Hz: 70 deg phase margin with the loop delay 1.5 Ts (compute +
- * PWM update): wc = (90 - 70) deg / (1.5 Ts) */
+/* current-loop bandwidth, 732 Hz: min(delay: 70 deg phase margin with the 1.5 Ts loop delay,
+ * (90 - 70) deg / (1.5 Ts) = 4654 rad/s; noise: Kp x one ADC count (15.62 mA) within 2 % of
+ * the back-EMF at the lowest closed-loop speed (27.42 V), 8776 rad/s), rounded down to 100
+ * rad/s (in the simulator the delay limit alone, 4600 rad/s, lost the Hurst's 500 rpm
+ * operation) */
 #ifndef MOTOR_CURRENT_LOOP_BW_RAD_S
 #define MOTOR_CURRENT_LOOP_BW_RAD_S 4600.0
 #endif
@@ -142,17 +147,21 @@
 #ifndef MOTOR_SPEED_KP_FULL_RPM
 #define MOTOR_SPEED_KP_FULL_RPM 14300.0
 #endif
-/* Kp = J ws / Kt with the speed-loop crossover ws = 151 rad/s, J = 2e-05 kg m^2, Kt = 1.5 p
- * psi = 82.70 mN m/A. ws gives 45 deg of phase margin with the PI zero at ws/3 (-18 deg), the
- * 100 Hz speed feedback filter (MC_SPEED_FILTER_HZ, -atan(ws/wf)) and 1.5 speed-loop periods
- * of delay (-ws Td): 45 deg phase margin: 151 rad/s. A larger real J lowers ws and keeps the
- * margin; a smaller one raises ws and loses it. */
+/* Kp = J ws / Kt with the speed-loop crossover ws = 314 rad/s, J = 2e-05 kg m^2, Kt = 1.5 p
+ * psi = 82.70 mN m/A. ws = 2 pi x 1000 Hz / 20 = 314 rad/s: a twentieth of the speed-loop
+ * sampling rate, the usual rule for a sampled loop (the 1.5-period delay costs 27 deg).
+ * Counting the 50 Hz speed-feedback filter as a first-order lag too, the phase margin would be
+ * only 13 deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 %
+ * Ke: none lost with this ws, 25 lost with ws lowered to give 35 deg by that count, 53 at 45
+ * deg: the loop must catch the rotor's swing at the hand-off from open loop). A larger real J
+ * lowers ws; a smaller one raises it. */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.00384
+#define MOTOR_SPEED_KP_A_PER_RPM 0.00796
 #endif
-/* Ki = Kp ws / 3: PI zero at a third of the crossover */
+/* Ki = Kp ws / 12: PI zero about a decade below the crossover (integral action against load, 5
+ * deg of phase) */
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.194
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.208
 #endif
 
 /* ---- data for tools (not used by the core) --------------------------------------------------- */

@@ -140,6 +140,9 @@ class HurstHandCalculation(unittest.TestCase):
     def test_current_pi_should_cancel_the_winding_pole(self):
         wc = self.t["MOTOR_CURRENT_LOOP_BW_RAD_S"]
         self.assertLessEqual(wc, math.radians(20.0) / (1.5 * 5e-5))  # 70 deg phase margin
+        # noise: Kp x one 10-bit ADC count (8.8 A / 1024) within 2 % of the back-EMF at 500 rpm
+        self.assertLessEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.02 * 7.3 / math.sqrt(3) * 0.5 + 1e-9)
+        self.assertGreater(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.019 * 7.3 / math.sqrt(3) * 0.5)
         self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] / self.t["MOTOR_CURRENT_KI_V_PER_AS"],
                                1.92e-3 / 2.67, delta=1e-3 * 1.92e-3 / 2.67)
         self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"], 1.92e-3 * wc, delta=1e-3 * 1.92e-3 * wc)
@@ -156,12 +159,18 @@ class HurstHandCalculation(unittest.TestCase):
     def test_speed_pi_should_follow_from_the_inertia(self):
         psi = 7.3 / math.sqrt(3.0) / (1000.0 * 2 * math.pi / 60.0 * 5)
         kt = 1.5 * 5 * psi
-        ws = 2 * math.pi * cheader.board_env("mclv").get("MC_SPEED_FILTER_HZ") / 2.0
-        kp = 7.5e-6 * ws / kt * 2 * math.pi / 60.0
+        env = cheader.board_env("mclv")
+        ws = 2 * math.pi * env.get("MC_SPEED_LOOP_HZ") / 20.0  # a twentieth of the sampling rate
+        ws = min(ws, self.t["MOTOR_CURRENT_LOOP_BW_RAD_S"] / 8.0)
+        kp = 7.5e-6 * ws / kt * 2 * math.pi / 60.0  # J ws / Kt, A s/rad -> A/rpm
+        ki = kp * ws / 12.0
         self.assertAlmostEqual(self.t["MOTOR_SPEED_KP_A_PER_RPM"], kp, delta=0.005 * kp)
-        self.assertAlmostEqual(self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], kp * ws / 3.0, delta=0.005 * kp * ws / 3)
+        self.assertAlmostEqual(self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], ki, delta=0.005 * ki)
+        # closed-loop crossover of Kt Kp / (J s): |L(j ws)| = 1 (PI zero a decade below)
+        gain = kt * self.t["MOTOR_SPEED_KP_A_PER_RPM"] / (2 * math.pi / 60.0) / 7.5e-6 / ws
+        self.assertAlmostEqual(gain, 1.0, delta=0.005)
         measured("speed loop ws %.1f rad/s: Kp %.4g A/rpm (hand %.4g), Ki %.4g A/(rpm s) (hand %.4g)",
-                 ws, self.t["MOTOR_SPEED_KP_A_PER_RPM"], kp, self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], kp * ws / 3)
+                 ws, self.t["MOTOR_SPEED_KP_A_PER_RPM"], kp, self.t["MOTOR_SPEED_KI_A_PER_RPM_S"], ki)
 
     def test_nominal_speed_should_be_where_the_back_emf_meets_the_bus(self):
         # |V|^2 = (w L Iq)^2 + (R Iq + w psi)^2 = V^2 at Id = 0: a quadratic in w, solved here

@@ -267,6 +267,16 @@ def derive_core(env):
         q = q15_round(ki_)
         d.row("MOTOR_SPEED_KI_A_PER_RPM_S", ki, "A/(rpm s)", q, q / 32768.0 * i_fs / fs_rpm * loop_hz, "MC_SPD_KI, per speed-loop run")
 
+    if env.has("MOTOR_SPEED_KP_FULL_RPM"):  # the core's Kp gain schedule (mc.c)
+        n_kp = g("MOTOR_SPEED_KP_FULL_RPM")
+        if d.check("MOTOR_SPEED_KP_FULL_RPM", 0.0 < n_kp <= n_fw, "must be in (0, MOTOR_SPEED_FW_MAX_RPM]"):
+            q_rpm("MOTOR_SPEED_KP_FULL_RPM", n_kp, "speed-PI Kp full above, scaled down below")
+    if env.has("MC_SPEED_KP_MIN_FRACTION"):
+        fr = g("MC_SPEED_KP_MIN_FRACTION")
+        if d.check("MC_SPEED_KP_MIN_FRACTION", 0.0 < fr <= 1.0, "must be in (0, 1]"):
+            q = q15_round(fr)
+            d.row("MC_SPEED_KP_MIN_FRACTION", fr, "", q, q / 32768.0, "smallest scheduled Kp fraction")
+
     # start-up
     t_lock = g("MOTOR_LOCK_TIME_S")
     d.check("MOTOR_LOCK_TIME_S", 1.0 <= t_lock * fpwm <= 65000.0, "must be 1..65000 PWM periods")

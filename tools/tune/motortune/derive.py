@@ -283,10 +283,12 @@ def derive(desc):
     j = desc.j
     if j is not None:
         wn = math.sqrt(pp * kt * i_lock / j)  # rotor swing in the lock torque spring, rad/s
-        t_lock = min(max(round_up(4.0 * TWO_PI / wn, 0.01), 0.1), 2.0)
+        t_lock = min(max(round_up(8.0 * TWO_PI / wn, 0.01), 0.1), 2.0)
         t.add("MOTOR_LOCK_TIME_S", t_lock, "s",
-              f"4 periods of the rotor's swing about the lock angle, w = sqrt(p Kt I_lock / J) = {wn:.0f} rad/s "
-              f"(Kt = {kt * 1000:.2f} mN m/A, J = {j:.3g} kg m^2), within 0.1..2 s")
+              f"8 periods of the rotor's small swing about the lock angle, w = sqrt(p Kt I_lock / J) = {wn:.0f} "
+              f"rad/s (Kt = {kt * 1000:.2f} mN m/A, J = {j:.3g} kg m^2), within 0.1..2 s: a rotor that starts "
+              f"near the unstable point 180 deg away takes several small-swing periods to fall in (4 periods "
+              f"failed a start from 160 deg in the simulator)")
     else:
         t.add("MOTOR_LOCK_TIME_S", 0.25, "s", "no inertia given: AN1078's LOCKTIMEINSEC")
     i_ramp = min(i_lock, i_qmax)
@@ -335,9 +337,18 @@ def derive(desc):
                              f"{wc:.0f} rad/s is beyond what {fpwm} Hz sampling allows (1.5 Ts delay: "
                              f"{wc_max:.0f} rad/s for a {pm:.0f} deg phase margin)")
     else:
-        wc = round_down(wc_max, 100.0)
-        wc_reason = (f"{pm:.0f} deg phase margin with the loop delay 1.5 Ts (compute + PWM update): "
-                     f"wc = (90 - {pm:.0f}) deg / (1.5 Ts)")
+        # Noise: one ADC count of current (10-bit ADC over +-I_FS, dsPIC33F ADC1) times Kp is
+        # voltage noise the observer sees as back-EMF; keep it within 2 % of the back-EMF at
+        # the lowest closed-loop speed.
+        adc_bits = int(gb("BOARD_ADC_BITS")) if benv.has("BOARD_ADC_BITS") else 10
+        i_count = 2.0 * i_fs / (1 << adc_bits)
+        wc_noise = 0.02 * e_per_rpm * n_min / i_count / l
+        wc = round_down(min(wc_max, wc_noise), 100.0)
+        wc_reason = (f"min(delay: {pm:.0f} deg phase margin with the 1.5 Ts loop delay, (90 - {pm:.0f}) deg / "
+                     f"(1.5 Ts) = {wc_max:.0f} rad/s; noise: Kp x one ADC count ({i_count * 1e3:.2f} mA) within "
+                     f"2 % of the back-EMF at the lowest closed-loop speed ({e_per_rpm * n_min:.2f} V), "
+                     f"{wc_noise:.0f} rad/s), rounded down to 100 rad/s (in the simulator the delay limit "
+                     f"alone, 4600 rad/s, lost the Hurst's 500 rpm operation)")
     t.add("MOTOR_CURRENT_LOOP_BW_RAD_S", wc, "rad/s",
           f"current-loop bandwidth, {wc / TWO_PI:.0f} Hz: {wc_reason}", "{:.1f}")
     t.add("MOTOR_CURRENT_KP_V_PER_A", sig(l * wc, 4), "V/A",
@@ -346,19 +357,47 @@ def derive(desc):
     t.add("MOTOR_CURRENT_KI_V_PER_AS", sig(r * wc, 4), "V/(A s)", f"Ki = R wc = {r:.4g} ohm x wc", "{:.6g}")
 
     # ---- speed PI ------------------------------------------------------------
+    # Gain schedule of the core (mc.c): Kp is full above MOTOR_SPEED_KP_FULL_RPM and scaled
+    # by |speed ref| / that below it (never under MC_SPEED_KP_MIN_FRACTION).
+    n_kp_full = min(round_up(3.0 * n_min, 100.0), n_fw)
+    t.add("MOTOR_SPEED_KP_FULL_RPM", n_kp_full, "rpm",
+          "speed-PI Kp is full above this speed and reduced below it (the core's gain schedule): 3 x the lowest "
+          "closed-loop speed, where the back-EMF is 3 x its smallest usable value and the estimated speed is "
+          "clean enough for the full gain (the hand-tuned profiles use the same ratio)", "{:.1f}")
     kp_si_to_rpm = RPM  # A per (rad/s) -> A per rpm
     if j is not None:
-        ws = min(TWO_PI * spd_fc / 2.0, wc / 10.0)
+        # Crossover a twentieth of the speed-loop sampling rate (rad/s): the usual rule for a
+        # sampled loop; the 1.5-period delay costs 27 deg there. PI zero at ws/12.
+        zr = 12.0
+        ws_pm = TWO_PI * loop_hz / 20.0
+        td_spd = 1.5 / loop_hz
+        wf = TWO_PI * spd_fc
+        pm_est = 90.0 - math.degrees(math.atan(1.0 / zr) + math.atan(ws_pm / wf) + ws_pm * td_spd)
+        ws = min(ws_pm, wc / 8.0)
+        # the core's Q15 ranges: Ki / loop * FS / I_FS < 1 and Kp * FS / I_FS < 128 (keep 10 % margin)
+        kp_per_ws = j / kt * kp_si_to_rpm  # A/rpm per rad/s of crossover
+        ws_q = min(math.sqrt(0.9 * zr * loop_hz * i_fs / fs / kp_per_ws), 100.0 * i_fs / fs / kp_per_ws)
+        ws_reason = f"2 pi x {loop_hz} Hz / 20 = {ws_pm:.0f} rad/s"
+        if ws_q < ws:
+            ws = ws_q
+            ws_reason += f", lowered to {ws:.0f} rad/s so Ki fits the core's Q15 range (large J)"
+        if wc / 8.0 < ws_pm:
+            ws_reason += f", capped at wc/8 = {wc / 8.0:.0f} rad/s (cascade: the current loop 8 x faster)"
         kp = j * ws / kt
-        ki = kp * ws / 3.0
+        ki = kp * ws / zr
         t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp * kp_si_to_rpm, 3), "A/rpm",
-              f"Kp = J ws / Kt: speed-loop crossover ws = {ws:.0f} rad/s = min(2 pi MC_SPEED_FILTER_HZ / 2, wc / 10) "
-              f"(the {spd_fc:g} Hz feedback filter lags 27 deg there), J = {j:.3g} kg m^2, Kt = 1.5 p psi = "
-              f"{kt * 1000:.2f} mN m/A")
+              f"Kp = J ws / Kt with the speed-loop crossover ws = {ws:.0f} rad/s, J = {j:.3g} kg m^2, Kt = 1.5 p psi "
+              f"= {kt * 1000:.2f} mN m/A. ws = {ws_reason}: a twentieth of the speed-loop sampling rate, the usual "
+              f"rule for a sampled loop (the 1.5-period delay costs {math.degrees(ws_pm * td_spd):.0f} deg). Counting "
+              f"the {spd_fc:g} Hz speed-feedback filter as a first-order lag too, the phase margin would be only "
+              f"{pm_est:.0f} deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 % "
+              f"Ke: none lost with this ws, 25 lost with ws lowered to give 35 deg by that count, 53 at 45 deg: "
+              f"the loop must catch the rotor's swing at the hand-off from open loop). A larger real J lowers ws; "
+              f"a smaller one raises it.")
         t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(ki * kp_si_to_rpm, 3), "A/(rpm s)",
-              "Ki = Kp ws / 3: PI zero at a third of the crossover; with the filter and 1.5 speed-loop periods of "
-              "delay about 38 deg of phase margin (a larger real J keeps it, a smaller one loses it), chosen so a "
-              "50 % load step recovers within 100 ms in the simulator")
+              "Ki = Kp ws / 12: PI zero about a decade below the crossover (integral action against load, 5 deg of "
+              "phase)")
+        t.ws = ws
     else:
         kp_rpm = i_qmax / (0.4 * n_fw)
         t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp_rpm, 3), "A/rpm",

@@ -15,7 +15,7 @@ SECTIONS = [
     ("sliding-mode observer", ["MOTOR_SMC_GAIN_V", "MOTOR_SMC_LINEAR_BAND_A"]),
     ("current PI (d and q)", ["MOTOR_CURRENT_LOOP_BW_RAD_S", "MOTOR_CURRENT_KP_V_PER_A",
                               "MOTOR_CURRENT_KI_V_PER_AS"]),
-    ("speed PI", ["MOTOR_SPEED_KP_A_PER_RPM", "MOTOR_SPEED_KI_A_PER_RPM_S"]),
+    ("speed PI", ["MOTOR_SPEED_KP_FULL_RPM", "MOTOR_SPEED_KP_A_PER_RPM", "MOTOR_SPEED_KI_A_PER_RPM_S"]),
     ("data for tools (not used by the core)", ["MOTOR_RATED_CURRENT_A", "MOTOR_INERTIA_KGM2"]),
 ]
 
