@@ -152,9 +152,9 @@
  * sampling rate, the usual rule for a sampled loop (the 1.5-period delay costs 27 deg).
  * Counting the 50 Hz speed-feedback filter as a first-order lag too, the phase margin would be
  * only 13 deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 %
- * Ke: none lost with this ws, 25 lost with ws lowered to give 35 deg by that count, 53 at 45
- * deg: the loop must catch the rotor's swing at the hand-off from open loop). A larger real J
- * lowers ws; a smaller one raises it. */
+ * Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that count, 53 at
+ * 45 deg: the loop must catch the rotor's swing at the hand-off from open loop). A larger real
+ * J lowers ws; a smaller one raises it. */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
 #define MOTOR_SPEED_KP_A_PER_RPM 0.00796
 #endif

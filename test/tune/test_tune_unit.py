@@ -256,6 +256,28 @@ class FieldWeakeningTable(unittest.TestCase):
                  t["MOTOR_CURRENT_MAX_A"], 100 * t["MOTOR_CURRENT_MAX_A"] / 4.88, t["MOTOR_OVERCURRENT_A"])
 
 
+class WithoutInertia(unittest.TestCase):
+    def test_no_inertia_should_give_the_safe_defaults_and_a_valid_profile(self):
+        text = HURST_TOML.replace('inertia = "7.5e-6 kg m^2"\n', "")
+        t = derive.derive(desc_from(text))
+        self.assertEqual(t["MOTOR_LOCK_TIME_S"], 0.25)
+        self.assertEqual(t["MOTOR_RAMP_TIME_S"], 1.0)
+        kp = t["MOTOR_SPEED_KP_A_PER_RPM"]
+        self.assertAlmostEqual(kp, 1.64 / (0.4 * 5300.0), delta=0.005 * kp)
+        self.assertAlmostEqual(t["MOTOR_SPEED_KI_A_PER_RPM_S"], 5.0 * kp, delta=0.01 * kp)
+        d = scratch()
+        try:
+            p = os.path.join(d, "m.toml")
+            with open(p, "w") as f:
+                f.write(text)
+            h = os.path.join(d, "motor_m.h")
+            r = run_tune("-o", h, p)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(cheader.derive_core(cheader.profile_env(h, "mclv")).failures, [])
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
+
+
 class BadInput(unittest.TestCase):
     """Each bad description: exit code non-zero, exactly one line on stderr naming the field,
     no header written."""

@@ -391,7 +391,7 @@ def derive(desc):
               f"rule for a sampled loop (the 1.5-period delay costs {math.degrees(ws_pm * td_spd):.0f} deg). Counting "
               f"the {spd_fc:g} Hz speed-feedback filter as a first-order lag too, the phase margin would be only "
               f"{pm_est:.0f} deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 % "
-              f"Ke: none lost with this ws, 25 lost with ws lowered to give 35 deg by that count, 53 at 45 deg: "
+              f"Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that count, 53 at 45 deg: "
               f"the loop must catch the rotor's swing at the hand-off from open loop). A larger real J lowers ws; "
               f"a smaller one raises it.")
         t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(ki * kp_si_to_rpm, 3), "A/(rpm s)",
