@@ -74,10 +74,19 @@
 #define MC_SPEED_LOOP_HZ 1000L /* speed loop rate; IRP_PERCALC = PWM_FREQUENCY_HZ / this */
 #endif
 /* Band of phase current around zero in which the dead-time correction is
- * scaled linearly instead of switching sign (stops chattering at zero
- * crossings). */
+ * scaled linearly instead of switching sign. A phase current smaller than
+ * its own PWM ripple reverses inside each period, so the dead time is spent
+ * partly on either diode and the real voltage loss is proportional to the
+ * mean current: the band must match the ripple, which depends on the motor.
+ * Peak ripple of one phase ~ Vbus Ts / (8 L) at 50 % duty; with space-vector
+ * modulation sharing it between phases, about Vbus / (12 L fpwm) (0.052 A
+ * for the Hurst on 24 V, 0.33 A for the high-speed motor on 320 V). A band
+ * much narrower than the ripple switches the full dead-time voltage on the
+ * ripple (chatter, and an applied-voltage error at light load that the
+ * estimator reads as back-EMF); a wider one under-compensates. */
 #ifndef MC_DEADTIME_BAND_A
-#define MC_DEADTIME_BAND_A 0.1
+#define MC_DEADTIME_BAND_A                                                                         \
+    ((double)BOARD_VBUS_NOMINAL_V / (12.0 * (double)MOTOR_LS_H * (double)PWM_FREQUENCY_HZ))
 #endif
 /* Largest voltage vector, fraction of the SVGen circle: leaves room in every
  * period for the low-side shunt sampling (AN1078 uses 0.95). */

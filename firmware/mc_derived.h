@@ -332,8 +332,12 @@ MC_CHECK(MOTOR_LS_H, MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FUL
          "G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
          "scales)");
 MC_CHECK(MOTOR_KE_VPK_LL_PER_KRPM, MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "must be > 0");
-MC_CHECK(MOTOR_SMC_GAIN_V, MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < MC_VOLTAGE_FULLSCALE_V,
-         "Kslide must be in (0, V_FS = BOARD_VBUS_NOMINAL_V / sqrt 3)");
+/* Kslide must exceed the largest back-EMF (smc.h note 5), which above the
+ * base speed is larger than V_FS; the estimator's back-EMF full scale is
+ * E_FS = 2 V_FS (smc.h note 2). */
+MC_CHECK(MOTOR_SMC_GAIN_V,
+         MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < 2.0 * MC_VOLTAGE_FULLSCALE_V,
+         "Kslide must be in (0, 2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3)");
 MC_CHECK(MOTOR_SMC_LINEAR_BAND_A,
          MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
              MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,

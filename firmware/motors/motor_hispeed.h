@@ -69,11 +69,22 @@
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------ */
+/* The estimator's recommended gains (smc.h note 5), by one rule for every
+ * profile: MaxSMCError dead-beat, = SMC_MAXERR_DEADBEAT(...) in amps =
+ * Kslide (exp(Ts R / L) - 1) / R at 20 kHz, so the observer is a linear,
+ * ripple-free loop (AN1078's relay gains chatter: 2 to 13 deg); Kslide =
+ * 1.12 x the largest phase back-EMF (all of it must be carried from a wrong
+ * state), capped at 0.975 V_FS because tools/tune --check still refuses
+ * Kslide >= V_FS (the core accepts up to 2 V_FS). High-speed: 98.1 V at 17000 rpm -> 110 V.
+ * Written as numbers: tools/tune reads these headers. */
 #ifndef MOTOR_SMC_GAIN_V
-#define MOTOR_SMC_GAIN_V 170.0 /* Kslide: must exceed the largest back-EMF the observer sees */
+#define MOTOR_SMC_GAIN_V 110.0 /* Kslide, V (0.595 V_FS on 320 V) */
 #endif
 #ifndef MOTOR_SMC_LINEAR_BAND_A
-#define MOTOR_SMC_LINEAR_BAND_A 0.08 /* MaxSMCError: linear band of the switching function */
+#define MOTOR_SMC_LINEAR_BAND_A 1.385 /* dead-beat for 110 V: 110 (exp(0.015) - 1) / 1.2 */
+#endif
+#ifndef MC_SPEED_FILTER_HZ
+#define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (smc.h note 7; docs/estimator.md) */
 #endif
 
 /* ---- current PI (d and q): Kp = L * wc, Ki = R * wc cancels the winding pole,

@@ -66,11 +66,23 @@
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------ */
+/* The estimator's recommended gains (smc.h note 5), by one rule for every
+ * profile: MaxSMCError dead-beat, = SMC_MAXERR_DEADBEAT(...) in amps =
+ * Kslide (exp(Ts R / L) - 1) / R at 20 kHz, so the observer is a linear,
+ * ripple-free loop (AN1078's relay gains chatter: 2 to 13 deg); Kslide =
+ * 1.12 x the largest phase back-EMF (all of it must be carried from a wrong
+ * state), capped at 0.975 V_FS because tools/tune --check still refuses
+ * Kslide >= V_FS (the core accepts up to 2 V_FS). Hurst: 22.3 V at 5300 rpm -> 25 V, capped to 13.5
+ * V (closed loop measured 25 V: same figures within 0.3 deg). Written as numbers: tools/tune reads
+ * these headers. */
 #ifndef MOTOR_SMC_GAIN_V
-#define MOTOR_SMC_GAIN_V 12.0 /* Kslide: must exceed the largest back-EMF the observer sees */
+#define MOTOR_SMC_GAIN_V 13.5 /* Kslide, V (0.974 V_FS on 24 V) */
 #endif
 #ifndef MOTOR_SMC_LINEAR_BAND_A
-#define MOTOR_SMC_LINEAR_BAND_A 0.044 /* MaxSMCError: linear band of the switching function */
+#define MOTOR_SMC_LINEAR_BAND_A 0.3641 /* dead-beat for 13.5 V: 13.5 (exp(0.06953) - 1) / 2.67 */
+#endif
+#ifndef MC_SPEED_FILTER_HZ
+#define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (smc.h note 7; docs/estimator.md) */
 #endif
 
 /* ---- current PI (d and q): Kp = L * wc, Ki = R * wc cancels the winding pole,
