@@ -53,11 +53,11 @@
 #ifndef MOTOR_SPEED_FW_MAX_RPM
 #define MOTOR_SPEED_FW_MAX_RPM 17000.0
 #endif
-/* max(back-EMF = 2.5 x the dead-time voltage error 10.86 V -> 4705 rpm, 8 % of the top speed),
+/* max(back-EMF = 3 x the dead-time voltage error 10.86 V -> 5646 rpm, 8 % of the top speed),
  * rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the ramp
  * end */
 #ifndef MOTOR_SPEED_MIN_RPM
-#define MOTOR_SPEED_MIN_RPM 4750.0
+#define MOTOR_SPEED_MIN_RPM 5650.0
 #endif
 /* Q15 full scale of every speed: 1.5 x the top speed rounded up to 1000 rpm (room for
  * overshoot, core check FW max <= 0.95 x full scale) */
@@ -91,7 +91,7 @@
 #endif
 /* constant acceleration 11846 rpm/s up to the ramp end: 20 % of the ramp torque Kt x 1.5 A =
  * 124.0 mN m accelerates J (the rest is margin for load and the lag of the forced angle) ->
- * 0.401 s; at least 1 s, so the rotor's swing from the lock dies into the ramp and the
+ * 0.477 s; at least 1 s, so the rotor's swing from the lock dies into the ramp and the
  * observer converges before the hand-off (0.5 s lost 1 to 2 of the simulator's 100
  * random-angle starts under load) */
 #ifndef MOTOR_RAMP_TIME_S
@@ -99,7 +99,7 @@
 #endif
 /* hand-off to closed loop at the lowest closed-loop speed */
 #ifndef MOTOR_RAMP_END_RPM
-#define MOTOR_RAMP_END_RPM 4750.0
+#define MOTOR_RAMP_END_RPM 5650.0
 #endif
 /* Iq during the open-loop ramp: the lock current */
 #ifndef MOTOR_RAMP_CURRENT_A
@@ -107,9 +107,10 @@
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------------------------- */
-/* Kslide = min(1.5 x the largest back-EMF the observer sees, 90 % of V_FS = 166 V); that
- * back-EMF is min(Ke at the top speed = 98.1 V, the voltage limit 176 V: above nominal field
- * weakening holds it there) */
+/* Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = 179 V: the core
+ * needs Kslide < V_FS, docs/estimator.md wants it above that back-EMF); that back-EMF is
+ * min(Ke at the top speed = 98.1 V, the voltage limit 176 V: above nominal field weakening
+ * holds it there) */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 147.2
 #endif
@@ -119,11 +120,17 @@
 #ifndef MOTOR_SMC_LINEAR_BAND_A
 #define MOTOR_SMC_LINEAR_BAND_A 1.85
 #endif
+/* estimated-speed filter cut-off: a tenth of the 1000 Hz speed-loop rate (docs/estimator.md:
+ * 100 Hz at a 1 kHz window converges fastest from a wrong state; the core needs 2 pi fc / loop
+ * rate < 1) */
+#ifndef MC_SPEED_FILTER_HZ
+#define MC_SPEED_FILTER_HZ 100.0
+#endif
 
 /* ---- current PI (d and q) -------------------------------------------------------------------- */
 /* current-loop bandwidth, 732 Hz: min(delay: 70 deg phase margin with the 1.5 Ts loop delay,
  * (90 - 70) deg / (1.5 Ts) = 4654 rad/s; noise: Kp x one ADC count (15.62 mA) within 2 % of
- * the back-EMF at the lowest closed-loop speed (27.42 V), 8776 rad/s), rounded down to 100
+ * the back-EMF at the lowest closed-loop speed (32.62 V), 10438 rad/s), rounded down to 100
  * rad/s (in the simulator the delay limit alone, 4600 rad/s, lost the Hurst's 500 rpm
  * operation) */
 #ifndef MOTOR_CURRENT_LOOP_BW_RAD_S
@@ -145,16 +152,16 @@
  * estimated speed is clean enough for the full gain (the hand-tuned profiles use the same
  * ratio) */
 #ifndef MOTOR_SPEED_KP_FULL_RPM
-#define MOTOR_SPEED_KP_FULL_RPM 14300.0
+#define MOTOR_SPEED_KP_FULL_RPM 17000.0
 #endif
 /* Kp = J ws / Kt with the speed-loop crossover ws = 314 rad/s, J = 2e-05 kg m^2, Kt = 1.5 p
  * psi = 82.70 mN m/A. ws = 2 pi x 1000 Hz / 20 = 314 rad/s: a twentieth of the speed-loop
  * sampling rate, the usual rule for a sampled loop (the 1.5-period delay costs 27 deg).
- * Counting the 50 Hz speed-feedback filter as a first-order lag too, the phase margin would be
- * only 13 deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 %
- * Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that count, 53 at
- * 45 deg: the loop must catch the rotor's swing at the hand-off from open loop). A larger real
- * J lowers ws; a smaller one raises it. */
+ * Counting the 100 Hz speed-feedback filter as a first-order lag too, the phase margin would
+ * be only 32 deg; the simulator does not show that (216 starts over angle and +-30 % R, L,
+ * +-20 % Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that
+ * count, 53 at 45 deg: the loop must catch the rotor's swing at the hand-off from open loop).
+ * A larger real J lowers ws; a smaller one raises it. */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
 #define MOTOR_SPEED_KP_A_PER_RPM 0.00796
 #endif

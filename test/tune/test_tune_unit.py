@@ -126,7 +126,7 @@ class HurstHandCalculation(unittest.TestCase):
         v_fs = 24.0 / math.sqrt(3.0)
         e_top = 7.3 / math.sqrt(3.0) * 5.3  # 22.34 V at 5300 rpm, above what the bus can apply
         e_seen = min(e_top, 0.95 * v_fs)
-        ks = min(1.5 * e_seen, 0.9 * v_fs)
+        ks = min(1.5 * e_seen, 0.97 * v_fs)
         self.assertAlmostEqual(self.t["MOTOR_SMC_GAIN_V"], ks, delta=0.01)
         ts = 5e-5
         f = math.exp(-ts * 2.67 / 1.92e-3)
@@ -140,9 +140,10 @@ class HurstHandCalculation(unittest.TestCase):
     def test_current_pi_should_cancel_the_winding_pole(self):
         wc = self.t["MOTOR_CURRENT_LOOP_BW_RAD_S"]
         self.assertLessEqual(wc, math.radians(20.0) / (1.5 * 5e-5))  # 70 deg phase margin
-        # noise: Kp x one 10-bit ADC count (8.8 A / 1024) within 2 % of the back-EMF at 500 rpm
-        self.assertLessEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.02 * 7.3 / math.sqrt(3) * 0.5 + 1e-9)
-        self.assertGreater(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.019 * 7.3 / math.sqrt(3) * 0.5)
+        # noise: Kp x one 10-bit ADC count (8.8 A / 1024) within 2 % of the back-EMF at the lowest speed
+        e_min = 7.3 / math.sqrt(3) * self.t["MOTOR_SPEED_MIN_RPM"] / 1000.0
+        self.assertLessEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.02 * e_min + 1e-9)
+        self.assertGreater(self.t["MOTOR_CURRENT_KP_V_PER_A"] * 8.8 / 1024, 0.019 * e_min)
         self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"] / self.t["MOTOR_CURRENT_KI_V_PER_AS"],
                                1.92e-3 / 2.67, delta=1e-3 * 1.92e-3 / 2.67)
         self.assertAlmostEqual(self.t["MOTOR_CURRENT_KP_V_PER_A"], 1.92e-3 * wc, delta=1e-3 * 1.92e-3 * wc)
@@ -436,11 +437,14 @@ class GeneratedHeaders(unittest.TestCase):
                 self.assertEqual(r.returncode, 0, r.stderr)
 
     def test_committed_profiles_should_match_the_tool(self):
+        # Values only (every #define and the table): the comments quote settings of UserParms.h
+        # that do not change the numbers.
         for ex, (h, board, _) in self.out.items():
             name = EXAMPLE_PROFILES[ex][0]
             committed = os.path.join(REPO, "firmware", "motors", f"motor_{name}.h")
-            with self.subTest(ex), open(h) as a, open(committed) as b:
-                self.assertEqual(a.read(), b.read(),
+            with self.subTest(ex):
+                self.assertTrue(os.path.exists(committed), committed)
+                self.assertEqual(cheader.read_defines([h]), cheader.read_defines([committed]),
                                  f"firmware/motors/motor_{name}.h is stale: run tools/tune/tune "
                                  f"tools/tune/examples/{ex}.toml")
 

@@ -116,7 +116,6 @@ def derive(desc):
     if fpwm % loop_hz != 0 or not 1 <= fpwm // loop_hz <= 256:
         raise InputError("pwm_frequency", f"{fpwm} Hz: must be 1..256 times the {loop_hz} Hz speed loop")
     vfrac = float(gb("MC_VOLTAGE_LIMIT_FRACTION"))
-    spd_fc = float(gb("MC_SPEED_FILTER_HZ"))
     ts = 1.0 / fpwm
     pp, r, l = desc.pole_pairs, desc.r_ph, desc.l_ph
     v_fs = vbus / SQRT3
@@ -263,14 +262,14 @@ def derive(desc):
     # voltage error of the dead time (square wave, fundamental 4/pi x 2/3 x
     # Td fpwm Vbus), which the core compensates only approximately.
     v_dt = 4.0 / math.pi * 2.0 / 3.0 * dt_frac * vbus
-    n_emf = 2.5 * v_dt / e_per_rpm
+    n_emf = 3.0 * v_dt / e_per_rpm
     n_min = desc.n_min if desc.n_min is not None else round_up(max(n_emf, 0.08 * n_fw), 50.0)
     if n_min >= n_nom:
         raise Infeasible("application.min_speed" if desc.n_min is not None else top_field,
                          f"lowest closed-loop speed {n_min:.0f} rpm is not below the nominal {n_nom:.0f} rpm")
     t.add("MOTOR_SPEED_MIN_RPM", n_min, "rpm",
           ("given (application.min_speed)" if desc.n_min is not None else
-           f"max(back-EMF = 2.5 x the dead-time voltage error {v_dt:.2f} V -> {n_emf:.0f} rpm, 8 % of the top "
+           f"max(back-EMF = 3 x the dead-time voltage error {v_dt:.2f} V -> {n_emf:.0f} rpm, 8 % of the top "
            f"speed), rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the "
            f"ramp end"), "{:.1f}")
     t.n_emf, t.v_dt = n_emf, v_dt
@@ -312,11 +311,17 @@ def derive(desc):
     # ---- observer ------------------------------------------------------------
     e_top = e_per_rpm * n_fw
     e_seen = min(e_top, vfrac * v_fs)
-    ks = sig(min(1.5 * e_seen, 0.9 * v_fs), 4)
+    ks = sig(min(1.5 * e_seen, 0.97 * v_fs), 4)
     t.add("MOTOR_SMC_GAIN_V", ks, "V",
-          f"Kslide = min(1.5 x the largest back-EMF the observer sees, 90 % of V_FS = {0.9 * v_fs:.3g} V); "
+          f"Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = {0.97 * v_fs:.3g} V: the "
+          f"core needs Kslide < V_FS, docs/estimator.md wants it above that back-EMF); "
           f"that back-EMF is min(Ke at the top speed = {e_top:.3g} V, the voltage limit {vfrac * v_fs:.3g} V: "
           f"above nominal field weakening holds it there)")
+    spd_fc = loop_hz / 10.0
+    t.add("MC_SPEED_FILTER_HZ", spd_fc, "Hz",
+          f"estimated-speed filter cut-off: a tenth of the {loop_hz} Hz speed-loop rate (docs/estimator.md: 100 Hz "
+          f"at a 1 kHz window converges fastest from a wrong state; the core needs 2 pi fc / loop rate < 1)",
+          "{:.1f}")
     f_ex = math.exp(-ts * r / l)
     g_si = (1.0 - f_ex) / r  # A per V per period
     band = sig(ks * g_si / f_ex, 3)
