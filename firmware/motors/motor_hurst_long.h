@@ -112,10 +112,10 @@
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------------------------- */
-/* Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = 13.4 V: the core
- * needs Kslide < V_FS, docs/estimator.md wants it above that back-EMF); that back-EMF is
- * min(Ke at the top speed = 12.6 V, the voltage limit 13.2 V: above nominal field weakening
- * holds it there) */
+/* Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = 13.4 V, the cap of
+ * the hand-tuned profiles; the core allows 2 V_FS, docs/estimator.md wants Kslide above that
+ * back-EMF); that back-EMF is min(Ke at the top speed = 12.6 V, the voltage limit 13.2 V:
+ * above nominal field weakening holds it there) */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 13.44
 #endif

@@ -110,17 +110,21 @@ class HurstHandCalculation(unittest.TestCase):
         self.assertAlmostEqual(self.row("F (AN1078 Eq. 2: 1 - Ts R/L)")[1], f_euler, places=12)
         self.assertAlmostEqual(f_euler, 0.9305, places=4)
         self.assertAlmostEqual(self.row("G (AN1078 Eq. 2: Ts/L)")[1], 0.0260417, places=7)  # Eq. 3: 0.026
-        # The core discretises exactly: F = exp(-Ts R/L), G = (1 - F)/R in V_FS/I_FS units.
+        # The core discretises exactly: F = exp(-Ts R/L), G = (1 - F)/R, stored in the units of
+        # its back-EMF scale E_FS = 2 V_FS (smc.h SMC_EMF_FS_RATIO) per I_FS.
         f = math.exp(-ts * 2.67 / 1.92e-3)
         g = (1.0 - f) / 2.67 * (24.0 / math.sqrt(3.0)) / 4.4
+        ge = 2.0 * g
         name, eng, _, q, _, _ = self.row("smc F = exp(-Ts R/L)")
         self.assertAlmostEqual(eng, f, places=9)
         self.assertEqual(q, round(f * 32768))
-        name, eng, _, q, _, _ = self.row("smc G = (1-F)/R * V_FS/I_FS")
-        self.assertAlmostEqual(eng, g, places=9)
-        self.assertEqual(q, round(g * 32768))
+        self.assertAlmostEqual(self.row("G = (1-F)/R * V_FS/I_FS")[1], g, places=9)
+        name, eng, _, q, _, _ = self.row("smc G = (1-F)/R * 2V_FS/I_FS")
+        self.assertAlmostEqual(eng, ge, places=9)
+        self.assertEqual(q, round(ge * 32768))  # ge < 1: shift 0
         measured("Hurst F Euler %.6f (AN1078 0.9304), core F %.6f = Q15 %d, G Ts/L %.6f A/V (AN1078 "
-                 "0.026), core G %.6f = Q15 %d", f_euler, f, round(f * 32768), ts / 1.92e-3, g, round(g * 32768))
+                 "0.026), core G %.6f V_FS/I_FS, in E_FS units %.6f = Q15 %d", f_euler, f, round(f * 32768),
+                 ts / 1.92e-3, g, ge, round(ge * 32768))
 
     def test_kslide_should_be_the_limited_back_emf_with_margin_and_the_band_dead_beat(self):
         v_fs = 24.0 / math.sqrt(3.0)
@@ -435,6 +439,58 @@ class GeneratedHeaders(unittest.TestCase):
                        f'-DMC_MOTOR_HEADER="{h}"', os.path.join(REPO, "firmware", "mc.c")]
                 r = subprocess.run(cmd, capture_output=True, text=True)
                 self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_check_should_decode_the_integers_the_c_compiler_computes(self):
+        # The Q15 integers --check prints, against the same constants compiled by gcc from
+        # firmware/mc_derived.h and smc.h's SMC_PARAMS_INIT.
+        if shutil.which("gcc") is None:
+            self.skipTest("no gcc")
+        prog = r"""
+#include <stdio.h>
+#include "mc_derived.h"
+static const smc_params_t p = MC_SMC_PARAMS_INIT;
+static const q15_t fw[16] = MC_FW_TABLE_Q15;
+int main(void)
+{
+    int k;
+    printf("f %d\ng %d\nkslide %d\nmax_err %d\nkz %d\n", p.f, p.g, p.kslide, p.max_err, p.kz);
+    printf("cur_kp %d\ncur_ki %d\nspd_kp %d\nspd_ki %d\n", MC_CUR_KP, MC_CUR_KI, MC_SPD_KP, MC_SPD_KI);
+    printf("iq_max %d\ntrip %d\nlock %d\nlock_periods %u\nramp_inc %lu\n", MC_IQ_MAX_Q15,
+           MC_OVERCURRENT_Q15, MC_LOCK_CURRENT_Q15, (unsigned)MC_LOCK_PERIODS,
+           (unsigned long)MC_RAMP_STEP_INC);
+    for (k = 0; k < 16; k++) printf("fw%d %d\n", k, fw[k]);
+    return 0;
+}
+"""
+        want = {"f": "smc F = exp(-Ts R/L)", "g": "smc G = (1-F)/R * 2V_FS/I_FS", "kslide": "MOTOR_SMC_GAIN_V",
+                "max_err": "MOTOR_SMC_LINEAR_BAND_A", "kz": "smc Kz = Kslide / MaxSMCError",
+                "cur_kp": "MOTOR_CURRENT_KP_V_PER_A", "cur_ki": "MOTOR_CURRENT_KI_V_PER_AS",
+                "spd_kp": "MOTOR_SPEED_KP_A_PER_RPM", "spd_ki": "MOTOR_SPEED_KI_A_PER_RPM_S",
+                "iq_max": "MOTOR_CURRENT_MAX_A", "trip": "MC_OVERCURRENT_A", "lock": "MOTOR_LOCK_CURRENT_A",
+                "lock_periods": "MOTOR_LOCK_TIME_S", "ramp_inc": "ramp acceleration"}
+        for ex, (h, board, _) in self.out.items():
+            with self.subTest(ex):
+                src = os.path.join(self.dir, f"consts_{ex}.c")
+                exe = os.path.join(self.dir, f"consts_{ex}")
+                with open(src, "w") as f:
+                    f.write(prog)
+                r = subprocess.run(["gcc", "-std=c99", "-w", f"-I{REPO}/firmware", f"-I{REPO}/foc",
+                                    f"-I{REPO}/smc_estimator", f"-DMC_BOARD_{board.upper()}",
+                                    f'-DMC_MOTOR_HEADER="{h}"', src, "-o", exe], capture_output=True, text=True)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                got = dict(line.split() for line in subprocess.run([exe], capture_output=True,
+                                                                   text=True).stdout.splitlines())
+                core = cheader.derive_core(cheader.profile_env(h, board))
+                rows = {row[0]: row for row in core.rows}
+                n = 0
+                for key, name in want.items():
+                    self.assertEqual(int(got[key]), rows[name][3], f"{key} ({name})")
+                    n += 1
+                for k in range(16):
+                    row = [rw for rw in core.rows if rw[0].startswith(f"FW Id[{k:2d}]")][0]
+                    self.assertEqual(int(got[f"fw{k}"]), row[3])
+                    n += 1
+                measured("%s: %d integers of --check equal the C compiler's", ex, n)
 
     def test_committed_profiles_should_match_the_tool(self):
         # Values only (every #define and the table): the comments quote settings of UserParms.h

@@ -142,11 +142,8 @@ def mant_shift(x, top=7):
 
 
 def _expneg(y):
-    # SMC_EXPNEG_: 13-term Horner form, as the header evaluates it.
-    acc = 1.0
-    for k in range(12, 0, -1):
-        acc = 1.0 - y / float(k) * acc
-    return acc
+    # SMC_EXPNEG_ of smc.h: the (3,3) Pade approximant of exp(-y).
+    return (1.0 - y * (0.5 - y * (0.1 - y / 120.0))) / (1.0 + y * (0.5 + y * (0.1 + y / 120.0)))
 
 
 class Derived:
@@ -307,33 +304,36 @@ def derive_core(env):
     y = ts * r / l
     d.check("MOTOR_LS_H", y < 1.0, "F = 1 - Ts R / L must be > 0 (L too small for MOTOR_RS_OHM)")
     d.check("MOTOR_LS_H", ts / l * v_fs / i_fs < 1.0, "G = Ts/L * V_FS/I_FS must be < 1")
-    d.check("MOTOR_SMC_GAIN_V", 0.0 < kslide_v < v_fs, "Kslide must be in (0, V_FS = BOARD_VBUS_NOMINAL_V / sqrt 3)")
+    e_ratio = 2.0  # smc.h SMC_EMF_FS_RATIO: back-EMF scale E_FS = 2 V_FS
+    d.check("MOTOR_SMC_GAIN_V", 0.0 < kslide_v < e_ratio * v_fs, "Kslide must be in (0, 2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3)")
     d.check("MOTOR_SMC_LINEAR_BAND_A", i_fs / 32768.0 < band_a < i_fs, "must be in (1 LSB, BOARD_I_FULLSCALE_A)")
     d.check("MC_SPEED_FILTER_HZ", 0.0 < TWO_PI * spd_fc / loop_hz < 1.0, "2 pi fc / MC_SPEED_LOOP_HZ must be in (0, 1)")
     if y > 1.0:
         return d
     f = _expneg(y)
-    gg = (1.0 - f) / r * v_fs / i_fs
+    gg = (1.0 - f) / r * v_fs / i_fs  # G in V_FS units
+    ge = gg * e_ratio  # ... and in the core's E_FS units
     ks = kslide_v / v_fs
     me = band_a / i_fs
-    kz = ks / me
+    kz = ks / e_ratio / me
     d.row("F (AN1078 Eq. 2: 1 - Ts R/L)", 1.0 - y, "", None, None, "the Euler form of AN1078")
     q = q15_round(f)
-    d.row("smc F = exp(-Ts R/L)", f, "", q, q / 32768.0, "the core's exact discretisation")
+    d.row("smc F = exp(-Ts R/L)", f, "", q, q / 32768.0, "the core's exact discretisation (Pade 3,3)")
     d.row("G (AN1078 Eq. 2: Ts/L)", ts / l, "A/(V period)", None, None, "in amps per volt")
-    d.check("smc_G", 1e-4 <= gg < 128.0, "G * V_FS / I_FS must be in [1e-4, 128)")
-    m, s = mant_shift(gg, 15)
-    d.row("smc G = (1-F)/R * V_FS/I_FS", gg, "I_FS/V_FS", m, m * (1 << s) / 32768.0, f"g_shift {s}")
-    if d.check("MOTOR_SMC_GAIN_V", 0.0 < ks < 1.0, "smc: Kslide must be in (0, 1) of V_FS"):
-        q = q15_round(ks)
-        d.row("MOTOR_SMC_GAIN_V", kslide_v, "V", q, q / 32768.0 * v_fs, "Kslide")
+    d.row("G = (1-F)/R * V_FS/I_FS", gg, "I_FS/V_FS", None, None, "in the core's current and voltage scales")
+    d.check("smc_G", 1e-4 <= ge < 128.0, "G * 2 V_FS / I_FS must be in [1e-4, 128)")
+    m, s_ = mant_shift(ge, 7)
+    d.row("smc G = (1-F)/R * 2V_FS/I_FS", ge, "I_FS/E_FS", m, m * (1 << s_) / 32768.0, f"g_shift {s_}")
+    if d.check("MOTOR_SMC_GAIN_V", 0.0 < ks < e_ratio, "smc: Kslide must be in (0, 2) of V_FS"):
+        q = q15_round(ks / e_ratio)
+        d.row("MOTOR_SMC_GAIN_V", kslide_v, "V", q, q / 32768.0 * v_fs * e_ratio, "Kslide, Q15 of E_FS = 2 V_FS")
     if d.check("MOTOR_SMC_LINEAR_BAND_A", 1.0 / 32768.0 <= me < 1.0, "smc: MaxSMCError must be in [1 LSB, 1)"):
         q = q15_round(me)
         d.row("MOTOR_SMC_LINEAR_BAND_A", band_a, "A", q, q / 32768.0 * i_fs, "MaxSMCError")
     if d.check("MOTOR_SMC_LINEAR_BAND_A", kz < 32768.0, "smc: Kslide / MaxSMCError must be below 32768"):
-        m, s = mant_shift(kz, 15)
-        d.row("smc Kz = Kslide / MaxSMCError", kz, "V_FS/I_FS", m, m * (1 << s) / 32768.0, f"kz_shift {s}")
-    c = gg * kz
+        m, s_ = mant_shift(kz, 15)
+        d.row("smc Kz = Kslide / MaxSMCError", kz, "E_FS/I_FS", m, m * (1 << s_) / 32768.0, f"kz_shift {s_}")
+    c = ge * kz
     d.row("smc loop gain c = G Kz", c, "", None, None,
           "linear band dead-beat at c = F; relay (chattering) mode above 1 + F")
     kpw = TWO_PI * w_fs * ts
@@ -353,17 +353,10 @@ def derive_core(env):
     if d.check("MC_SPEED_FILTER_HZ", 0.0 < kslpf < 1.0, "smc: speed filter coefficient must be in (0, 1)"):
         q = q15_round(kslpf)
         d.row("MC_SPEED_FILTER_HZ", spd_fc, "Hz", q, q / 32768.0 / (TWO_PI * irp * ts), "speed filter")
-    # back-EMF consistency gain (note 5 of smc.h)
-    lin = c < 1.0 + f
-    p_ = f - c
-    mdc = 1.0 + c - p_ if lin else 2.0
-    b10 = 1.0 - p_ if lin else 1.0
-    a_, b_ = mdc, b10
-    ambm = 0.96043387 * a_ + 0.39782473 * b_ if a_ > b_ else 0.96043387 * b_ + 0.39782473 * a_
-    stage = (c if lin else 1.0) / ambm / 1.4142135623730951
+    # back-EMF consistency gain (note 5 of smc.h): Ke w_fs / E_FS x 0.31
     ke_hz = ke / SQRT3 / (1000.0 * pp / 60.0)
-    emfg = ke_hz * w_fs / v_fs * stage
-    d.check("MOTOR_KE_VPK_LL_PER_KRPM", 0.0 <= emfg < 128.0, "smc: Ke omega_fs / V_FS gain must be in [0, 128)")
+    emfg = ke_hz * w_fs / (v_fs * e_ratio) * 0.31
+    d.check("MOTOR_KE_VPK_LL_PER_KRPM", 0.0 <= emfg < 8.0, "smc: Ke omega_fs / E_FS gain must be in [0, 8)")
     # mc.c
     d.check("MC_SPEED_FULLSCALE_RPM", 3.0 * w_fs * ts < 1.0, "3 omega_fs Ts must be < 1 (PWM too slow)")
     # dead time

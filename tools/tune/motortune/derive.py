@@ -313,8 +313,9 @@ def derive(desc):
     e_seen = min(e_top, vfrac * v_fs)
     ks = sig(min(1.5 * e_seen, 0.97 * v_fs), 4)
     t.add("MOTOR_SMC_GAIN_V", ks, "V",
-          f"Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = {0.97 * v_fs:.3g} V: the "
-          f"core needs Kslide < V_FS, docs/estimator.md wants it above that back-EMF); "
+          f"Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = {0.97 * v_fs:.3g} V, the "
+          f"cap of the hand-tuned profiles; the core allows 2 V_FS, docs/estimator.md wants Kslide above that "
+          f"back-EMF); "
           f"that back-EMF is min(Ke at the top speed = {e_top:.3g} V, the voltage limit {vfrac * v_fs:.3g} V: "
           f"above nominal field weakening holds it there)")
     spd_fc = loop_hz / 10.0
