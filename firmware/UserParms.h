@@ -88,6 +88,23 @@
 #define MC_DEADTIME_BAND_A                                                                         \
     ((double)BOARD_VBUS_NOMINAL_V / (12.0 * (double)MOTOR_LS_H * (double)PWM_FREQUENCY_HZ))
 #endif
+/* Light-load floor of the Id reference (A, magnitude; the reference is
+ * min(field-weakening Id, -MC_ID_MIN_A)). Inside the dead-time band the
+ * inverter loses Td/Ts Vbus / band volts per amp (18 ohm for the Hurst),
+ * so one ADC code of current error is 0.16 V of applied-voltage error for
+ * the estimator against 2.1 V of back-EMF at 500 rpm: at no load (20 mA)
+ * the angle error peaked at 5 to 6 deg. A few band-widths of Id keep the
+ * phase currents out of the band (only zero crossings pass through it),
+ * for R Id^2 of copper loss and no torque (surface magnets). The core asks
+ * Id <= -(MC_ID_MIN_A - |Iq|): off once |Iq| reaches it, so no torque
+ * capacity is lost. Default: 4 band-widths, at most 40 % of
+ * MOTOR_CURRENT_MAX_A (Hurst 0.21 A, Hurst300 1.18 A, high-speed motor
+ * 0.8 A). 0 = off. */
+#ifndef MC_ID_MIN_A
+#define MC_ID_MIN_A                                                                                \
+    ((4.0 * MC_DEADTIME_BAND_A < 0.4 * MOTOR_CURRENT_MAX_A) ? 4.0 * MC_DEADTIME_BAND_A             \
+                                                            : 0.4 * MOTOR_CURRENT_MAX_A)
+#endif
 /* Largest voltage vector, fraction of the SVGen circle: leaves room in every
  * period for the low-side shunt sampling (AN1078 uses 0.95). */
 #ifndef MC_VOLTAGE_LIMIT_FRACTION

@@ -245,6 +245,19 @@ static void mc_enter_lock(mc_t *mc)
     mc_enter(mc, MC_STATE_LOCK);
 }
 
+/* Id reference with the light-load floor (UserParms.h MC_ID_MIN_A): at
+ * least MC_ID_MIN_Q15 - |iq| of negative Id, so the current vector is never
+ * shorter than MC_ID_MIN_Q15 / sqrt 2 and the phase currents stay outside
+ * the dead-time band, where the inverter's voltage loss depends only on
+ * the current's sign and the estimator's applied voltage is exact. Under
+ * load (|iq| >= MC_ID_MIN_Q15) it is off and costs no torque. id <= 0
+ * (field weakening), |iq| <= 32767: no overflow. */
+static q15_t mc_id_floor(q15_t id, q15_t iq)
+{
+    int32_t f = (int32_t)MC_ID_MIN_Q15 - (int32_t)q15_abs_sat(iq); /* > -32768 */
+    return ((int32_t)id > -f) ? (q15_t)(-f) : id;
+}
+
 static void mc_enter_closed_loop(mc_t *mc)
 {
     angle_q15_t est = smc_theta(&mc->smc);
@@ -263,6 +276,7 @@ static void mc_enter_closed_loop(mc_t *mc)
     dq_q15_t i_est = park_forward(mc->i_ab, sincos_compute(est));
     pi_preset(&mc->pi_w, i_est.q);
     mc->i_ref.q = mc->pi_w.out;
+    mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
     mc->speed_div = 0U;
     mc->stall_cnt[0] = 0U;
     mc->stall_cnt[1] = 0U;
@@ -282,7 +296,7 @@ static bool mc_speed_loop(mc_t *mc)
 #if defined(TORQUEMODE)
     mc->i_ref.q = mc->torque_target;
     mc->speed_ref = w;
-    mc->i_ref.d = fieldweak_id_ref(&mc->fw, w);
+    mc->i_ref.d = mc_id_floor(fieldweak_id_ref(&mc->fw, w), mc->i_ref.q);
 #else
     /* Ramp the reference towards the target. */
     int32_t diff = (int32_t)mc->speed_target - (int32_t)mc->speed_ref;
@@ -313,6 +327,9 @@ static bool mc_speed_loop(mc_t *mc)
     mc->pi_w.p.kp = q15_mul(MC_SPD_KP, sched);
     mc->pi_w.p.ki = q15_mul(MC_SPD_KI, sched);
     mc->i_ref.q = pi_update(&mc->pi_w, mc->speed_ref, w);
+    /* After Iq: the floor only asks |Id| + |Iq| <= MC_ID_MIN_Q15, inside
+     * the current budget the limit above was computed from. */
+    mc->i_ref.d = mc_id_floor(mc->i_ref.d, mc->i_ref.q);
 #endif
 
     /* Stall / loss of synchronisation (note 2). */
