@@ -5,7 +5,8 @@
  * Core built for MCHV + hispeed (motor_hispeed.h), plant = the same assumed
  * motor (sim_profiles.c "hispeed"), 320 V bus, 2 us dead time, a fan load of
  * 20 mN m at 17,000 rpm. Pot at full travel (SPEED_REF_MAX_RPM = 17,000 rpm).
- * Pass: closed loop, mean true speed within 1 % of 17,000 rpm over 0.5 s.
+ * Pass: closed loop, mean true speed within 1 % of 17,000 rpm over 0.5 s,
+ * every angle-error sample within 2 deg.
  */
 static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **state)
 {
@@ -31,20 +32,66 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
     cl_measure(&s, 0.5, &w);
     printf("measured: high-speed motor, pot at max (%.0f rpm) on %.0f V: true %.0f rpm "
            "(min %.0f, max %.0f), est %.0f rpm, speed error %+.3f %%, angle error mean %+.2f deg "
-           "rms %.2f deg, iq %.2f A, reached after %.1f s, closed loop throughout: %s, state %s "
-           "fault %s\n",
+           "rms %.2f deg max %.2f deg, iq %.2f A, reached after %.1f s, closed loop throughout: "
+           "%s, state %s fault %s\n",
            (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min, w.spd_max,
            w.est_sum / (double)(w.n > 0 ? w.n : 1), cl_speed_err_pct(&w), cl_ang_mean(&w),
-           cl_ang_rms(&w), s.now.iq_true_a, s.rig.t - t0, w.left_closed_loop ? "no" : "yes",
-           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
+           cl_ang_rms(&w), w.ang_max, s.now.iq_true_a, s.rig.t - t0,
+           w.left_closed_loop ? "no" : "yes", simcore_state_name(s.now.state),
+           simcore_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
     assert_true(fabs(cl_speed(&w) - 17000.0) <= 170.0);
+    assert_true(w.ang_max <= 2.0);
+}
+
+/*
+ * The lowest claimed speed, no load (the case that used to lose the rotor:
+ * at 320 V the 2 us dead time is worth 12.8 V per phase, more than the
+ * 11.5 V of back-EMF at 2,000 rpm). Pot at 0 (SPEED_REF_MIN_RPM): closed loop
+ * at the speed (2 %, held 0.2 s), 0.5 s to settle, then over 1 s: no fault,
+ * speed error <= 1 %, every angle-error sample within 2 deg.
+ */
+static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void **state)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    cl_window_t w;
+    double t_at;
+    (void)state;
+    simcore_cfg_default(&cfg);
+    cl_setup(&s, &cfg, "hispeed", "mchv");
+    simcore_set_speed(&s, (double)SPEED_REF_MIN_RPM);
+    simcore_request(&s, MC_REQUEST_START);
+    t_at = cl_run_until_at_speed(&s, (double)SPEED_REF_MIN_RPM, 2.0, 0.2, 10.0);
+    if (t_at < 0.0) {
+        fail_msg("%.0f rpm not reached: state %s, fault %s, true %.0f rpm",
+                 (double)SPEED_REF_MIN_RPM, simcore_state_name(s.now.state),
+                 simcore_fault_name(s.now.fault), s.now.speed_rpm);
+    }
+    cl_run(&s, 0.5);
+    cl_measure(&s, 1.0, &w);
+    printf(
+        "measured: high-speed motor at its lowest speed SPEED_REF_MIN_RPM = %.0f rpm (%.1f %% of "
+        "%.0f) on %.0f V, no load: speed error %+.3f %% (true %.1f, min %.0f, max %.0f rpm), "
+        "angle error mean %+.2f deg rms %.2f deg max %.2f deg, closed loop throughout: %s, "
+        "state %s fault %s\n",
+        (double)SPEED_REF_MIN_RPM, 100.0 * SPEED_REF_MIN_RPM / SPEED_REF_MAX_RPM,
+        (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed_err_pct(&w), cl_speed(&w),
+        w.spd_min, w.spd_max, cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
+        w.left_closed_loop ? "no" : "yes", simcore_state_name(s.now.state),
+        simcore_fault_name(s.now.fault));
+    assert_false(w.left_closed_loop);
+    assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
+    assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
+    assert_true(fabs(cl_ang_mean(&w)) <= 2.0);
+    assert_true(w.ang_max <= 2.0);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus),
+        cmocka_unit_test(test_high_speed_motor_should_hold_its_lowest_speed_without_load),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
