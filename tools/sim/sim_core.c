@@ -96,21 +96,33 @@ static const sim_motor_profile_t *motor_from_firmware(const char *name)
     static sim_motor_profile_t mp;
     mp.name = name;
     mp.alias = NULL;
+#if defined(MOTOR_INERTIA_KGM2)
+    mp.desc = "firmware profile data, J from MOTOR_INERTIA_KGM2, friction assumed";
+#else
     mp.desc = "firmware profile data, J 1e-5 kg m^2 and friction assumed";
+#endif
     mp.rs_ohm = (double)MOTOR_RS_OHM;
     mp.l_h = (double)MOTOR_LS_H;
     mp.ke_ll = (double)MOTOR_KE_VPK_LL_PER_KRPM;
     mp.pole_pairs = (int)MOTOR_POLE_PAIRS;
+#if defined(MOTOR_INERTIA_KGM2)
+    mp.j_kgm2 = (double)MOTOR_INERTIA_KGM2; /* tools/tune writes the data sheet's value */
+#else
     mp.j_kgm2 = 1e-5;
+#endif
     mp.b_nms = 1e-5;
     mp.coulomb_nm = 1e-3;
+#if defined(MOTOR_RATED_CURRENT_A)
+    mp.rated_a = (double)MOTOR_RATED_CURRENT_A;
+#else
     mp.rated_a = (double)MOTOR_CURRENT_MAX_A;
+#endif
     mp.rated_rpm = (double)MOTOR_SPEED_NOMINAL_RPM;
     mp.max_rpm = (double)MOTOR_SPEED_FW_MAX_RPM;
     fprintf(stderr,
             "sim: no simulator profile '%s': simulating the firmware's motor data "
-            "(inertia and friction assumed)\n",
-            name);
+            "(%s)\n",
+            name, mp.desc);
     return &mp;
 #else
     (void)name;
