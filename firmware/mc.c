@@ -179,8 +179,9 @@ static void mc_outputs_off(mc_t *mc)
     mc->v_dq.q = 0;
     mc->i_ref.d = 0;
     mc->i_ref.q = 0;
-    mc->vbus_hist[0] = 0; /* nothing applied: the estimator sees 0 V */
-    mc->vbus_hist[1] = 0;
+    mc->v_hist[0].alpha = 0;
+    mc->v_hist[0].beta = 0;
+    mc->v_hist[1] = mc->v_hist[0];
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
     pi_reset(&mc->pi_w);
@@ -365,21 +366,8 @@ static bool mc_speed_loop(mc_t *mc)
  * sample's current evolved, computed two steps ago (mc.h note 2). */
 static void mc_estimate(mc_t *mc)
 {
-    /* The duties of two steps ago, less the dead-time loss at the mean
-     * phase current over the period they were applied in (mc.h note 2). */
-    const q15_t i_now[3] = {mc->ia, mc->ib, mc->ic};
-    int16_t eff[3];
-    for (uint8_t k = 0U; k < 3U; k++) {
-        uint16_t d = mc->duty_hist[1][k];
-        eff[k] = (int16_t)d;
-        if (d > 0U && d < (uint16_t)PWM_DUTY_MAX) {
-            q15_t i_mean = (q15_t)(((int32_t)mc->i_prev[k] + (int32_t)i_now[k]) >> 1);
-            eff[k] = (int16_t)(eff[k] - mc_deadtime_counts(i_mean));
-        }
-        mc->i_prev[k] = i_now[k];
-    }
     mc->i_ab = clarke_forward(mc->ia, mc->ib);
-    smc_update(&mc->smc, mc->i_ab, mc_duty_to_voltage(eff, mc->vbus_hist[1]));
+    smc_update(&mc->smc, mc->i_ab, mc->v_hist[1]);
 }
 
 /* Current loops and modulation, for one period with the outputs on.
@@ -419,7 +407,6 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     svgen_out_t sv;
     svgen_update(v_ab, PWM_DUTY_MAX, &sv);
 
-#if MC_DEADTIME_COMP
     /* Phase currents predicted at the same angle: the signs the dead time
      * will see (measured d/q current, rotated). */
     ab_q15_t ip = park_inverse(mc->i_dq, scv);
@@ -429,26 +416,29 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     iph[0] = ip.alpha;
     iph[1] = q15_sat((half_a + b_s3 + (int32_t)0x4000) >> 15);
     iph[2] = q15_sat((half_a - b_s3 + (int32_t)0x4000) >> 15);
-#endif
 
+    int16_t eff[3];
     for (uint8_t k = 0U; k < 3U; k++) {
+        int16_t dt = mc_deadtime_counts(iph[k]);
         int32_t d = (int32_t)sv.duty[k];
 #if MC_DEADTIME_COMP
-        d += mc_deadtime_counts(iph[k]);
+        d += dt;
 #endif
-        if (d < 0) {
+        if (d <= 0) {
             d = 0;
-        } else if (d > (int32_t)PWM_DUTY_MAX) {
+            dt = 0; /* a phase that does not switch loses nothing */
+        } else if (d >= (int32_t)PWM_DUTY_MAX) {
             d = (int32_t)PWM_DUTY_MAX;
+            dt = 0;
         }
         mc->duty[k] = (uint16_t)d;
-        /* For the estimator two steps on, which subtracts the dead-time
-         * loss once the currents of that period are measured. */
-        mc->duty_hist[1][k] = mc->duty_hist[0][k];
-        mc->duty_hist[0][k] = (uint16_t)d;
+        /* What the inverter will really apply: the duty less the dead-time loss. */
+        eff[k] = (int16_t)(d - dt);
     }
-    mc->vbus_hist[1] = mc->vbus_hist[0];
-    mc->vbus_hist[0] = mc->vbus;
+
+    /* This step's applied voltage, for the estimator two steps on. */
+    mc->v_hist[1] = mc->v_hist[0];
+    mc->v_hist[0] = mc_duty_to_voltage(eff, mc->vbus);
 }
 
 /* ---- the seam ------------------------------------------------------------------------------ */

@@ -190,10 +190,7 @@ typedef struct {
 
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
-    uint16_t duty_hist[2][3]; /* duties computed by the last two steps: [0] the last, [1] the
-                                 one before, applied over the period that ends at this sample */
-    q15_t vbus_hist[2];       /* bus voltage each was computed with; 0 while the outputs were off */
-    q15_t i_prev[3];          /* phase currents of the previous sample (the dead-time loss) */
+    ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
 
     /* outputs */
     uint16_t duty[3];
@@ -234,16 +231,17 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  * 2. The estimator is fed the voltage the inverter actually applied while
  *    the measured current evolved: the duties computed two steps ago (they
  *    were applied during the period that ends at this sample), less the
- *    dead-time loss of each phase, times the bus voltage sampled then. The
- *    loss is evaluated after the fact, at the mean of the phase currents
- *    measured at both ends of that period, not at the current predicted
- *    when the duties were computed: inside the dead-time band the loss is
- *    a steep function of the current (Td/Ts Vbus / band, 18 ohm for the
- *    Hurst), so at light load a prediction error of a few mA is a volt of
- *    model error, against 2 V of back-EMF at 500 rpm. A duty at 0 or
- *    PWM_DUTY_MAX does not switch and loses nothing. So duty clamping, bus
- *    ripple and the dead time itself (compensated or not) are all seen by
- *    the model.
+ *    dead-time loss predicted from each phase current, times the bus
+ *    voltage sampled then; a duty at 0 or PWM_DUTY_MAX does not switch and
+ *    loses nothing. So duty clamping, bus ripple and the dead time itself
+ *    (compensated or not) are all seen by the model. Inside the dead-time
+ *    band the loss is a steep function of the current (Td/Ts Vbus / band,
+ *    18 ohm for the Hurst), so at light load any current error is volts of
+ *    model error: the Id floor (MC_ID_MIN_A) keeps the phase currents out
+ *    of the band. Evaluating the loss after the fact, at the mean of the
+ *    currents measured at both ends of the period, was tried: same
+ *    accuracy with the floor (1.3 to 2.2 deg max at 500 rpm, no load, three
+ *    noise seeds, against 1.3 to 2.0), 13 % more instructions per step.
  */
 
 #endif /* MC_H */
