@@ -88,18 +88,22 @@
 #define MC_DEADTIME_BAND_A                                                                         \
     ((double)BOARD_VBUS_NOMINAL_V / (12.0 * (double)MOTOR_LS_H * (double)PWM_FREQUENCY_HZ))
 #endif
-/* Light-load floor of the Id reference (A, magnitude; the reference is
- * min(field-weakening Id, -MC_ID_MIN_A)). Inside the dead-time band the
- * inverter loses Td/Ts Vbus / band volts per amp (18 ohm for the Hurst),
- * so one ADC code of current error is 0.16 V of applied-voltage error for
- * the estimator against 2.1 V of back-EMF at 500 rpm: at no load (20 mA)
- * the angle error peaked at 5 to 6 deg. A few band-widths of Id keep the
- * phase currents out of the band (only zero crossings pass through it),
- * for R Id^2 of copper loss and no torque (surface magnets). The core asks
- * Id <= -(MC_ID_MIN_A - |Iq|): off once |Iq| reaches it, so no torque
- * capacity is lost. Default: 4 band-widths, at most 40 % of
+/* Light-load floor of the Id reference (A, magnitude): the core asks
+ * Id <= -(MC_ID_MIN_A - |Iq|), so it is off once |Iq| reaches it and no
+ * torque capacity is lost. Inside the dead-time band the inverter loses
+ * Td/Ts Vbus / band volts per amp (18 ohm for the Hurst), so at no load
+ * (20 mA of phase current, 2 ADC codes) one code of current error is 0.16 V
+ * of applied-voltage error for the estimator against 2.1 V of back-EMF at
+ * 500 rpm: the angle error peaked at 5 to 6 deg. Kept out of the band (only
+ * zero crossings pass through it), the loss depends on the current's sign
+ * only. Costs 1.5 R Id^2 (0.17 W for the Hurst at no load), no torque
+ * (surface magnets). Default: 4 band-widths, at most 40 % of
  * MOTOR_CURRENT_MAX_A (Hurst 0.21 A, Hurst300 1.18 A, high-speed motor
- * 0.8 A). 0 = off. */
+ * 0.8 A). Trials (Hurst, 500 rpm no load, five noise seeds, max angle
+ * error): 4 band-widths 1.3 to 2.0 deg, 6: 1.4 to 2.0, 8: 1.2 to 1.75; but
+ * 8 slowed the locked-rotor trip from 22 to 36..39 ms (bound 50) and raised
+ * the bias of the +-30 % R, L corners from 1.9 to 2.7 deg (the model error
+ * acts on Id). 0 = off. */
 #ifndef MC_ID_MIN_A
 #define MC_ID_MIN_A                                                                                \
     ((4.0 * MC_DEADTIME_BAND_A < 0.4 * MOTOR_CURRENT_MAX_A) ? 4.0 * MC_DEADTIME_BAND_A             \
