@@ -76,12 +76,15 @@
  * 1.12 x the largest phase back-EMF (all of it must be carried from a wrong
  * state), capped at 0.975 V_FS because tools/tune --check still refuses
  * Kslide >= V_FS (the core accepts up to 2 V_FS). High-speed: 98.1 V at 17000 rpm -> 110 V.
- * Written as numbers: tools/tune reads these headers. */
+ * Written as numbers (tools/tune reads these headers),
+ * to 6 digits: a band rounded to 4 leaves the pole p = F - c a few Q15
+ * counts off 0 (1.385 A here gave -8.49, a rounding tie that a 32-bit
+ * double resolves the other way: check-16bit failed on the MCHV). */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 110.0 /* Kslide, V (0.595 V_FS on 320 V) */
 #endif
 #ifndef MOTOR_SMC_LINEAR_BAND_A
-#define MOTOR_SMC_LINEAR_BAND_A 1.385 /* dead-beat for 110 V: 110 (exp(0.015) - 1) / 1.2 */
+#define MOTOR_SMC_LINEAR_BAND_A 1.38536 /* dead-beat for 110 V: 110 (exp(0.015) - 1) / 1.2 */
 #endif
 #ifndef MC_SPEED_FILTER_HZ
 #define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (smc.h note 7; docs/estimator.md) */
