@@ -75,14 +75,15 @@
  * Kslide >= V_FS (the core accepts up to 2 V_FS). Hurst: 22.3 V at 5300 rpm -> 25 V, capped to 13.5
  * V (closed loop measured 25 V: same figures within 0.3 deg). Written as numbers (tools/tune reads
  * these headers), to 6 digits: a band rounded to 4 leaves the pole p = F - c a few Q15 counts off 0
- * (1.385 A here gave -8.49, a rounding tie that a 32-bit double resolves the other way: check-16bit
- * failed on the MCHV). */
+ * (1.385 A for the high-speed motor gave -8.49, a rounding tie that a 32-bit double resolves the
+ * other way: check-16bit failed on the MCHV). */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 13.5 /* Kslide, V (0.974 V_FS on 24 V) */
 #endif
 #ifndef MOTOR_SMC_LINEAR_BAND_A
-#define MOTOR_SMC_LINEAR_BAND_A 0.364073 /* dead-beat for 13.5 V: 13.5 (exp(0.06953) - 1) / 2.67   \
-                                          */
+#define MOTOR_SMC_LINEAR_BAND_A                                                                    \
+    0.364073 /* dead-beat for 13.5 V: 13.5 (exp(0.06953) - 1) / 2.67                               \
+              */
 #endif
 #ifndef MC_SPEED_FILTER_HZ
 #define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (smc.h note 7; docs/estimator.md) */

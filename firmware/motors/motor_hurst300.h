@@ -76,7 +76,7 @@
  * Kslide >= V_FS (the core accepts up to 2 V_FS). Hurst300: 12.6 V at 3000 rpm -> 14.2 V, capped
  * to 13.5 V. Written as numbers (tools/tune reads these headers),
  * to 6 digits: a band rounded to 4 leaves the pole p = F - c a few Q15
- * counts off 0 (1.385 A here gave -8.49, a rounding tie that a 32-bit
+ * counts off 0 (1.385 A for the high-speed motor gave -8.49, a rounding tie that a 32-bit
  * double resolves the other way: check-16bit failed on the MCHV). */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 13.5 /* Kslide, V (0.974 V_FS on 24 V) */

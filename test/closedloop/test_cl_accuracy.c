@@ -9,7 +9,7 @@
  *                  and every sample (the max over 1 s, at least 8
  *                  mechanical turns at 500 rpm) <= 2 deg; at the lowest
  *                  claimed speed <= 2.5 deg: there the max is set by the
- *                  ADC noise, 1.3 to 2.15 deg over noise seeds for the
+ *                  ADC noise, 1.4 to 2.25 deg over eight noise seeds for the
  *                  Hurst at 500 rpm (docs/tuning.md)
  * (rms printed). Default bench: 2 us dead time, ADC noise
  * sigma 1 code, amplifier offsets, friction only (3e-6 N m s/rad + 1 mN m).
