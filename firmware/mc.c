@@ -160,6 +160,37 @@ void mc_set_reference(mc_t *mc, int16_t ref)
     mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
 }
 
+bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)
+{
+    if ((unsigned)g >= (unsigned)MC_GAIN_COUNT || value < 0) {
+        return false;
+    }
+    mc->gain_posted[g] = value;
+    mc->gain_seq = (uint8_t)(mc->gain_seq + 1U);
+    return true;
+}
+
+int16_t mc_get_gain(const mc_t *mc, mc_gain_t g)
+{
+    return ((unsigned)g < (unsigned)MC_GAIN_COUNT) ? mc->gain_posted[g] : 0;
+}
+
+/* Apply the posted gains (mc.h note 3). */
+static void mc_apply_gains(mc_t *mc)
+{
+    q15_t kp = mc->gain_posted[MC_GAIN_CUR_KP];
+    q15_t ki = mc->gain_posted[MC_GAIN_CUR_KI];
+    mc->pi_d.p.kp = kp;
+    mc->pi_q.p.kp = kp;
+    mc->pi_d.p.ki = ki;
+    mc->pi_q.p.ki = ki;
+    mc->pi_d.p.kc = ki;
+    mc->pi_q.p.kc = ki;
+    mc->spd_kp_base = mc->gain_posted[MC_GAIN_SPD_KP];
+    mc->spd_ki_base = mc->gain_posted[MC_GAIN_SPD_KI];
+    mc->pi_w.p.kc = mc->spd_ki_base;
+}
+
 /* ---- state changes --------------------------------------------------------------- */
 
 static void mc_enter(mc_t *mc, mc_state_t s)
@@ -325,8 +356,8 @@ static bool mc_speed_loop(mc_t *mc)
         int32_t f = ((int32_t)q15_abs_sat(mc->speed_ref) * MC_KP_SCHED_K) >> 15;
         sched = (f < MC_KP_SCHED_MIN) ? MC_KP_SCHED_MIN : (q15_t)f;
     }
-    mc->pi_w.p.kp = q15_mul(MC_SPD_KP, sched);
-    mc->pi_w.p.ki = q15_mul(MC_SPD_KI, sched);
+    mc->pi_w.p.kp = q15_mul(mc->spd_kp_base, sched);
+    mc->pi_w.p.ki = q15_mul(mc->spd_ki_base, sched);
     mc->i_ref.q = pi_update(&mc->pi_w, mc->speed_ref, w);
     /* After Iq: the floor only asks |Id| + |Iq| <= MC_ID_MIN_Q15, inside
      * the current budget the limit above was computed from. */
@@ -451,6 +482,12 @@ void mc_init(mc_t *mc)
     pi_init(&mc->pi_w, &mc_pi_spd_params);
     fieldweak_init(&mc->fw, &mc_fw_params);
     smc_init(&mc->smc, &mc_smc_params);
+    mc->gain_posted[MC_GAIN_CUR_KP] = MC_CUR_KP;
+    mc->gain_posted[MC_GAIN_CUR_KI] = MC_CUR_KI;
+    mc->gain_posted[MC_GAIN_SPD_KP] = MC_SPD_KP;
+    mc->gain_posted[MC_GAIN_SPD_KI] = MC_SPD_KI;
+    mc->spd_kp_base = MC_SPD_KP;
+    mc->spd_ki_base = MC_SPD_KI;
     mc->speed_ref = MC_SPEED_REF_MIN_Q15;
     mc->speed_target = MC_SPEED_REF_MIN_Q15;
     mc_outputs_off(mc);
@@ -469,6 +506,11 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     bool req_stop = mc_take(mc, MC_REQUEST_STOP);
     if (mc_take(mc, MC_REQUEST_REF_POT)) {
         mc->ref_from_remote = false;
+    }
+    uint8_t gseq = mc->gain_seq;
+    if (gseq != mc->gain_seen) {
+        mc->gain_seen = gseq;
+        mc_apply_gains(mc);
     }
     uint8_t seq = mc->ref_remote_seq;
     if (seq != mc->ref_remote_seen) {

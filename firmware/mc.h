@@ -143,6 +143,18 @@ typedef struct {
     bool outputs_on;        /* as in the last mc_pwm_out_t */
 } mc_status_t;
 
+/* ---- run-time gains -------------------------------------------------------- *
+ * The PI gains a tuning interface may change while the motor runs (the live
+ * monitor's whitelist). Values are the Q15 mantissas of pi_params_t; each
+ * loop's exponent (kp_shift) stays as built. */
+typedef enum {
+    MC_GAIN_CUR_KP, /* d and q current PIs: Kp mantissa */
+    MC_GAIN_CUR_KI, /* d and q current PIs: Ki, and Kc = Ki (AN1078) */
+    MC_GAIN_SPD_KP, /* speed PI: Kp before the low-speed schedule */
+    MC_GAIN_SPD_KI, /* speed PI: Ki before the low-speed schedule, and Kc = Ki */
+    MC_GAIN_COUNT   /* number of gains, not a gain */
+} mc_gain_t;
+
 /* ---- the instance ------------------------------------------------------- *
  * Complete so the caller can allocate it; its members are private to the
  * core and may change between versions (read them through mc_status()). */
@@ -154,6 +166,10 @@ typedef struct {
     volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference */
     uint8_t ref_remote_seen;
     bool ref_from_remote;
+    volatile int16_t gain_posted[MC_GAIN_COUNT]; /* mc_set_gain; Q15 mantissas */
+    volatile uint8_t gain_seq;                   /* incremented by mc_set_gain */
+    uint8_t gain_seen;
+    q15_t spd_kp_base, spd_ki_base; /* speed PI gains the schedule scales */
 
     mc_state_t state;
     uint16_t fault;
@@ -215,6 +231,17 @@ void mc_request(mc_t *mc, mc_request_t r);
  * BOARD_I_FULLSCALE_A, clamped to +-MOTOR_CURRENT_MAX_A. */
 void mc_set_reference(mc_t *mc, int16_t ref);
 
+/* Run-time gain change (note 3): posted like mc_request(), applied at the
+ * start of the next mc_step() to every loop it concerns at once, so the d
+ * and q current loops never run a period with different gains. Returns
+ * false, and changes nothing, for an unknown gain or a value outside
+ * 0..32767; the caller's whitelist decides what is sensible. mc_init()
+ * restores the built-in gains. */
+bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value);
+
+/* The gain as posted: the value in effect from the next period on. */
+int16_t mc_get_gain(const mc_t *mc, mc_gain_t g);
+
 /* Snapshot of the state for display, logging and tests. */
 void mc_status(const mc_t *mc, mc_status_t *st);
 
@@ -242,6 +269,14 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    currents measured at both ends of the period, was tried: same
  *    accuracy with the floor (1.3 to 2.2 deg max at 500 rpm, no load, three
  *    noise seeds, against 1.3 to 2.0), 13 % more instructions per step.
+ *
+ * 3. Run-time gains. mc_set_gain() writes gain_posted[g] (one 16-bit store)
+ *    and then increments gain_seq; mc_step() applies all posted gains when
+ *    gain_seq has moved. A store that races the step is applied at the latest
+ *    one period later, and always to d and q together. The speed loop's
+ *    low-speed schedule multiplies spd_kp_base / spd_ki_base each speed-loop
+ *    tick, so a posted speed gain survives it (writing pi_w's gains directly
+ *    would be overwritten within IRP_PERCALC periods).
  */
 
 #endif /* MC_H */

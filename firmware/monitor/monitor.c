@@ -85,10 +85,10 @@ int16_t monitor_var_read(const mc_status_t *st, uint8_t idx)
 /* ---- the tuning whitelist ------------------------------------------------------ *
  * The PI gains of the current loops (d and q together) and of the speed loop,
  * as the pi_params_t mantissas (Q15, with the exponent kp_shift fixed at build
- * time). mc.h has no setter for them, so they are written in the pi_t
- * instances of mc_t (their params are public members, pi.h) from the main
- * loop: one 16-bit store each, atomic on the dsPIC, seen by the next
- * mc_step(). A ki change also sets kc (AN1078 uses Kc = Ki). The accepted
+ * time). They go through mc_set_gain() (mc.h note 3): posted from the main
+ * loop, applied by the next mc_step() to d and q together, and the speed
+ * gains are the base the low-speed schedule scales, so they survive it.
+ * A ki change also sets kc (AN1078 uses Kc = Ki). The accepted
  * range is the build-time gain / 8 .. x 8 (at least 1, at most 32767): wide
  * enough to tune, narrow enough that a typo cannot zero a loop. mc_init()
  * (a reset) restores the build-time gains. */
@@ -102,43 +102,20 @@ const monitor_param_t monitor_params[MONITOR_NUM_PARAMS] = {
     {"spd_ki", GAIN_MIN(MC_SPD_KI), GAIN_MAX(MC_SPD_KI)},
 };
 
+/* The whitelist's order is mc_gain_t's, so an index is the gain. */
+Q15_STATIC_ASSERT(MONITOR_NUM_PARAMS == (unsigned)MC_GAIN_COUNT,
+                  "monitor_params[] must list the gains of mc_gain_t, in order");
+
 int16_t monitor_param_get(const mc_t *mc, uint8_t idx)
 {
-    switch (idx) {
-        case 0:
-            return mc->pi_d.p.kp;
-        case 1:
-            return mc->pi_d.p.ki;
-        case 2:
-            return mc->pi_w.p.kp;
-        case 3:
-            return mc->pi_w.p.ki;
-        default:
-            return 0;
-    }
+    return (idx < MONITOR_NUM_PARAMS) ? mc_get_gain(mc, (mc_gain_t)idx) : 0;
 }
 
 static void param_set(mc_t *mc, uint8_t idx, int16_t v)
 {
-    switch (idx) {
-        case 0:
-            mc->pi_d.p.kp = v;
-            mc->pi_q.p.kp = v;
-            break;
-        case 1:
-            mc->pi_d.p.ki = v;
-            mc->pi_d.p.kc = v;
-            mc->pi_q.p.ki = v;
-            mc->pi_q.p.kc = v;
-            break;
-        case 2:
-            mc->pi_w.p.kp = v;
-            break;
-        default:
-            mc->pi_w.p.ki = v;
-            mc->pi_w.p.kc = v;
-            break;
-    }
+    /* idx and v are range-checked against monitor_params[] by the caller;
+     * mc applies d and q together at its next step (mc.h note 3). */
+    (void)mc_set_gain(mc, (mc_gain_t)idx, v);
 }
 
 /* ---- CRC ---------------------------------------------------------------------- */

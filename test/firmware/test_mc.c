@@ -285,6 +285,51 @@ static void test_start_stop_should_toggle_and_start_should_not_restart_a_running
     assert_int_equal(st.state, MC_STATE_STOPPED);
 }
 
+static void test_set_gain_should_apply_to_d_and_q_together_at_the_next_step_only(void **state)
+{
+    (void)state;
+    q15_t kp0 = mc.pi_d.p.kp;
+    q15_t kp = (q15_t)(kp0 / 2 + 1);
+    q15_t ki = (q15_t)(mc.pi_d.p.ki / 2 + 1);
+    assert_true(mc_set_gain(&mc, MC_GAIN_CUR_KP, kp));
+    assert_true(mc_set_gain(&mc, MC_GAIN_CUR_KI, ki));
+    assert_int_equal(mc_get_gain(&mc, MC_GAIN_CUR_KP), kp);
+    /* posted, not yet applied: the loops keep their gains until mc_step */
+    assert_int_equal(mc.pi_d.p.kp, kp0);
+    assert_int_equal(mc.pi_q.p.kp, kp0);
+    step_with(nominal());
+    assert_int_equal(mc.pi_d.p.kp, kp);
+    assert_int_equal(mc.pi_q.p.kp, kp);
+    assert_int_equal(mc.pi_d.p.ki, ki);
+    assert_int_equal(mc.pi_q.p.ki, ki);
+    assert_int_equal(mc.pi_d.p.kc, ki); /* Kc = Ki, as AN1078 tunes it */
+    assert_int_equal(mc.pi_q.p.kc, ki);
+    /* mc_init restores the built-in gains */
+    mc_init(&mc);
+    assert_int_equal(mc_get_gain(&mc, MC_GAIN_CUR_KP), kp0);
+    assert_int_equal(mc.pi_q.p.kp, kp0);
+}
+
+static void test_set_gain_should_refuse_unknown_gains_and_negative_values(void **state)
+{
+    (void)state;
+    int16_t before[MC_GAIN_COUNT];
+    for (unsigned g = 0; g < (unsigned)MC_GAIN_COUNT; g++) {
+        before[g] = mc_get_gain(&mc, (mc_gain_t)g);
+    }
+    assert_false(mc_set_gain(&mc, MC_GAIN_COUNT, 100));
+    assert_false(mc_set_gain(&mc, (mc_gain_t)200, 100));
+    assert_false(mc_set_gain(&mc, MC_GAIN_SPD_KP, -1));
+    assert_false(mc_set_gain(&mc, MC_GAIN_CUR_KI, (int16_t)-32768));
+    assert_int_equal(mc_get_gain(&mc, MC_GAIN_COUNT), 0);
+    step_with(nominal());
+    for (unsigned g = 0; g < (unsigned)MC_GAIN_COUNT; g++) {
+        assert_int_equal(mc_get_gain(&mc, (mc_gain_t)g), before[g]);
+    }
+    assert_int_equal(mc.pi_w.p.kp, MC_SPD_KP);
+    assert_true(mc_set_gain(&mc, MC_GAIN_SPD_KI, 0)); /* 0 is a valid (if idle) gain */
+}
+
 static void test_a_request_posted_twice_before_a_step_should_count_once(void **state)
 {
     (void)state;
@@ -677,6 +722,10 @@ int main(void)
             test_stop_should_reach_stopped_with_outputs_off_from_every_running_state, setup),
         cmocka_unit_test_setup(
             test_start_stop_should_toggle_and_start_should_not_restart_a_running_core, setup),
+        cmocka_unit_test_setup(test_set_gain_should_apply_to_d_and_q_together_at_the_next_step_only,
+                               setup),
+        cmocka_unit_test_setup(test_set_gain_should_refuse_unknown_gains_and_negative_values,
+                               setup),
         cmocka_unit_test_setup(test_a_request_posted_twice_before_a_step_should_count_once, setup),
         cmocka_unit_test_setup(
             test_overcurrent_should_trip_at_the_threshold_on_any_phase_in_one_period, setup),

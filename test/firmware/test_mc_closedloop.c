@@ -364,6 +364,30 @@ static void test_closed_loop_should_not_trip_through_speed_changes_and_load_step
     }
 }
 
+static void test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_schedule(void **state)
+{
+    (void)state;
+    /* Below MOTOR_SPEED_KP_FULL_RPM the speed loop scales its gains every
+     * tick; a gain written straight into pi_w would be overwritten there. */
+    start_at(SPEED_REF_MIN_RPM);
+    run(0.3);
+    assert_true(b.st.speed_ref < MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM));
+    q15_t kp_sched = b.mc.pi_w.p.kp;
+    q15_t base = mc_get_gain(&b.mc, MC_GAIN_SPD_KP);
+    assert_true(mc_set_gain(&b.mc, MC_GAIN_SPD_KP, (q15_t)(base / 2)));
+    run((double)(3 * IRP_PERCALC) / (double)PWM_FREQUENCY_HZ); /* three speed-loop ticks */
+    q15_t kp_now = b.mc.pi_w.p.kp;
+    printf("measured: scheduled speed Kp %d with base %d, %d after the base was halved\n",
+           (int)kp_sched, (int)base, (int)kp_now);
+    assert_int_equal(mc_get_gain(&b.mc, MC_GAIN_SPD_KP), base / 2);
+    /* Halved (the schedule factor itself may move a fraction of a percent as
+     * the reference settles); before mc_set_gain existed the ratio was 1. */
+    double ratio = (double)kp_now / (double)kp_sched;
+    printf("measured: ratio %.4f (expected 0.5)\n", ratio);
+    assert_true(fabs(ratio - 0.5) < 0.01);
+    run(0.5); /* and the motor keeps running on it */
+}
+
 static void test_stop_in_closed_loop_should_turn_the_outputs_off_at_once(void **state)
 {
     (void)state;
@@ -407,6 +431,7 @@ int main(void)
         cmocka_unit_test(test_an_overload_beyond_the_current_limit_should_fault_as_lost_tracking),
         cmocka_unit_test(test_the_hand_off_difference_should_bleed_to_zero_by_the_step_each_period),
         cmocka_unit_test(test_closed_loop_should_not_trip_through_speed_changes_and_load_steps),
+        cmocka_unit_test(test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_schedule),
         cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
         cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
     };

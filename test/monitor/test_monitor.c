@@ -366,7 +366,11 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
         expect_ok(transact(MONITOR_CMD_SET_PARAM, p, 3), MONITOR_CMD_SET_PARAM);
         assert_int_equal(monitor_param_get(&fx.mc, i), q->min);
     }
-    /* the current-loop gains go to both d and q, ki also to kc */
+    /* applied by the core's next step, not before; then to both d and q,
+     * ki also to kc */
+    assert_int_not_equal(fx.mc.pi_q.p.kp, monitor_params[0].min);
+    step_with_vbus(0);
+    assert_int_equal(fx.mc.pi_d.p.kp, monitor_params[0].min);
     assert_int_equal(fx.mc.pi_q.p.kp, monitor_params[0].min);
     assert_int_equal(fx.mc.pi_q.p.ki, monitor_params[1].min);
     assert_int_equal(fx.mc.pi_q.p.kc, monitor_params[1].min);
