@@ -87,17 +87,9 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_SPEED_FULLSCALE_RPM > 0.0, "must be > 0");
 #define MC_Q15_VBUS(v)  Q15_SCALED((v), BOARD_VBUS_FULLSCALE_V)
 #define MC_Q15_RPM(r)   Q15_SCALED((r), MC_SPEED_FULLSCALE_RPM)
 
-/* Coefficients >= 1: Q15 mantissa and shift, value = mant * 2^shift / 32768. */
-#define MC_SHIFT_OF(x)                                                                             \
-    ((x) < 1.0    ? 0                                                                              \
-     : (x) < 2.0  ? 1                                                                              \
-     : (x) < 4.0  ? 2                                                                              \
-     : (x) < 8.0  ? 3                                                                              \
-     : (x) < 16.0 ? 4                                                                              \
-     : (x) < 32.0 ? 5                                                                              \
-     : (x) < 64.0 ? 6                                                                              \
-                  : 7)
-#define MC_MANT_OF(x) Q15((double)(x) / (double)(1L << MC_SHIFT_OF(x)))
+/* Coefficients >= 1: Q15 mantissa and shift (q15.h). */
+#define MC_SHIFT_OF(x) Q15_SHIFT7_OF(x)
+#define MC_MANT_OF(x)  Q15_MANT7_OF(x)
 
 /* ---- speeds --------------------------------------------------------------- */
 

@@ -78,6 +78,22 @@ typedef int16_t angle_q15_t;
 /* Q15 of x / fullscale, e.g. Q15_SCALED(1.5, 4.4) for 1.5 A on a 4.4 A scale. */
 #define Q15_SCALED(x, fullscale) Q15((double)(x) / (double)(fullscale))
 
+/* A coefficient x >= 1 is kept as a Q15 mantissa and a named left shift,
+ * value = mant * 2^shift / 32768, with shift in 0..7 (a dsPIC accumulator's
+ * guard bits): Q15_SHIFT7_OF(x) is the smallest shift with x < 2^shift, and
+ * Q15_MANT7_OF(x) the mantissa for it. Constant expressions, for x in
+ * [0, 128); a larger x fails in Q15_MANT7_OF's range check. */
+#define Q15_SHIFT7_OF(x)                                                                           \
+    ((x) < 1.0    ? 0                                                                              \
+     : (x) < 2.0  ? 1                                                                              \
+     : (x) < 4.0  ? 2                                                                              \
+     : (x) < 8.0  ? 3                                                                              \
+     : (x) < 16.0 ? 4                                                                              \
+     : (x) < 32.0 ? 5                                                                              \
+     : (x) < 64.0 ? 6                                                                              \
+                  : 7)
+#define Q15_MANT7_OF(x) Q15((double)(x) / (double)(1L << Q15_SHIFT7_OF(x)))
+
 /* Binary angle of a value in degrees, any real (wraps). 180 -> -32768. */
 #define ANGLE_Q15_DEG(deg)                                                                         \
     ((angle_q15_t)(int16_t)(uint16_t)((unsigned long)((long)((deg)*65536.0 / 360.0 +               \

@@ -133,17 +133,10 @@ typedef struct {
      : (x) < 32768.0 ? 15                                                                          \
                      : 16)
 
-/* The same for 0 <= x < 128 only (8 comparisons: keeps the expansion small). */
-#define SMC_SHIFT7_OF(x)                                                                           \
-    ((x) < 1.0    ? 0                                                                              \
-     : (x) < 2.0  ? 1                                                                              \
-     : (x) < 4.0  ? 2                                                                              \
-     : (x) < 8.0  ? 3                                                                              \
-     : (x) < 16.0 ? 4                                                                              \
-     : (x) < 32.0 ? 5                                                                              \
-     : (x) < 64.0 ? 6                                                                              \
-                  : 7)
-#define SMC_MANT7_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT7_OF(x)))
+/* The same for 0 <= x < 128 only (8 comparisons: keeps the expansion small;
+ * q15.h's convention). */
+#define SMC_SHIFT7_OF(x) Q15_SHIFT7_OF(x)
+#define SMC_MANT7_OF(x)  Q15_MANT7_OF(x)
 
 /* Mantissa of x for the shift SMC_SHIFT_OF(x). */
 #define SMC_MANT_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT_OF(x)))
@@ -151,8 +144,6 @@ typedef struct {
 /* Q12 constant (range [-8, 8)), rounded half away from zero. */
 #define SMC_Q12(x) ((q15_t)((x)*4096.0 + ((x) >= 0.0 ? 0.5 : -0.5)))
 
-/* exp(-y) for 0 <= y <= 1 as a constant expression (Taylor, 13 terms,
- * error < 2e-11). */
 /* exp(-y) for 0 < y <= 1 as a constant expression: the (3,3) Pade
  * approximant, relative error < 3e-7 at y = 1 and < 1e-13 at y = 0.07 (the
  * Hurst motor); it keeps the macro expansion small (y appears 6 times). */

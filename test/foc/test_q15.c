@@ -625,9 +625,47 @@ static void test_q15_dsp_divsd_should_truncate_toward_zero(void **state)
     check_done("q15_dsp_divsd vs trunc(n / d), 1e7 random pairs with an int16 quotient", &c);
 }
 
+/* Gains >= 1 as mantissa and shift: every shift boundary, and the value
+ * mant * 2^shift / 32768 within half a mantissa LSB of x over a dense sweep. */
+static void test_shift7_and_mant7_should_split_a_gain_into_mantissa_and_shift(void **state)
+{
+    (void)state;
+    assert_int_equal(Q15_SHIFT7_OF(0.0), 0);
+    assert_int_equal(Q15_SHIFT7_OF(0.999), 0);
+    assert_int_equal(Q15_SHIFT7_OF(1.0), 1);
+    assert_int_equal(Q15_SHIFT7_OF(3.999), 2);
+    assert_int_equal(Q15_SHIFT7_OF(4.0), 3);
+    assert_int_equal(Q15_SHIFT7_OF(64.0), 7);
+    assert_int_equal(Q15_SHIFT7_OF(127.99), 7);
+    assert_int_equal(Q15_MANT7_OF(0.5), 16384);
+    assert_int_equal(Q15_MANT7_OF(3.0), 24576); /* 0.75 * 2^2 */
+    assert_int_equal(Q15_MANT7_OF(1.0), 16384); /* 0.5 * 2^1 */
+    err_stats_t e;
+    err_stats_init(&e);
+    for (double x = 0.0; x < 128.0; x += 0.0137) {
+        int sh = Q15_SHIFT7_OF(x);
+        double val = (double)Q15_MANT7_OF(x) * (double)(1L << sh) / 32768.0;
+        double lsb = (double)(1L << sh) / 32768.0;
+        assert_true(x < (double)(1L << sh) || sh == 7);
+        assert_true(sh == 0 || x >= (double)(1L << (sh - 1)));
+        if (Q15_MANT7_OF(x) == Q15_MAX) {
+            /* just below a power of two the mantissa rounds to 1.0, which
+             * saturates to 0x7FFF (q15.h): under one LSB short */
+            assert_true(x - val < lsb && x >= val);
+            continue;
+        }
+        err_stats_add(&e, (val - x) / lsb, x);
+    }
+    err_stats_print("Q15_MANT7_OF * 2^Q15_SHIFT7_OF vs x in [0, 128), unsaturated", &e,
+                    "mantissa LSB");
+    assert_true(e.max_abs <= 0.5 + 1e-9);
+    assert_int_equal(Q15_MANT7_OF(3.99999), Q15_MAX);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_shift7_and_mant7_should_split_a_gain_into_mantissa_and_shift),
         cmocka_unit_test(test_q15_add_sub_sat_should_match_the_saturated_exact_sum),
         cmocka_unit_test(test_q15_neg_abs_sat_should_saturate_minus_32768),
         cmocka_unit_test(test_q15_sat_and_clamp_should_bound_their_inputs),
