@@ -22,6 +22,13 @@
 #define BOARD_I_FULLSCALE_A 8.0
 #endif
 
+/* ASSUMED: sign from the current amplifiers' ADC reading to the core's
+ * "+ = into the motor" (the HAL applies it): -1, from Microchip's later MCHV
+ * code (hardware.md 2.3: the MCHV shunt path reverses the LEM-designed sense). */
+#ifndef BOARD_I_SIGN
+#define BOARD_I_SIGN (-1)
+#endif
+
 /* ASSUMED: DC-bus voltage that reads as 32767 (a 400 V full-scale divider). */
 #ifndef BOARD_VBUS_FULLSCALE_V
 #define BOARD_VBUS_FULLSCALE_V 400.0

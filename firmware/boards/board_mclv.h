@@ -21,6 +21,15 @@
 #define BOARD_I_FULLSCALE_A 4.4
 #endif
 
+/* Sign from the current amplifiers' ADC reading to the core's "+ = into the
+ * motor" (+1: as read, -1: negated; the HAL applies it, hal/dspic33f).
+ * UNCHECKED: NOT FOUND for the original MCLV (hardware.md 2.1-2.2: the
+ * MCLV-2 is reversed, AN1078's MCLV code shows no sign). Bench check in
+ * docs/board.md: in LOCK, status ia must read positive. */
+#ifndef BOARD_I_SIGN
+#define BOARD_I_SIGN 1
+#endif
+
 /* DC-bus voltage that reads as 32767.
  * UNCHECKED ASSUMPTION: the original MCLV's VBUS divider was not found; this
  * is the MCLV-2 figure (3.3 V x 16 = 52.8 V, hardware.md 2.2). Check the

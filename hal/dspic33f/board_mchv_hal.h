@@ -4,16 +4,15 @@
 
 /*
  * The MCHV's PIM and its pin map were not found (hardware.md 2.3); this file
- * assumes the same dsPIC33FJ32MC204 PIM wiring as the MCLV, and differs only
- * in the current sign.
+ * assumes the same dsPIC33FJ32MC204 PIM wiring as the MCLV (the current
+ * sign differs: BOARD_I_SIGN in the board profile).
  */
 
-/* [SRC for a later board/code, MEM for this one] Microchip's MCHV code
- * (AN1292, dsPIC33EP) reads the currents with reversed sense (KCURRA =
- * KCURRB = Q15(-0.5), hardware.md 2.3). Check as for the MCLV: in LOCK,
- * status ia must read positive. */
+/* The current amplifiers' sign is a board fact: BOARD_I_SIGN in the core's
+ * board profile (firmware/boards/board_mchv.h, -1, with its provenance).
+ * -DHAL_BOARD_I_SIGN=... still overrides it for the HAL alone. */
 #ifndef HAL_BOARD_I_SIGN
-#define HAL_BOARD_I_SIGN (-1)
+#define HAL_BOARD_I_SIGN BOARD_I_SIGN
 #endif
 
 /* [NOT FOUND] as on the MCLV: nothing driven until set. */

@@ -4,17 +4,14 @@
 
 /*
  * What the HAL needs beyond the core's board profile (firmware/boards/
- * board_mclv.h): the sign of the current amplifiers and the pins the facts
- * sheet could not name. Each may be overridden with -D.
+ * board_mclv.h): the pins the facts sheet could not name. Each may be overridden with -D.
  */
 
-/* Sign from the ADC reading to "+ = into the motor": +1 passes the signed
- * fractional result through, -1 negates it (saturating).
- * [NOT FOUND] for the original MCLV (hardware.md 2.1-2.2: MCLV-2 is reversed,
- * AN1078's MCLV code gives no sign). Check on the bench: in the LOCK state
- * (a positive current into phase A), status ia must read positive. */
+/* The current amplifiers' sign is a board fact: BOARD_I_SIGN in the core's
+ * board profile (firmware/boards/board_mclv.h, with its provenance).
+ * -DHAL_BOARD_I_SIGN=... still overrides it for the HAL alone. */
 #ifndef HAL_BOARD_I_SIGN
-#define HAL_BOARD_I_SIGN 1
+#define HAL_BOARD_I_SIGN BOARD_I_SIGN
 #endif
 
 /* LEDs: port (HAL_PORT_A/B/C, or HAL_PORT_NONE) and bit.
