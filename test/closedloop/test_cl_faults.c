@@ -83,35 +83,31 @@ static void test_locked_rotor_should_fault_and_switch_off(void **state)
     restart_should_work(&s, 1000.0, "locked rotor");
 }
 
+/* From 24 V to vbus_v at 2000 rpm: FAULT `fault` within 5 ms, then the bus
+ * back to 24 V, the rotor coasts down, and START brings it back. */
+static void check_bus_fault(simcore_t *s, double vbus_v, unsigned fault, const char *what)
+{
+    double t_ev, t_f;
+    cl_event(s, SIM_EV_VBUS, vbus_v, 0.0);
+    t_ev = s->rig.t;
+    t_f = run_until_fault(s, 0.2);
+    printf("measured: bus 24 -> %.0f V at 2000 rpm: FAULT %s after %.2f ms\n", vbus_v,
+           simcore_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
+    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
+    assert_int_equal(s->now.fault, fault);
+    cl_run(s, 0.1);
+    cl_event(s, SIM_EV_VBUS, 24.0, 0.0);
+    cl_run(s, 0.5); /* the rotor coasts down */
+    restart_should_work(s, 2000.0, what);
+}
+
 static void test_bus_undervoltage_and_overvoltage_should_stop_safely(void **state)
 {
     static simcore_t s;
-    double t_ev, t_f;
     (void)state;
     setup_running(&s, 2000.0);
-    cl_event(&s, SIM_EV_VBUS, 12.0, 0.0);
-    t_ev = s.rig.t;
-    t_f = run_until_fault(&s, 0.2);
-    printf("measured: bus 24 -> 12 V at 2000 rpm: FAULT %s after %.2f ms\n",
-           simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
-    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
-    assert_int_equal(s.now.fault, MC_FAULT_UNDERVOLTAGE);
-    cl_run(&s, 0.1);
-    cl_event(&s, SIM_EV_VBUS, 24.0, 0.0);
-    cl_run(&s, 0.5); /* the rotor coasts down */
-    restart_should_work(&s, 2000.0, "undervoltage");
-
-    cl_event(&s, SIM_EV_VBUS, 36.0, 0.0);
-    t_ev = s.rig.t;
-    t_f = run_until_fault(&s, 0.2);
-    printf("measured: bus 24 -> 36 V at 2000 rpm: FAULT %s after %.2f ms\n",
-           simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
-    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
-    assert_int_equal(s.now.fault, MC_FAULT_OVERVOLTAGE);
-    cl_run(&s, 0.1);
-    cl_event(&s, SIM_EV_VBUS, 24.0, 0.0);
-    cl_run(&s, 0.5);
-    restart_should_work(&s, 2000.0, "overvoltage");
+    check_bus_fault(&s, 12.0, MC_FAULT_UNDERVOLTAGE, "undervoltage");
+    check_bus_fault(&s, 36.0, MC_FAULT_OVERVOLTAGE, "overvoltage");
 }
 
 static void test_stall_under_excessive_load_should_be_detected_within_50_ms(void **state)
@@ -140,6 +136,9 @@ static void test_stall_under_excessive_load_should_be_detected_within_50_ms(void
            1000.0 * (t_stall - t_load), simcore_fault_name(s.now.fault), 1000.0 * (t_f - t_load),
            1000.0 * (t_f - t_stall));
     assert_true(t_f >= 0.0);
+    /* the fault is one of the stall detectors, not another protection */
+    assert_true(s.now.fault == MC_FAULT_STALL_SPEED || s.now.fault == MC_FAULT_STALL_BEMF ||
+                s.now.fault == MC_FAULT_STALL_TRACK);
     assert_true(t_stall < 0.0 || t_f - t_stall <= 0.050);
     cl_event(&s, SIM_EV_LOAD, 0.0, 0.0);
     cl_run(&s, 0.2);
