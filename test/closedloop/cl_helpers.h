@@ -57,6 +57,10 @@ static inline double cl_ref(const cl_window_t *w)
 {
     return (w->n > 0) ? w->ref_sum / (double)w->n : 0.0;
 }
+static inline double cl_est(const cl_window_t *w)
+{
+    return (w->n > 0) ? w->est_sum / (double)w->n : 0.0;
+}
 static inline double cl_speed_err_pct(const cl_window_t *w)
 {
     double r = cl_ref(w);
@@ -71,12 +75,10 @@ static inline double cl_ang_rms(const cl_window_t *w)
     return (w->n > 0) ? sqrt(w->ang_sum2 / (double)w->n) : 180.0;
 }
 
-/* Core + bench for the build's motor and board, noise and dead time of the board. */
+/* Core + bench for the given motor and board profiles, noise and dead time of
+ * the board; cfg has been set by simcore_cfg_default() (and then adjusted). */
 static inline void cl_setup(simcore_t *s, simcore_cfg_t *cfg, const char *motor, const char *board)
 {
-    if (cfg->motor == NULL) {
-        simcore_cfg_default(cfg);
-    }
     cfg->motor = motor;
     cfg->board = board;
     assert_int_equal(simcore_init(s, cfg), 0);
@@ -111,6 +113,21 @@ static inline double cl_run_until_at_speed(simcore_t *s, double target_rpm, doub
         }
     }
     return -1.0;
+}
+
+/* Runs until closed loop with the speed reference (ramped by the core) at
+ * 99.9 % of ref_rpm or more, a FAULT, or max_s, whichever comes first. The
+ * caller's window then tells which (a FAULT leaves closed loop). */
+static inline void cl_run_until_ref(simcore_t *s, double ref_rpm, double max_s)
+{
+    double t_end = s->rig.t + max_s;
+    while (s->rig.t < t_end &&
+           !(s->now.state == MC_STATE_CLOSED_LOOP && s->now.speed_ref_rpm >= 0.999 * ref_rpm)) {
+        simcore_step(s);
+        if (s->now.state == MC_STATE_FAULT) {
+            break;
+        }
+    }
 }
 
 /* Steady window of `seconds`. */

@@ -40,9 +40,8 @@ static void check_speed(double rpm, double load_nm, double ang_max_deg)
     printf("measured: %5.0f rpm, load %.3f N m: speed error %+.3f %% (true %.2f, ref %.2f, "
            "est %.2f rpm), angle error mean %+.2f deg, rms %.2f deg, max %.2f deg, "
            "closed loop throughout: %s\n",
-           rpm, load_nm, cl_speed_err_pct(&w), cl_speed(&w), cl_ref(&w),
-           w.est_sum / (double)(w.n > 0 ? w.n : 1), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
-           w.left_closed_loop ? "no" : "yes");
+           rpm, load_nm, cl_speed_err_pct(&w), cl_speed(&w), cl_ref(&w), cl_est(&w),
+           cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max, w.left_closed_loop ? "no" : "yes");
     assert_false(w.left_closed_loop);
     assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
     assert_true(fabs(cl_ang_mean(&w)) <= 2.0);

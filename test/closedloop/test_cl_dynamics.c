@@ -58,26 +58,20 @@ static void test_hurst_should_reach_5000_rpm_with_field_weakening_on_24_v(void *
     static simcore_t s;
     simcore_cfg_t cfg;
     cl_window_t w;
-    double t0;
     (void)state;
     simcore_cfg_default(&cfg);
     cl_setup(&s, &cfg, "hurst", "mclv");
     simcore_set_speed(&s, (double)SPEED_REF_MAX_RPM);
     simcore_request(&s, MC_REQUEST_START);
-    t0 = s.rig.t;
-    /* until the ramped reference has reached the target */
-    while (s.rig.t < t0 + 12.0 && !(s.now.state == MC_STATE_CLOSED_LOOP &&
-                                    s.now.speed_ref_rpm >= 0.999 * (double)SPEED_REF_MAX_RPM)) {
-        simcore_step(&s);
-    }
+    cl_run_until_ref(&s, (double)SPEED_REF_MAX_RPM, 12.0);
     cl_run(&s, 0.5);
     cl_measure(&s, 0.5, &w);
     printf("measured: field weakening, pot at max (%.0f rpm) on %.0f V: true %.0f rpm (min %.0f), "
            "est %.0f rpm, id %.2f A, iq %.2f A, angle error mean %+.2f deg max %.2f deg, closed "
            "loop throughout: %s\n",
-           (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min,
-           w.est_sum / (double)(w.n > 0 ? w.n : 1), s.now.id_true_a, s.now.iq_true_a,
-           cl_ang_mean(&w), w.ang_max, w.left_closed_loop ? "no" : "yes");
+           (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min, cl_est(&w),
+           s.now.id_true_a, s.now.iq_true_a, cl_ang_mean(&w), w.ang_max,
+           w.left_closed_loop ? "no" : "yes");
     assert_false(w.left_closed_loop);
     assert_true(cl_speed(&w) >= 5000.0);
 }

@@ -21,13 +21,7 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
     simcore_set_speed(&s, (double)SPEED_REF_MAX_RPM);
     simcore_request(&s, MC_REQUEST_START);
     t0 = s.rig.t;
-    while (s.rig.t < t0 + 30.0 && !(s.now.state == MC_STATE_CLOSED_LOOP &&
-                                    s.now.speed_ref_rpm >= 0.999 * (double)SPEED_REF_MAX_RPM)) {
-        simcore_step(&s);
-        if (s.now.state == MC_STATE_FAULT) {
-            break;
-        }
-    }
+    cl_run_until_ref(&s, (double)SPEED_REF_MAX_RPM, 30.0);
     cl_run(&s, 0.5);
     cl_measure(&s, 0.5, &w);
     printf("measured: high-speed motor, pot at max (%.0f rpm) on %.0f V: true %.0f rpm "
@@ -35,10 +29,9 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
            "rms %.2f deg max %.2f deg, iq %.2f A, reached after %.1f s, closed loop throughout: "
            "%s, state %s fault %s\n",
            (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min, w.spd_max,
-           w.est_sum / (double)(w.n > 0 ? w.n : 1), cl_speed_err_pct(&w), cl_ang_mean(&w),
-           cl_ang_rms(&w), w.ang_max, s.now.iq_true_a, s.rig.t - t0,
-           w.left_closed_loop ? "no" : "yes", simcore_state_name(s.now.state),
-           simcore_fault_name(s.now.fault));
+           cl_est(&w), cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
+           s.now.iq_true_a, s.rig.t - t0, w.left_closed_loop ? "no" : "yes",
+           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
     assert_true(fabs(cl_speed(&w) - 17000.0) <= 170.0);
     assert_true(w.ang_max <= 2.0);
