@@ -16,9 +16,10 @@ static int cmp_double(const void *a, const void *b)
  * Each start: rotor at rest at a random electrical angle, a brake-like load
  * (opposes motion, holds at rest) drawn uniformly in 0..50 % of the rated
  * torque (Hurst: 1.64 A peak -> 0.099 N m), a new ADC-noise seed, the
- * pot at 1,000 rpm, START. Pass: closed loop and the true speed within 2 % of
- * the reference held for 0.2 s, within 6 s; the true speed never falls more
- * than 10 % below its value at the hand-off during the 0.3 s after it.
+ * pot at 1,000 rpm, START. Pass: at least 99 of the 100 starts reach closed
+ * loop and the true speed within 2 % of the reference held for 0.2 s, within
+ * 6 s; in none does the true speed fall more than 10 % below its value at the
+ * hand-off during the 0.3 s after it.
  */
 static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(void **state)
 {
@@ -35,7 +36,6 @@ static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(vo
         double load_frac = test_rand_range(&rng, 0.0, 0.5);
         double t0, t_hand = -1.0, spd_hand = 0.0, dip = 0.0, t_at;
         double pre_sum = 0.0;
-        long pre_n = 0;
         int prev = MC_STATE_STOPPED;
         simcore_cfg_default(&cfg);
         cfg.theta0_rad = theta0;
@@ -52,7 +52,6 @@ static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(vo
                 /* mean true speed of the last 20 ms of open loop */
                 if (s.now.t_s > s.t_start_s) {
                     pre_sum = 0.9975 * pre_sum + s.now.speed_rpm;
-                    pre_n++;
                 }
             }
             if (prev == MC_STATE_OPEN_LOOP && s.now.state == MC_STATE_CLOSED_LOOP) {
@@ -85,7 +84,6 @@ static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(vo
         if (dip > 0.10) {
             fails_dip++;
         }
-        (void)pre_n;
     }
     printf("measured: %d / %d starts reached closed loop and %.0f rpm; mean time START -> "
            "closed loop %.3f s; worst speed dip after the hand-off %.1f %% (theta0 %.0f deg); "
