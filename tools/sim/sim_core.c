@@ -82,7 +82,7 @@ double simcore_pot_for_rpm(double rpm)
                 (double)SPEED_REF_MIN_RPM, (double)SPEED_REF_MAX_RPM);
         pot = (pot < 0.0) ? 0.0 : 1.0;
     }
-    /* The pot is read by a 10-bit ADC: aim at the middle of a code. */
+    /* the simulated ADC rounds this to the nearest of its 1024 codes */
     return pot;
 }
 
