@@ -16,8 +16,6 @@
 
 #include "monitor.h"
 
-#define Q15_TO(x, fs) ((double)(x) / 32768.0 * (double)(fs))
-
 static volatile sig_atomic_t stop_requested;
 
 static void on_signal(int sig)
