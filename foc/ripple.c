@@ -14,21 +14,24 @@ q15_t ripple_compensate(q15_t v_pi, q15_t vbus, q15_t vbus_target)
         return (v_pi < 0) ? Q15_MIN : 0;
     }
 
-    /* n = Vpi Target (Q30, exact); V = n / DCbus (Q15). */
+    /* n = Vpi Target (Q30, exact); V = n / DCbus (Q15). Every product here
+     * has 16-bit operands, so each is one mul.ss on the dsPIC, not a 32 x 32
+     * multiply. */
     int32_t n = q15_dsp_mulss(v_pi, vbus_target);
     int32_t d = (int32_t)vbus;
 
     /* Range check first, so div.sd never overflows (note 1). */
-    if (n >= 32767L * d) {
+    if (n >= q15_dsp_mulss(Q15_MAX, vbus)) {
         return Q15_MAX;
     }
-    if (n < -32768L * d) {
+    if (n < q15_dsp_mulss(Q15_MIN, vbus)) {
         return Q15_MIN;
     }
 
     /* Truncated quotient -> floor -> round to nearest, ties up. */
-    int32_t q = (int32_t)q15_dsp_divsd(n, vbus);
-    int32_t r = n - q * d;
+    int16_t q16 = q15_dsp_divsd(n, vbus); /* -32768..32766 (note 1) */
+    int32_t q = (int32_t)q16;
+    int32_t r = n - q15_dsp_mulss(q16, vbus);
     if (r < 0) {
         q--;
         r += d;
@@ -58,6 +61,7 @@ dq_q15_t ripple_compensate_dq(dq_q15_t v_pi, q15_t vbus, q15_t vbus_target)
  *    Accuracy: the result is the correctly rounded Vpi Target / DCbus,
  *    |error| <= 0.5 LSB (test_ripple.c prints the measured figure).
  *
- * 2. Cost on the dsPIC: one mul.ss, one div.sd (18 cycles), one multiply
- *    for the remainder; per component, once per PWM period.
+ * 2. Cost on the dsPIC: one mul.ss for n, two for the range limits, one
+ *    div.sd (18 cycles), one mul.ss for the remainder; per component, once
+ *    per PWM period.
  */
