@@ -12,12 +12,14 @@
 /* round(x * p / 2^30) for x <= 2^30, p <= 32767, without a 64-bit product:
  * x = xh 2^15 + xl, so x p / 2^30 = (xh p + xl p / 2^15) / 2^15. Both
  * partial products fit 32 bits (xh <= 2^15, xl < 2^15); the inner floor
- * costs less than 2^-15 count. */
+ * costs less than 2^-15 count. xh and xl are held in uint16_t so each
+ * partial product is visibly 16 x 16 -> 32 (one mul.uu on the dsPIC, not a
+ * 32 x 32 multiply). */
 static uint16_t svgen_counts(uint32_t x, uint16_t p)
 {
-    uint32_t xh = x >> 15;
-    uint32_t xl = x & 0x7FFFUL;
-    uint32_t acc = xh * (uint32_t)p + ((xl * (uint32_t)p) >> 15);
+    uint16_t xh = (uint16_t)(x >> 15);
+    uint16_t xl = (uint16_t)(x & 0x7FFFUL);
+    uint32_t acc = (uint32_t)xh * (uint32_t)p + (((uint32_t)xl * (uint32_t)p) >> 15);
     return (uint16_t)((acc + 0x4000UL) >> 15);
 }
 
