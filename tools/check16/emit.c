@@ -137,6 +137,16 @@ int16_t vec_edge_or_rand(uint32_t k)
     return (k < VEC_N_EDGES) ? vec_edges[k] : vec_rand_i16();
 }
 
+bool vec_edge_pair(uint32_t k, int16_t *a, int16_t *b)
+{
+    if (k >= VEC_N_EDGES * VEC_N_EDGES) {
+        return false;
+    }
+    *a = vec_edges[k / VEC_N_EDGES];
+    *b = vec_edges[k % VEC_N_EDGES];
+    return true;
+}
+
 int16_t vec_rom_i16(const int16_t *p)
 {
 #if defined(__AVR__)

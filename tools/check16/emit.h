@@ -51,6 +51,10 @@ int16_t vec_rand_between(int16_t lo, int16_t hi);
 #define VEC_N_EDGES 11U
 extern const int16_t vec_edges[VEC_N_EDGES];
 int16_t vec_edge_or_rand(uint32_t k);
+/* For k < VEC_N_EDGES^2, writes edge pair k (every (edge, edge) pair, first
+ * component major) to *a, *b and returns true; otherwise writes nothing and
+ * returns false, so the caller draws its own random pair. */
+bool vec_edge_pair(uint32_t k, int16_t *a, int16_t *b);
 
 /*
  * Recorded input tables (e.g. an ADC frame sequence for vec_mc.c) must not

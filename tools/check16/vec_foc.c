@@ -65,10 +65,7 @@ static void vec_q15_add_sub(void)
     for (k = 0U; k < 2000U; k++) {
         int16_t a;
         int16_t b;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            a = vec_edges[k / VEC_N_EDGES];
-            b = vec_edges[k % VEC_N_EDGES];
-        } else {
+        if (!vec_edge_pair(k, &a, &b)) {
             a = vec_rand_i16();
             b = vec_rand_i16();
         }
@@ -92,10 +89,7 @@ static void vec_q15_mul(void)
     for (k = 0U; k < 3000U; k++) {
         int16_t a;
         int16_t b;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            a = vec_edges[k / VEC_N_EDGES];
-            b = vec_edges[k % VEC_N_EDGES];
-        } else {
+        if (!vec_edge_pair(k, &a, &b)) {
             a = vec_rand_i16();
             b = vec_rand_i16();
         }
@@ -170,10 +164,7 @@ static void vec_angle(void)
     for (k = 0U; k < 1000U; k++) {
         int16_t a;
         int16_t b;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            a = vec_edges[k / VEC_N_EDGES];
-            b = vec_edges[k % VEC_N_EDGES];
-        } else {
+        if (!vec_edge_pair(k, &a, &b)) {
             a = vec_rand_i16();
             b = vec_rand_i16();
         }
@@ -296,9 +287,8 @@ static void vec_clarke(void)
         int16_t ia;
         int16_t ib;
         ab_q15_t ab;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            ia = vec_edges[k / VEC_N_EDGES];
-            ib = vec_edges[k % VEC_N_EDGES];
+        if (vec_edge_pair(k, &ia, &ib)) {
+            /* every pair of edges first; then the cases below */
         } else if ((k & 1U) != 0U) {
             /* A balanced set inside the range: |ia + ib| <= 32767. */
             ia = vec_rand_between(-16384, 16383);
@@ -352,10 +342,7 @@ static void vec_park(void)
         dq_q15_t dq;
         ab_q15_t back;
         sincos_q15_t sc;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            ab.alpha = vec_edges[k / VEC_N_EDGES];
-            ab.beta = vec_edges[k % VEC_N_EDGES];
-        } else {
+        if (!vec_edge_pair(k, &ab.alpha, &ab.beta)) {
             ab.alpha = vec_rand_i16();
             ab.beta = vec_rand_i16();
         }
@@ -450,9 +437,8 @@ static void vec_svgen(void)
         ab_q15_t v;
         svgen_out_t out;
         uint16_t period;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            v.alpha = vec_edges[k / VEC_N_EDGES];
-            v.beta = vec_edges[k % VEC_N_EDGES];
+        if (vec_edge_pair(k, &v.alpha, &v.beta)) {
+            /* every pair of edges first; then the cases below */
         } else if ((k & 1U) != 0U) {
             /* Inside the linear region mostly: |v| <= about 0.7. */
             v.alpha = vec_rand_between(-23000, 23000);
@@ -532,9 +518,8 @@ static void vec_cordic(void)
     for (k = 0U; k < 6000U; k++) {
         int16_t y;
         int16_t x;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            y = vec_edges[k / VEC_N_EDGES];
-            x = vec_edges[k % VEC_N_EDGES];
+        if (vec_edge_pair(k, &y, &x)) {
+            /* every pair of edges first; then the cases below */
         } else if (k < VEC_N_EDGES * VEC_N_EDGES + 81U) {
             /* Every small vector in [-4, 4]^2, where normalisation matters. */
             y = (int16_t)((int16_t)((k - VEC_N_EDGES * VEC_N_EDGES) / 9U) - 4);
@@ -729,9 +714,8 @@ static void vec_vlimit(void)
     for (k = 0U; k < 4000U; k++) {
         int16_t vd;
         int16_t vmax;
-        if (k < VEC_N_EDGES * VEC_N_EDGES) {
-            vd = vec_edges[k / VEC_N_EDGES];
-            vmax = vec_edges[k % VEC_N_EDGES];
+        if (vec_edge_pair(k, &vd, &vmax)) {
+            /* every pair of edges first; then the cases below */
         } else if ((k & 1U) != 0U) {
             vmax = vec_rand_between(0, 32767);
             vd = vec_rand_between((int16_t)-vmax, vmax);
