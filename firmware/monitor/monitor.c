@@ -214,6 +214,18 @@ static uint8_t put_str(uint8_t *p, uint8_t at, const char *s)
     return at;
 }
 
+/* An empty ring, no trigger request, no end flag (main loop, run == 0). */
+static void rec_clear(monitor_t *m)
+{
+    m->wr = 0;
+    m->rd = 0;
+    m->wi = 0;
+    m->ri = 0;
+    m->trig_req = 0;
+    m->isr_done = 0;
+    m->isr_overflow = 0;
+}
+
 /* ---- init ---------------------------------------------------------------------------- */
 
 void monitor_init(monitor_t *m, mc_t *mc)
@@ -247,14 +259,8 @@ void monitor_init(monitor_t *m, mc_t *mc)
     m->trig = MONITOR_TRIG_NOW;
     m->remote = false;
     m->run = 0;
-    m->trig_req = 0;
+    rec_clear(m);
     m->isr_started = 0;
-    m->isr_done = 0;
-    m->isr_overflow = 0;
-    m->wr = 0;
-    m->rd = 0;
-    m->wi = 0;
-    m->ri = 0;
     m->div = 0;
     m->last_state = 0;
     for (i = 0; i < MONITOR_BUF_WORDS; i++) {
@@ -451,16 +457,10 @@ static void cmd_start(monitor_t *m, uint8_t *err)
     mc_status(m->mc, &st);
     m->mode = mode;
     m->trig = trig;
-    m->wr = 0;
-    m->rd = 0;
-    m->wi = 0;
-    m->ri = 0;
+    rec_clear(m);
     m->div = (uint16_t)(m->decim - 1U); /* the first sample is the next period */
     m->last_state = (uint8_t)st.state;
-    m->trig_req = 0;
     m->isr_started = (trig == MONITOR_TRIG_NOW) ? 1U : 0U;
-    m->isr_done = 0;
-    m->isr_overflow = 0;
     m->run = 1; /* last: from here on the ISR records */
 }
 
