@@ -10,8 +10,8 @@
  *          16 x 16 products, scale 2^(30 - g_shift); |F i| < 2^30 and
  *          |G_mant u| <= 2^30, so the sum fits 32 bits; i_est = sat16 of
  *          acc rounded (ties up) to Q15. Saturating u at full scale only acts
- *          far outside the sliding band (|v - e - z| > V_FS), where the
- *          correction is at +-Kslide anyway (|u| > 2 V_FS).
+ *          far outside the sliding band (|v - e - z| > E_FS = 2 V_FS),
+ *          where the correction is at +-Kslide anyway.
  *  switch  err = i_est - i_meas (32 bits); outside the band +-Kslide;
  *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
  *          +-Kslide (rounding could step one LSB past it).
@@ -61,8 +61,9 @@ static angle_q15_t smc_atan2_32(int32_t y, int32_t x)
         m >>= 1;
         sh++;
     }
-    /* After the shift |x|, |y| <= 32768; -(-32768) is clamped by q15_sat. */
-    return cordic_atan2(q15_sat(y >> sh), q15_sat(x >> sh));
+    /* After the shift (|x| OR |y|) >> sh <= 32767, so x >> sh and y >> sh
+     * (rounded toward -infinity) lie in [-32768, 32767]: plain casts. */
+    return cordic_atan2((int16_t)(y >> sh), (int16_t)(x >> sh));
 }
 
 /* One axis of the digitised model: F i + G (v - e - z), rounded, saturated. */
@@ -190,6 +191,7 @@ static void smc_speed_refresh(smc_t *s)
     bool emf_ok = true;
 
     s->k = k;
+    s->k_w = q15_shl_sat(k, SMC_EMF_RAW_K_SHIFT);
     /* Reverse rotation: the stages' lag changes sign and atan2(-ef_a, ef_b)
      * points at the rotor plus pi (the back-EMF is reversed). */
     s->comp = (s->omega < 0) ? angle_add(angle_sub(0, lead), Q15_MIN) : lead;
@@ -245,7 +247,6 @@ void smc_reset(smc_t *s)
     s->lag = 0;
     s->lag_valid = false;
     s->startup = SMC_STARTUP_WINDOWS;
-    s->omega_raw = 0;
     s->omega = 0;
     smc_speed_refresh(s);
     s->valid = false;
@@ -255,7 +256,6 @@ void smc_preset_speed(smc_t *s, q15_t omega)
 {
     lpf_reset(&s->omega_lpf, omega);
     lpf_reset(&s->k_lpf, q15_mul(q15_abs_sat(omega), s->p->k_per_omega));
-    s->omega_raw = omega;
     s->omega = omega;
     s->dtheta_sum = 0;
     s->count = 0U;
@@ -269,12 +269,10 @@ void smc_preset_speed(smc_t *s, q15_t omega)
  * z(n) = c (E(n-1) - e(n-1)) + p z(n-1) exactly, so
  * c E(n-1) = z(n) - p z(n-1) + c e(n-1): a back-EMF whose angle does not
  * depend on K. Q15 of E_FS times c (> 0: the angle is what matters),
- * saturated.
+ * saturated. c is Q12 (smc_update forms it once for both axes).
  */
-static q15_t smc_emf_raw(const smc_params_t *p, q15_t z, q15_t z_prev, q15_t e_prev)
+static q15_t smc_emf_raw(const smc_params_t *p, q15_t c, q15_t z, q15_t z_prev, q15_t e_prev)
 {
-    /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
-    q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
     int32_t w = (int32_t)z - ((q15_dsp_mulss(p->tf_b2, z_prev) + (int32_t)0x4000) >> 15) +
                 ((q15_dsp_mulss(c, e_prev) + (int32_t)0x800) >> 12);
     return q15_sat(w);
@@ -301,9 +299,12 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
     (void)lpf_update(&s->ef_beta, s->e.beta, s->k);
 
     if (p->tf_xadv != 0) {
-        q15_t kw = q15_shl_sat(s->k, SMC_EMF_RAW_K_SHIFT);
-        (void)lpf_update(&s->w_alpha, smc_emf_raw(p, s->z.alpha, z_prev.alpha, e_prev.alpha), kw);
-        (void)lpf_update(&s->w_beta, smc_emf_raw(p, s->z.beta, z_prev.beta, e_prev.beta), kw);
+        /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
+        q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
+        (void)lpf_update(&s->w_alpha, smc_emf_raw(p, c, s->z.alpha, z_prev.alpha, e_prev.alpha),
+                         s->k_w);
+        (void)lpf_update(&s->w_beta, smc_emf_raw(p, c, s->z.beta, z_prev.beta, e_prev.beta),
+                         s->k_w);
     }
 
     /* theta_raw = atan2(-ef_alpha, ef_beta): the back-EMF turned back by
@@ -339,8 +340,8 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
             }
             s->lag = lag;
         }
-        s->omega_raw = smc_speed_from_steps(p, s->dtheta_sum);
-        s->omega = lpf_update(&s->omega_lpf, s->omega_raw, p->k_speed_lpf);
+        s->omega =
+            lpf_update(&s->omega_lpf, smc_speed_from_steps(p, s->dtheta_sum), p->k_speed_lpf);
         s->dtheta_sum = 0;
         s->count = 0U;
         smc_speed_refresh(s);

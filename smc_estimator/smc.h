@@ -290,9 +290,9 @@ typedef struct {
     angle_q15_t theta;     /* compensated: the rotor angle at t_n */
     angle_q15_t comp;      /* compensation added to theta_raw (incl. pi if omega < 0) */
     angle_q15_t lag;       /* lag of theta_raw behind the model back-EMF at the last window end */
-    q15_t omega_raw;       /* last unfiltered window speed, Q15 of omega_fs */
     q15_t omega;           /* filtered speed, Q15 of omega_fs, signed */
     q15_t k;               /* Kslf in use, Q15 */
+    q15_t k_w;             /* 4 k, the gain smoothing the model back-EMF (note 8), Q15 */
     q15_t emf_mag;         /* |ef| (Q15 of E_FS), refreshed every window */
     q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
     bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
