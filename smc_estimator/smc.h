@@ -112,31 +112,11 @@ typedef struct {
  * "negative width in bit-field '<name>'" when cond is false. */
 #define SMC_CHECK(name, cond) ((int)(0 * sizeof(struct { unsigned name : ((cond) ? 1 : -1); })))
 
-/* Smallest shift s in 0..15 with |x| < 2^s (x >= 2^15 gives 16, which the
- * callers reject). */
-#define SMC_SHIFT_OF(x)                                                                            \
-    ((x) < 1.0       ? 0                                                                           \
-     : (x) < 2.0     ? 1                                                                           \
-     : (x) < 4.0     ? 2                                                                           \
-     : (x) < 8.0     ? 3                                                                           \
-     : (x) < 16.0    ? 4                                                                           \
-     : (x) < 32.0    ? 5                                                                           \
-     : (x) < 64.0    ? 6                                                                           \
-     : (x) < 128.0   ? 7                                                                           \
-     : (x) < 256.0   ? 8                                                                           \
-     : (x) < 512.0   ? 9                                                                           \
-     : (x) < 1024.0  ? 10                                                                          \
-     : (x) < 2048.0  ? 11                                                                          \
-     : (x) < 4096.0  ? 12                                                                          \
-     : (x) < 8192.0  ? 13                                                                          \
-     : (x) < 16384.0 ? 14                                                                          \
-     : (x) < 32768.0 ? 15                                                                          \
-                     : 16)
-
-/* The same for 0 <= x < 128 only (8 comparisons: keeps the expansion small;
- * q15.h's convention). */
-#define SMC_SHIFT7_OF(x) Q15_SHIFT7_OF(x)
-#define SMC_MANT7_OF(x)  Q15_MANT7_OF(x)
+/* Smallest shift s in 0..15 with x < 2^s, for 0 <= x < 32768 (a larger x
+ * gives 15, and the callers' range checks reject it): q15.h's 0..7
+ * convention (Q15_SHIFT7_OF, Q15_MANT7_OF) extended by 8 for x >= 128
+ * (x / 256 is exact in any binary double). */
+#define SMC_SHIFT_OF(x) ((x) < 128.0 ? Q15_SHIFT7_OF(x) : 8 + Q15_SHIFT7_OF((x) / 256.0))
 
 /* Mantissa of x for the shift SMC_SHIFT_OF(x). */
 #define SMC_MANT_OF(x) Q15((double)(x) / (double)(1L << SMC_SHIFT_OF(x)))
@@ -230,8 +210,8 @@ typedef struct {
             (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_2Vfs_over_Ifs_must_be_in_1e_4_to_128,          \
                               SMC_GE_(r, l, ts, vfs, ifs) >= 1e-4 &&                               \
                                   SMC_GE_(r, l, ts, vfs, ifs) < 128.0) +                           \
-                    SMC_MANT7_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                    \
-            /* g_shift */ (uint8_t)SMC_SHIFT7_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */        \
+                    Q15_MANT7_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                    \
+            /* g_shift */ (uint8_t)Q15_SHIFT7_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */        \
             (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_2_of_V_FS, (ks) > 0.0 && (ks) < 2.0) +       \
                     Q15(SMC_KSE_(ks))), /* max_err */                                              \
             (q15_t)(SMC_CHECK(smc_MaxSMCError_must_be_in_1_LSB_to_1,                               \
