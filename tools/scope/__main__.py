@@ -85,15 +85,14 @@ def choose_decim(args, mon, nch):
 
 
 def start_motor(args, mon):
-    mon.set_speed(args.start_rpm)
-    mon.motor(mp.MOTOR_START)
+    mon.run_motor(args.start_rpm)
     target = int(round(args.start_rpm * 32768.0 / mon.var("speed_ref").fs))
     t_end = time.monotonic() + args.start_timeout
     while True:
         st = mon.status()
-        if st["state"] == 5:
+        if st["state"] == mp.STATE_FAULT:
             raise mp.MonitorError(f"motor faulted (code {st['fault']})")
-        if st["state"] == 4 and abs(st["speed_ref"] - target) <= 1:
+        if st["state"] == mp.STATE_CLOSED_LOOP and abs(st["speed_ref"] - target) <= 1:
             break
         if time.monotonic() > t_end:
             raise mp.MonitorError(f"no closed loop at {args.start_rpm} rpm within {args.start_timeout} s "
@@ -140,6 +139,11 @@ def record(args, mon, names, decim, after_start=None):
     return idx, rows
 
 
+def csv_row(i, decim, f_pwm, vs, raw):
+    """Sample set i: index, time, the values in engineering units."""
+    return [i, f"{i * decim / f_pwm:.6f}"] + [f"{v.to_eng(x):.6g}" for v, x in zip(vs, raw)]
+
+
 def write_csv(path, mon, names, decim, idx, rows):
     f_pwm = mon.info["f_pwm"]
     vs = [mon.var(n) for n in names]
@@ -148,8 +152,7 @@ def write_csv(path, mon, names, decim, idx, rows):
         w.writerow(["index", "t_s"] + [f"{v.name}_{v.unit}" if v.unit else v.name for v in vs]
                    + [f"{v.name}_raw" for v in vs])
         for i, r in zip(idx, rows):
-            w.writerow([i, f"{i * decim / f_pwm:.6f}"] + [f"{v.to_eng(x):.6g}" for v, x in zip(vs, r)]
-                       + list(r))
+            w.writerow(csv_row(i, decim, f_pwm, vs, r) + list(r))
 
 
 def plot(mon, names, decim, idx, rows, png, title):
@@ -212,8 +215,7 @@ def live(args, mon, names, decim):
     def on_key(ev):
         try:
             if ev.key == "g":
-                mon.set_speed(state["rpm"])
-                mon.motor(mp.MOTOR_START)
+                mon.run_motor(state["rpm"])
             elif ev.key == "x":
                 mon.motor(mp.MOTOR_STOP)
             elif ev.key in ("+", "-"):
@@ -235,7 +237,7 @@ def live(args, mon, names, decim):
                     for k, v in enumerate(vs):
                         buf[k].append(v.to_eng(s[k]))
                     if writer:
-                        writer.writerow([i, f"{i * decim / f_pwm:.6f}"] + [f"{v.to_eng(x):.6g}" for v, x in zip(vs, s)])
+                        writer.writerow(csv_row(i, decim, f_pwm, vs, s))
                 if flags & mp.DATA_OVERFLOW:
                     print("scope: overflow, restarting the stream", file=sys.stderr)
                     state["expect"] = 0
@@ -279,8 +281,7 @@ def main(argv=None):
         if args.start_rpm is not None:
             if args.from_start and args.headless:
                 def go():
-                    mon.set_speed(args.start_rpm)
-                    mon.motor(mp.MOTOR_START)
+                    mon.run_motor(args.start_rpm)
             else:
                 start_motor(args, mon)
         if args.headless:

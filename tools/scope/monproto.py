@@ -36,6 +36,7 @@ MOTOR_STOP, MOTOR_START, MOTOR_POT = 0, 1, 2
 DATA_LAST, DATA_OVERFLOW = 0x01, 0x02
 
 STATES = ["STOPPED", "CALIBRATE", "LOCK", "OPEN_LOOP", "CLOSED_LOOP", "FAULT"]
+STATE_CLOSED_LOOP, STATE_FAULT = STATES.index("CLOSED_LOOP"), STATES.index("FAULT")
 KIND_Q15, KIND_INT = 0, 1
 
 
@@ -216,6 +217,11 @@ class Monitor:
 
     def set_speed(self, rpm):
         self.request(CMD_SET_SPEED, struct.pack("<h", int(round(rpm))))
+
+    def run_motor(self, rpm):
+        """Remote speed reference rpm, then START."""
+        self.set_speed(rpm)
+        self.motor(MOTOR_START)
 
     # ---- recorded data ----
     def read_data(self, wait=0.0):
