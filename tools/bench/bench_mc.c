@@ -24,11 +24,15 @@ static void frame(mc_adc_frame_t *in)
     in->pot = 16384;
 }
 
-static void run_stopped(uint32_t n)
+/* n steps of a fresh core, started first when start is true. */
+static void run_steps(uint32_t n, bool start)
 {
     static mc_t mc;
     uint32_t k;
     mc_init(&mc);
+    if (start) {
+        mc_request(&mc, MC_REQUEST_START);
+    }
     for (k = 0U; k < n; k++) {
         mc_adc_frame_t in;
         mc_pwm_out_t out;
@@ -38,19 +42,14 @@ static void run_stopped(uint32_t n)
     }
 }
 
+static void run_stopped(uint32_t n)
+{
+    run_steps(n, false);
+}
+
 static void run_startup(uint32_t n)
 {
-    static mc_t mc;
-    uint32_t k;
-    mc_init(&mc);
-    mc_request(&mc, MC_REQUEST_START);
-    for (k = 0U; k < n; k++) {
-        mc_adc_frame_t in;
-        mc_pwm_out_t out;
-        frame(&in);
-        mc_step(&mc, &in, &out);
-        bench_sink += out.duty[0];
-    }
+    run_steps(n, true);
 }
 
 void bench_mc(void)
