@@ -1,12 +1,10 @@
 /* pmsm_ideal.c - ideal PMSM and sensored drive in double precision: what an estimator sees. */
-#include "pmsm_ideal.h"
+#include "test_support.h"
 
 #include <math.h>
 #include <stddef.h>
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "pmsm_ideal.h"
 
 /* ---- small complex helpers (C99 without <complex.h>, to stay plain) ------- */
 
@@ -51,21 +49,11 @@ static double c_abs(cplx_t a)
     return sqrt(a.re * a.re + a.im * a.im);
 }
 
-/* ---- PRNG and Gaussian noise (own xorshift32: no shared state) ----------- */
-
-static uint32_t rng_next(uint32_t *st)
-{
-    uint32_t x = *st;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    *st = x;
-    return x;
-}
+/* ---- Gaussian noise (test_support's xorshift32, state per instance) ------- */
 
 static double rng_uniform(uint32_t *st)
 {
-    return ((double)rng_next(st) + 0.5) / 4294967296.0;
+    return ((double)test_rand_u32(st) + 0.5) / 4294967296.0;
 }
 
 static double rng_gauss(uint32_t *st)
@@ -255,8 +243,6 @@ void pmsm_ideal_init(pmsm_ideal_t *s, const pmsm_motor_t *m, const pmsm_drive_t 
     s->i_im = 0.0;
     s->v_now_re = 0.0;
     s->v_now_im = 0.0;
-    s->v_next_re = 0.0;
-    s->v_next_im = 0.0;
     s->v_prev_re = 0.0;
     s->v_prev_im = 0.0;
     s->id_a = 0.0;
@@ -278,14 +264,9 @@ void pmsm_ideal_set_speed(pmsm_ideal_t *s, double rpm, double rpm_per_s)
     s->accel = rpm_per_s / 60.0 * 2.0 * M_PI * pp;
 }
 
-static q15_t adc_quantise(pmsm_ideal_t *s, double amps)
+/* An integral value in double, clamped to the q15 range. */
+static q15_t q15_of_integral(double x)
 {
-    double x = amps / s->d.i_fs_a * 32768.0;
-    double step = (double)s->d.adc_lsb;
-    if (s->d.noise_lsb > 0.0) {
-        x += s->d.noise_lsb * rng_gauss(&s->rng);
-    }
-    x = floor(x / step + 0.5) * step;
     if (x > 32767.0) {
         x = 32767.0;
     }
@@ -295,16 +276,19 @@ static q15_t adc_quantise(pmsm_ideal_t *s, double amps)
     return (q15_t)x;
 }
 
+static q15_t adc_quantise(pmsm_ideal_t *s, double amps)
+{
+    double x = amps / s->d.i_fs_a * 32768.0;
+    double step = (double)s->d.adc_lsb;
+    if (s->d.noise_lsb > 0.0) {
+        x += s->d.noise_lsb * rng_gauss(&s->rng);
+    }
+    return q15_of_integral(floor(x / step + 0.5) * step);
+}
+
 static q15_t volt_q15(const pmsm_ideal_t *s, double volts)
 {
-    double x = floor(volts / s->d.v_fs_v * 32768.0 + 0.5);
-    if (x > 32767.0) {
-        x = 32767.0;
-    }
-    if (x < -32768.0) {
-        x = -32768.0;
-    }
-    return (q15_t)x;
+    return q15_of_integral(floor(volts / s->d.v_fs_v * 32768.0 + 0.5));
 }
 
 void pmsm_ideal_step(pmsm_ideal_t *s, ab_q15_t *i_meas, ab_q15_t *v_fed)

@@ -68,8 +68,7 @@ typedef struct {
     double omega_target;         /* ramp end point, rad/s */
     double accel;                /* |d omega / dt|, electrical rad/s^2 (0 = step) */
     double v_now_re, v_now_im;   /* command applied over the present period, V */
-    double v_next_re, v_next_im; /* command for the next period, V */
-    double v_prev_re, v_prev_im; /* command applied over the previous period, V */
+    double v_prev_re, v_prev_im; /* v_fed: last command (+ dead-time error, feed_applied), V */
     double id_a;                 /* the d current reference in use (field weakening) */
     double theta_sample;         /* angle at the last sample instant, rad */
     double omega_sample;         /* speed at the last sample instant, rad/s */
