@@ -78,38 +78,48 @@ typedef struct {
     double wfs_hz;
 } bench_t;
 
-static bench_t bench_hurst(void)
+/* A drive with a torque current, field weakening at 0.9 V_FS, Q15 rounding,
+ * no noise and no dead time (the tests add what they vary). */
+static bench_t bench_make(pmsm_motor_t motor, double v_fs, double i_fs, double iq, double vbus,
+                          uint32_t seed, double wfs_hz)
 {
     bench_t b;
     memset(&b, 0, sizeof b);
-    b.motor = pmsm_motor_from_ke(HURST_R, HURST_L, HURST_KE, HURST_PP);
+    b.motor = motor;
     b.drive.ts_s = TS;
-    b.drive.v_fs_v = HURST_VFS;
-    b.drive.i_fs_a = HURST_IFS;
-    b.drive.iq_a = 0.5;
+    b.drive.v_fs_v = v_fs;
+    b.drive.i_fs_a = i_fs;
+    b.drive.iq_a = iq;
     b.drive.v_limit_frac = 0.9;
     b.drive.adc_lsb = 1;
-    b.drive.vbus_v = 24.0;
-    b.drive.seed = 0x1234567U;
-    b.wfs_hz = HURST_WFS;
+    b.drive.vbus_v = vbus;
+    b.drive.seed = seed;
+    b.wfs_hz = wfs_hz;
     return b;
+}
+
+static bench_t bench_hurst(void)
+{
+    return bench_make(pmsm_motor_from_ke(HURST_R, HURST_L, HURST_KE, HURST_PP), HURST_VFS,
+                      HURST_IFS, 0.5, 24.0, 0x1234567U, HURST_WFS);
 }
 
 static bench_t bench_hispeed(void)
 {
-    bench_t b;
-    memset(&b, 0, sizeof b);
-    b.motor = pmsm_motor_from_ke(HS_R, HS_L, HS_KE, HS_PP);
-    b.drive.ts_s = TS;
-    b.drive.v_fs_v = HS_VFS;
-    b.drive.i_fs_a = HS_IFS;
-    b.drive.iq_a = 1.0;
-    b.drive.v_limit_frac = 0.9;
-    b.drive.adc_lsb = 1;
-    b.drive.vbus_v = 320.0;
-    b.drive.seed = 0x7654321U;
-    b.wfs_hz = HS_WFS;
-    return b;
+    return bench_make(pmsm_motor_from_ke(HS_R, HS_L, HS_KE, HS_PP), HS_VFS, HS_IFS, 1.0, 320.0,
+                      0x7654321U, HS_WFS);
+}
+
+/* n periods of motor and estimator, nothing checked on the way. */
+static void run_periods(smc_t *s, pmsm_ideal_t *m, long n)
+{
+    long k;
+    for (k = 0; k < n; k++) {
+        ab_q15_t i;
+        ab_q15_t v;
+        pmsm_ideal_step(m, &i, &v);
+        smc_update(s, i, v);
+    }
 }
 
 /* Estimated minus true electrical angle, degrees in [-180, 180). */
@@ -272,14 +282,8 @@ static void make_initial_state(smc_t *s, const smc_params_t *p, const bench_t *b
         smc_preset_speed(s, Q15_MIN);
     } else if (kind == 3) {
         pmsm_ideal_t m;
-        int n;
         pmsm_ideal_init(&m, &b->motor, &b->drive, -4000.0, 1.0);
-        for (n = 0; n < 2000; n++) {
-            ab_q15_t i;
-            ab_q15_t v;
-            pmsm_ideal_step(&m, &i, &v);
-            smc_update(s, i, v);
-        }
+        run_periods(s, &m, 2000);
     } else if (kind >= 4) {
         s->i_est.alpha = rand_between(st, -30000, 30000);
         s->i_est.beta = rand_between(st, -30000, 30000);
@@ -535,12 +539,7 @@ test_smc_should_become_valid_above_the_minimum_speed_and_saturate_past_full_scal
     (void)state;
     pmsm_ideal_init(&m, &b.motor, &b.drive, 600.0, 0.0);
     smc_init(&s, &hurst);
-    for (n = 0; n < 3000; n++) {
-        ab_q15_t i;
-        ab_q15_t v;
-        pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
-    }
+    run_periods(&s, &m, 3000);
     assert_true(smc_valid(&s));
     printf("measured: 600 rpm: emf ratio %.3f (1 = as expected from Ke), amplitude %d\n",
            (double)smc_emf_ratio(&s) / 4096.0, smc_emf_amplitude(&s));
@@ -564,17 +563,11 @@ static void test_smc_should_judge_validity_by_speed_alone_without_ke(void **stat
     bench_t b = bench_hurst();
     pmsm_ideal_t m;
     smc_t s;
-    long n;
     (void)state;
     assert_int_equal(hurst_noke.emf_gain, 0);
     pmsm_ideal_init(&m, &b.motor, &b.drive, 1000.0, 0.0);
     smc_init(&s, &hurst_noke);
-    for (n = 0; n < 3000; n++) {
-        ab_q15_t i;
-        ab_q15_t v;
-        pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
-    }
+    run_periods(&s, &m, 3000);
     assert_true(smc_valid(&s));
     assert_int_equal(smc_emf_ratio(&s), SMC_EMF_RATIO_ONE);
     assert_true(fabs(angle_err_deg(&s, &m)) <= 2.0);
