@@ -9,10 +9,8 @@
  * Without a plant the core sees currents that do not answer its voltages,
  * so these rows show the cost of the stopped state and of the start-up
  * (offset calibration, alignment, open-loop ramp) only. The closed-loop
- * max and mean of mc_step need the simulated motor: add them as another
- * bench module (tools/bench/bench_<name>.c, see bench.h and docs/tooling.md)
- * that drives the core through tools/sim and registers e.g.
- * "mc_step/closed_loop" with symbol "mc_step".
+ * max and mean of mc_step, on the simulated motor, are the row
+ * "mc_step/closed_loop_sim" of bench_mc_closedloop.c.
  */
 static void frame(mc_adc_frame_t *in)
 {
