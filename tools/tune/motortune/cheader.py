@@ -93,13 +93,19 @@ class Env:
         return [float(self.eval(a)) for a in self.xtables[name]]
 
 
-def profile_env(motor_header, board):
-    """Env of a motor header as built with BOARD=board (first definition wins:
-    motor, board, UserParms.h)."""
+def _board_header(board):
+    """firmware/boards/board_<board>.h, or InputError naming the boards there are."""
     board_h = os.path.join(FIRMWARE, "boards", f"board_{board}.h")
     if not os.path.exists(board_h):
         have = sorted(f[6:-2] for f in os.listdir(os.path.join(FIRMWARE, "boards")) if f.startswith("board_"))
         raise InputError("board", f"no firmware/boards/board_{board}.h (boards: {', '.join(have)})")
+    return board_h
+
+
+def profile_env(motor_header, board):
+    """Env of a motor header as built with BOARD=board (first definition wins:
+    motor, board, UserParms.h)."""
+    board_h = _board_header(board)
     # UserParms.h includes the board first, then the motor; both are #ifndef
     # guarded per macro, and no macro is defined in both, so either order
     # gives the same values; the motor's overrides of UserParms defaults
@@ -109,11 +115,8 @@ def profile_env(motor_header, board):
 
 
 def board_env(board):
-    board_h = os.path.join(FIRMWARE, "boards", f"board_{board}.h")
-    if not os.path.exists(board_h):
-        have = sorted(f[6:-2] for f in os.listdir(os.path.join(FIRMWARE, "boards")) if f.startswith("board_"))
-        raise InputError("board", f"no firmware/boards/board_{board}.h (boards: {', '.join(have)})")
-    raw, xt = read_defines([board_h, os.path.join(FIRMWARE, "UserParms.h")])
+    """Env of a board with UserParms.h's defaults (no motor)."""
+    raw, xt = read_defines([_board_header(board), os.path.join(FIRMWARE, "UserParms.h")])
     return Env(raw, xt)
 
 
@@ -190,15 +193,17 @@ def derive_core(env):
     d.row("scale: voltage", v_fs, "V", note="Q15 full scale, BOARD_VBUS_NOMINAL_V / sqrt 3")
     d.row("scale: speed", fs_rpm, "rpm", note="Q15 full scale (MC_SPEED_FULLSCALE_RPM)")
 
+    def q_scaled(name, x, fs, unit, scale, note):
+        """A row for x as Q15 of the full scale fs (checked, then saturated like Q15())."""
+        d.check(name, -1.0 <= x / fs <= 1.0, f"out of the {scale} Q15 range")
+        q = q15_round(max(-1.0, min(1.0, x / fs)))
+        d.row(name, x, unit, q, q / 32768.0 * fs, note)
+
     def q_rpm(name, rpm, note=""):
-        d.check(name, -1.0 <= rpm / fs_rpm <= 1.0, "out of the speed Q15 range")
-        q = q15_round(max(-1.0, min(1.0, rpm / fs_rpm)))
-        d.row(name, rpm, "rpm", q, q / 32768.0 * fs_rpm, note)
+        q_scaled(name, rpm, fs_rpm, "rpm", "speed", note)
 
     def q_amp(name, a, note=""):
-        d.check(name, -1.0 <= a / i_fs <= 1.0, "out of the current Q15 range")
-        q = q15_round(max(-1.0, min(1.0, a / i_fs)))
-        d.row(name, a, "A", q, q / 32768.0 * i_fs, note)
+        q_scaled(name, a, i_fs, "A", "current", note)
 
     # speeds
     n_min, n_nom, n_fw = g("MOTOR_SPEED_MIN_RPM"), g("MOTOR_SPEED_NOMINAL_RPM"), g("MOTOR_SPEED_FW_MAX_RPM")
