@@ -83,6 +83,18 @@ class Tuning:
         return self.by[macro].number
 
 
+def bisect_last(pred, lo, hi, steps):
+    """Narrows [lo, hi] with pred(lo) true and pred(hi) false for `steps` halvings;
+    returns the last point known true."""
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        if pred(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
 def id_for_voltage(w, r, l, psi, iq, vmax):
     """Smallest |Id| (Id <= 0) with |V| <= vmax in steady state at electrical speed w:
     Vd = R Id - w L Iq, Vq = R Iq + w (psi + L Id). None when no Id reaches it.
@@ -180,16 +192,13 @@ def derive(desc):
         return math.hypot(r * i_d - w * l * i_q, r * i_q + w * (psi + l * i_d))
 
     # Nominal speed: highest speed with Id = 0 inside the budget (bisection).
-    lo, hi = 0.0, 1.0
-    while v_at(hi, 0.0, i_load) < v_ss and hi < 1e7:
+    def inside_at_id0(n):
+        return v_at(n, 0.0, i_load) < v_ss
+
+    hi = 1.0
+    while inside_at_id0(hi) and hi < 1e7:
         hi *= 2.0
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if v_at(mid, 0.0, i_load) < v_ss:
-            lo = mid
-        else:
-            hi = mid
-    n_bus = lo
+    n_bus = bisect_last(inside_at_id0, 0.0, hi, 80)
     t.n_bus = n_bus
     n_top = desc.n_max if desc.n_max is not None else desc.n_rated
     top_field = "application.max_speed" if desc.n_max is not None else "motor.rated_speed"
@@ -211,14 +220,8 @@ def derive(desc):
             i_d = id_needed(n)
             return i_d is not None and i_d >= id_limit
 
-        lo, hi = n_bus, n_top
         if not reachable(n_top):
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                if reachable(mid):
-                    lo = mid
-                else:
-                    hi = mid
+            lo = bisect_last(reachable, n_bus, n_top, 60)
             raise Infeasible(
                 top_field,
                 f"{n_top:.0f} rpm is beyond the {vbus:g} V bus even with field weakening: at most "
