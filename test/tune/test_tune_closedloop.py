@@ -19,7 +19,7 @@ REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 SCEN = os.path.join(REPO, "tools", "sim", "scenarios")
 SIM_DIR = os.environ.get("TUNE_SIM_DIR", "")
 
-# profile -> (simulated plant, board, [(scenario, speed to hold or "max", hold window s)])
+# profile -> (simulated plant, board, [(scenario, speed to hold in rpm, hold window s)])
 CASES = {
     "hurst075": ("hurst", "mclv", [("run_1000", 1000.0, 0.5), ("run_2000", 2000.0, 0.5)]),
     "hurst_long": ("hurst300", "mclv", [("run_1000", 1000.0, 0.5), ("run_2000", 2000.0, 0.5)]),
