@@ -130,7 +130,7 @@ static void helpers(void)
         d[0] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
         d[1] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
         d[2] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
-        vb = (n < 11U) ? vec_edges[n] : vec_rand_between(0, 32767);
+        vb = (n < VEC_N_EDGES) ? vec_edges[n] : vec_rand_between(0, 32767);
         v = mc_duty_to_voltage(d, vb);
         emit_i16(i);
         emit_i16(d[0]);
