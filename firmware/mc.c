@@ -238,13 +238,15 @@ static void mc_begin_calibration(mc_t *mc, uint16_t wait)
     mc_enter(mc, MC_STATE_CALIBRATE);
 }
 
-/* A START: from STOPPED, or from FAULT once the cause is gone. (An
- * overvoltage never gets here: the protection trips first in every state.) */
+/* A START: from STOPPED, or from FAULT once the cause is gone. The bus is
+ * checked here too: from STOPPED the overvoltage protection has already
+ * tripped, but in FAULT it records nothing (the first cause stays), so a
+ * START with the bus still out of its window must fault again here. */
 static void mc_start(mc_t *mc)
 {
-    if (mc->vbus <= MC_VBUS_UV_Q15) {
+    if (mc->vbus <= MC_VBUS_UV_Q15 || mc->vbus >= MC_VBUS_OV_Q15) {
         mc->state = MC_STATE_STOPPED; /* let mc_fault record the new cause */
-        mc_fault(mc, MC_FAULT_UNDERVOLTAGE);
+        mc_fault(mc, (mc->vbus >= MC_VBUS_OV_Q15) ? MC_FAULT_OVERVOLTAGE : MC_FAULT_UNDERVOLTAGE);
         return;
     }
     mc->fault = MC_FAULT_NONE;

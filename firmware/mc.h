@@ -100,11 +100,11 @@ typedef enum {
 
 /* ---- fault codes (mc_status_t.fault) ------------------------------------ *
  * The code of the first fault that tripped; it stays until a START clears
- * it. A START while the cause is still present ends in FAULT again at once:
- * a bus still at or below the undervoltage threshold (code 2), still at or
- * above the overvoltage one (code 3, the protection runs first in every
- * state). The core cannot see the FLTA pin: the HAL posts
- * MC_REQUEST_HW_FAULT again while the pin is still asserted. */
+ * it. A START while the bus is still out of its window ends in FAULT again
+ * in the same step, with the present cause: at or below the undervoltage
+ * threshold (code 2), at or above the overvoltage one (code 3). The core
+ * cannot see the FLTA pin: the HAL posts MC_REQUEST_HW_FAULT again while
+ * the pin is still asserted. */
 #define MC_FAULT_NONE         0U /* no fault */
 #define MC_FAULT_OVERCURRENT  1U /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */
 #define MC_FAULT_UNDERVOLTAGE 2U /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */

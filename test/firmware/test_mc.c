@@ -447,6 +447,29 @@ static void test_start_should_be_refused_while_the_bus_is_out_of_its_window(void
     assert_int_equal(st.fault, MC_FAULT_NONE);
 }
 
+static void test_start_from_fault_should_be_refused_while_the_bus_is_still_overvoltage(void **state)
+{
+    (void)state;
+    /* A hardware fault first, then the bus rises: FAULT keeps the first code. */
+    mc_request(&mc, MC_REQUEST_HW_FAULT);
+    step_with(nominal());
+    steps(3, frame(0, 0, MC_VBUS_OV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_HARDWARE);
+    /* START with the bus still at the threshold: FAULT in the same step,
+     * now with the present cause; never a period in CALIBRATE. */
+    mc_request(&mc, MC_REQUEST_START);
+    step_with(frame(0, 0, MC_VBUS_OV_Q15, 0));
+    assert_int_equal(st.state, MC_STATE_FAULT);
+    assert_int_equal(st.fault, MC_FAULT_OVERVOLTAGE);
+    assert_off();
+    /* Just below it: the START goes through. */
+    mc_request(&mc, MC_REQUEST_START);
+    step_with(frame(0, 0, (int16_t)(MC_VBUS_OV_Q15 - 1), 0));
+    assert_int_equal(st.state, MC_STATE_CALIBRATE);
+    assert_int_equal(st.fault, MC_FAULT_NONE);
+}
+
 static void test_hw_fault_should_latch_from_any_state_until_a_new_start(void **state)
 {
     (void)state;
@@ -735,6 +758,8 @@ int main(void)
         cmocka_unit_test_setup(test_overvoltage_should_trip_at_the_threshold_in_any_state, setup),
         cmocka_unit_test_setup(test_start_should_be_refused_while_the_bus_is_out_of_its_window,
                                setup),
+        cmocka_unit_test_setup(
+            test_start_from_fault_should_be_refused_while_the_bus_is_still_overvoltage, setup),
         cmocka_unit_test_setup(test_hw_fault_should_latch_from_any_state_until_a_new_start, setup),
         cmocka_unit_test_setup(test_a_start_in_the_same_frame_as_a_fault_should_not_clear_it,
                                setup),
