@@ -209,8 +209,6 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     s->t_closed_s = -1.0;
     s->t_enter_closed_s = -1.0;
     s->prev_state = (int)s->st.state;
-    s->last_event_s = 0.0;
-    strcpy(s->last_event, "-");
     return 0;
 }
 
@@ -232,8 +230,6 @@ void simcore_set_speed(simcore_t *s, double rpm)
 void simcore_event(simcore_t *s, const sim_event_t *ev)
 {
     sim_event_t e = *ev;
-    snprintf(s->last_event, sizeof(s->last_event), "%s", sim_event_name(ev->kind));
-    s->last_event_s = s->rig.t;
     switch (ev->kind) {
         case SIM_EV_START:
             if (s->st.state == MC_STATE_STOPPED || s->st.state == MC_STATE_FAULT) {
@@ -339,7 +335,6 @@ static void update_metrics(simcore_t *s)
         if (n->t_s >= g->win_s - slack && n->t_s < g->t1_s - slack) {
             g->n_all++;
             g->state_end = n->state;
-            g->fault_end = n->fault;
             if (n->state == MC_STATE_CLOSED_LOOP &&
                 n->t_s >= s->t_enter_closed_s + SIMCORE_SETTLE_S) {
                 g->n++;

@@ -68,7 +68,6 @@ typedef struct {
     double ref_sum, spd_sum, est_sum, iq_sum;
     double ang_sum, ang_sum2, ang_max;
     int state_end;
-    unsigned fault_end;
 } simcore_segment_t;
 
 typedef struct {
@@ -95,8 +94,6 @@ typedef struct {
     simcore_segment_t seg[SIMCORE_MAX_SEG];
     int prev_state;
     double zoom_until_s; /* full-rate trace rows until this time */
-    double last_event_s;
-    char last_event[40];
 } simcore_t;
 
 /* Returns 0, or -1 with a message on stderr (unknown profile, pole pairs
