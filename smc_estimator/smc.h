@@ -58,8 +58,8 @@
  *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
  *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
  *
- * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 515 min,
- * 786 mean, 2064 max (the window end); state 73 bytes and parameters 38
+ * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 492 min,
+ * 762 mean, 2018 max (the window end); state 73 bytes and parameters 38
  * bytes with 16-bit pointers (avr-gcc, as on the dsPIC). Per period: 2 model
  * steps, 2 switches, 6 first-order updates (32-bit states) and one CORDIC;
  * no division, no float. Once every IRP_PERCALC periods: one more CORDIC
