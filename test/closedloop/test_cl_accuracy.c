@@ -12,7 +12,7 @@
  *                  ADC noise, 1.4 to 2.25 deg over eight noise seeds for the
  *                  Hurst at 500 rpm (docs/tuning.md)
  * (rms printed). Default bench: 2 us dead time, ADC noise
- * sigma 1 code, amplifier offsets, friction only (3e-6 N m s/rad + 1 mN m).
+ * sigma 1 code, amplifier offsets, friction only (15.3e-6 N m s/rad + 0.5 mN m).
  * The lowest speed is the lowest closed-loop speed the build claims,
  * SPEED_REF_MIN_RPM (its ratio to SPEED_REF_MAX_RPM is printed).
  */
