@@ -68,11 +68,17 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
          "must be at least 16 Q15 counts of speed");
 #define MC_KP_SCHED_K ((int32_t)(MC_KP_SCHED_K_ + 0.5))
 
+/* Pot travel in Q15 speed (speed mode): 0 < span < 32768. */
+#define MC_SPEED_REF_SPAN_Q15 ((q15_t)(MC_SPEED_REF_MAX_Q15 - MC_SPEED_REF_MIN_Q15))
+
 /* Total current the speed loop may ask for with field weakening active: 90 %
  * of the software trip, so |(Id, Iq)| never reaches it in steady state. */
 #define MC_I_TOTAL_Q15 MC_Q15_AMPS(0.9 * MC_OVERCURRENT_A)
 
 #define MC_TIMER_MAX 0xFFFFFFFFUL
+
+/* sqrt(3) / 2 in Q15 (28378), for the phase currents from alpha/beta. */
+#define MC_SQRT3_2 Q15(0.86602540378443865)
 
 /* ---- pure helpers (mc_internal.h) ------------------------------------------ */
 
@@ -102,17 +108,18 @@ ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
     return v;
 }
 
+/* Both maps run every period: 16 x 16 -> 32 products (one mul.ss on the
+ * dsPIC, not a 32 x 32 library call). */
 q15_t mc_pot_to_speed(int16_t pot)
 {
-    int32_t p = (pot < 0) ? 0 : pot;
-    int32_t span = (int32_t)MC_SPEED_REF_MAX_Q15 - (int32_t)MC_SPEED_REF_MIN_Q15;
-    return (q15_t)(MC_SPEED_REF_MIN_Q15 + ((p * span) >> 15));
+    q15_t p = (pot < 0) ? 0 : pot;
+    return (q15_t)(MC_SPEED_REF_MIN_Q15 + (((int32_t)p * MC_SPEED_REF_SPAN_Q15) >> 15));
 }
 
 q15_t mc_pot_to_torque(int16_t pot)
 {
-    int32_t p = (pot < 0) ? 0 : pot;
-    return (q15_t)((p * MC_IQ_MAX_Q15) >> 15);
+    q15_t p = (pot < 0) ? 0 : pot;
+    return (q15_t)(((int32_t)p * MC_IQ_MAX_Q15) >> 15);
 }
 
 uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
@@ -434,8 +441,9 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
 #endif
     mc->v_dq = v;
 
-    /* Voltage at the angle it will be applied at. */
-    sincos_q15_t scv = sincos_compute(angle_add(mc->theta, adv));
+    /* Voltage at the angle it will be applied at (no second sin/cos when
+     * there is no advance: LOCK and the first OPEN_LOOP period). */
+    sincos_q15_t scv = (adv == 0) ? sc : sincos_compute(angle_add(mc->theta, adv));
     ab_q15_t v_ab = park_inverse(v, scv);
     svgen_out_t sv;
     svgen_update(v_ab, PWM_DUTY_MAX, &sv);
@@ -444,7 +452,7 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
      * will see (measured d/q current, rotated). */
     ab_q15_t ip = park_inverse(mc->i_dq, scv);
     int32_t half_a = -(int32_t)ip.alpha * (int32_t)16384;
-    int32_t b_s3 = (int32_t)ip.beta * (int32_t)28378; /* beta sqrt(3)/2, Q15 x Q15 */
+    int32_t b_s3 = (int32_t)ip.beta * MC_SQRT3_2; /* beta sqrt(3)/2, Q15 x Q15 */
     q15_t iph[3];
     iph[0] = ip.alpha;
     iph[1] = q15_sat((half_a + b_s3 + (int32_t)0x4000) >> 15);
