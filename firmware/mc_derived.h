@@ -287,6 +287,20 @@ MC_CHECK(BOARD_VBUS_FULLSCALE_V, MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
          "range of the applied-voltage scaling");
 #define MC_VAPP_K  ((int32_t)(MC_VAPP_K_ + 0.5))
 #define MC_VAPP_KB ((int32_t)(MC_VAPP_K_ * 1.7320508075688772 + 0.5)) /* beta: sqrt(3) larger */
+/* mc_duty_to_voltage forms |2 da - db - dc| <= 4 PWM_DUTY_MAX (duties in
+ * -PWM_DUTY_MAX/2..3 PWM_DUTY_MAX/2) times ga <= (32767 MC_VAPP_K + 2^12) >> 13,
+ * and |db - dc| <= 2 PWM_DUTY_MAX times gb (sqrt(3) ga): both below 2^31. The
+ * product is about 3.1e8 VBUS_FS / VBUS_NOMINAL, so this holds up to a full
+ * scale of about 6.9 times the nominal bus. */
+MC_CHECK(BOARD_VBUS_FULLSCALE_V,
+         4.0 * PWM_DUTY_MAX * ((32767.0 * (MC_VAPP_K_ + 0.5) + 4096.0) / 8192.0) + 2048.0 <
+                 2147483647.0 &&
+             2.0 * PWM_DUTY_MAX *
+                         ((32767.0 * (MC_VAPP_K_ * 1.7320508075688772 + 0.5) + 4096.0) / 8192.0) +
+                     2048.0 <
+                 2147483647.0,
+         "VBUS_FS / VBUS_NOMINAL too large: the applied-voltage "
+         "product of mc_duty_to_voltage overflows 31 bits");
 
 /* ---- protections ------------------------------------------------------------------------ */
 
