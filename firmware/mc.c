@@ -108,8 +108,9 @@ ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
     return v;
 }
 
-/* Both maps run every period: 16 x 16 -> 32 products (one mul.ss on the
- * dsPIC, not a 32 x 32 library call). */
+/* Both maps run every period: Q15 x Q15 products, written as 16 x 16 -> 32
+ * (gcc narrows the 32-bit form too: avr-gcc -O1 emits the same widening
+ * multiply for either, so this states the cost rather than changing it). */
 q15_t mc_pot_to_speed(int16_t pot)
 {
     q15_t p = (pot < 0) ? 0 : pot;
