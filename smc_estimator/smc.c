@@ -142,7 +142,8 @@ angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x)
     int32_t x4 = smc_mul_q15(x3, x);
     int32_t x5 = smc_mul_q15(x4, x);
     int32_t x6 = smc_mul_q15(x5, x);
-    /* 1 - cos x and sin x; the next terms are < 2.5e-5 x^7 (x < 1 rad). */
+    /* 1 - cos x and sin x; the next terms, x^8 / 40320 and x^7 / 5040, are
+     * < 2e-4 rad at x = 1 and < 3e-8 rad for x <= 0.27 (the tests' sweep). */
     int32_t ur = (x2 >> 1) - smc_mul_q15(x4, Q15(1.0 / 24.0)) + smc_mul_q15(x6, Q15(1.0 / 720.0));
     int32_t ui = x1 - smc_mul_q15(x3, Q15(1.0 / 6.0)) + smc_mul_q15(x5, Q15(1.0 / 120.0));
     q15_t ur15 = q15_sat((ur + (int32_t)0x800) >> 12); /* Q15 copies for u^2 */
