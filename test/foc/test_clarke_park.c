@@ -183,8 +183,8 @@ static void park_record(park_errs_t *e, q15_t got, double exact, double exact_an
 static void park_check_one(park_errs_t *ef, park_errs_t *ei, uint16_t a, q15_t u, q15_t v)
 {
     sincos_q15_t sc = sincos_compute((angle_q15_t)(int16_t)a);
-    double s = (double)sc.sin / 32768.0;
-    double c = (double)sc.cos / 32768.0;
+    double s = q15_to_double(sc.sin);
+    double c = q15_to_double(sc.cos);
     double th = (double)a * 2.0 * M_PI / 65536.0;
     double st = sin(th);
     double ct = cos(th);

@@ -26,7 +26,7 @@ static double output_bound_lsb(q15_t k)
 /* The reference, in LSB of Q15: y += (k / 32768) (x - y). */
 static double ref_update(double y, q15_t x, q15_t k)
 {
-    return y + ((double)k / 32768.0) * ((double)x - y);
+    return y + q15_to_double(k) * ((double)x - y);
 }
 
 static double state_lsb(const lpf_t *f)
@@ -107,8 +107,7 @@ static void test_lpf_update_should_follow_the_double_recurrence_on_sines(void **
         long i;
         /* Full-scale sine at the filter's cut-off (omega = K rad/sample),
          * with a floor of 50 samples per period; three periods plus settling. */
-        double w =
-            ((double)k / 32768.0 < 2.0 * M_PI / 50.0) ? (double)k / 32768.0 : 2.0 * M_PI / 50.0;
+        double w = (q15_to_double(k) < 2.0 * M_PI / 50.0) ? q15_to_double(k) : 2.0 * M_PI / 50.0;
         long n = (long)(6.0 * M_PI / w) + 5L * 32768L / (long)k;
         if (n > 2000000L) {
             n = 2000000L;
@@ -136,7 +135,7 @@ static q15_t lpf16_update(q15_t y, q15_t x, q15_t k)
 static void test_lpf_update_should_track_a_5_lsb_sine_that_a_16_bit_state_loses(void **state)
 {
     const q15_t k = Q15(0.003);
-    const double w = (double)k / 32768.0; /* at the cut-off: output ~3.5 LSB */
+    const double w = q15_to_double(k); /* at the cut-off: output ~3.5 LSB */
     lpf_errs_t e;
     err_stats_t e16;
     lpf_t f;

@@ -34,9 +34,9 @@ static double clampd(double x, double lo, double hi)
 
 static void model_init(pi_model_t *m, const pi_params_t *p)
 {
-    m->kp = (double)p->kp / 32768.0 * (double)(1U << p->kp_shift);
-    m->ki = (double)p->ki / 32768.0;
-    m->kc = (double)p->kc / 32768.0;
+    m->kp = q15_to_double(p->kp) * (double)(1U << p->kp_shift);
+    m->ki = q15_to_double(p->ki);
+    m->kc = q15_to_double(p->kc);
     m->lo = (double)p->out_min;
     m->hi = (double)p->out_max;
     m->sum = 0.0;
@@ -155,7 +155,7 @@ static void test_pi_update_should_give_the_textbook_step_response(void **state)
     err_stats_init(&e);
     for (int n = 0; n < 500; n++) {
         q15_t out = pi_update(&pi, e_step, 0);
-        double expect = 0.5 * (double)e_step + (double)n * (double)Q15(0.001) / 32768.0 * e_step;
+        double expect = 0.5 * (double)e_step + (double)n * q15_to_double(Q15(0.001)) * e_step;
         err_stats_add(&e, (double)out - expect, n);
     }
     err_stats_print("pi step response vs Kp E + n Ki E", &e, "LSB");
@@ -222,7 +222,7 @@ static void test_pi_update_should_leave_the_limit_quickly_after_windup_only_with
      * Sum = 0.8 - Kp 0.5 = 0.55; after the reversal U = Sum - 0.05 decays
      * with factor (1 - Kc) toward Out + Err = 0.2 and crosses 0.3 after
      * 1 + ln(0.3 / 0.1) / -ln(1 - Kc) = 110.2 calls. */
-    double kc = (double)Q15(0.01) / 32768.0;
+    double kc = q15_to_double(Q15(0.01));
     double predicted = 1.0 + log(0.3 / 0.1) / -log(1.0 - kc);
     printf("measured: pi windup: Sum after 20000 saturated steps = %.5f (Kc = Ki), %.5f (Kc = 0)\n",
            q31_to_double(sum_kc), q31_to_double(sum_nokc));
