@@ -49,7 +49,6 @@ test_torque_mode_should_hold_the_pot_current_in_closed_loop_and_let_speed_follow
     mc_request(&b.mc, MC_REQUEST_START);
     long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 4L * PWM_FREQUENCY_HZ);
     assert_true(n > 0);
-    int16_t expect = mc_pot_to_torque(b.frame.pot);
     double rpm_light = 0.0;
     for (long k = 0; k < 2L * PWM_FREQUENCY_HZ; k++) {
         mc_bench_step(&b);
@@ -59,7 +58,6 @@ test_torque_mode_should_hold_the_pot_current_in_closed_loop_and_let_speed_follow
         }
         rpm_light = b.rpm_sample;
     }
-    (void)expect;
     /* More load at the same current: the speed falls, the current stays. */
     b.rig.plant.load.active_nm = 0.0003;
     double rpm_loaded = 0.0;
