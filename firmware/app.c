@@ -162,7 +162,9 @@ static void fmt_field(uint8_t *buf, uint8_t *n, char tag, int32_t v)
 /* Queues the status line whole, or not at all when it does not fit. */
 static void queue_telemetry(app_t *app)
 {
-    uint8_t line[48]; /* longest: 7 fields of up to 7 bytes + CR LF */
+    /* Longest line 38 bytes: S, F up to 5 digits, R W A signed 5 digits, D,
+     * 5 spaces, CR LF. */
+    uint8_t line[48];
     uint8_t n = 0;
     uint8_t i;
     fmt_field(line, &n, 'S', (int32_t)app->status.state);
