@@ -12,7 +12,7 @@
  *   make BOARD=mclv MOTOR=hurst      (the defaults)
  *   make BOARD=mchv MOTOR=hispeed
  * CMake turns BOARD/MOTOR into MC_BOARD_<BOARD> / MC_MOTOR_<MOTOR>
- * definitions; with neither, MCLV + Hurst075.
+ * definitions; with neither, MCLV + motor_hurst.h (the Hurst075).
  * Every setting below is wrapped in #ifndef so it can also be overridden
  * with -D on the compiler command line.
  */
