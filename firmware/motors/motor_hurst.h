@@ -118,7 +118,7 @@
  * voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within 92 %
  * of the 0.95 circle at 24 V (headroom for the current loops), with
  * psi = Ke / sqrt(3) / w_e(1 krpm) = 8.05 mWb and a light load Iq = 0.3 A.
- * Above about 4100 rpm |Id| exceeds the rated 1.64 A peak: the top of the
+ * Above about 3900 rpm (entries 6..7) |Id| exceeds the rated 1.64 A peak: the top of the
  * range is for short bursts. Entry 0 is set to 0 (computed -0.039 A) so the
  * reference is continuous at the nominal speed. (AN1078 reaches -2.1 A.) - */
 #ifndef MOTOR_FW_ID_TABLE_A
