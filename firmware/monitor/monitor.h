@@ -22,9 +22,11 @@
  * too slowly a stream stops with the overflow flag, it is never waited for.
  *
  * Shared data (single core, the ISR preempts the main loop, never the reverse):
- * the ring's write count `wr` and the flags `isr_done`/`isr_overflow` are
- * written only by the ISR; `rd`, the configuration and `run` only by the main
- * loop, which changes the configuration only while run == 0 and sets run last.
+ * while run != 0 the ring's write count `wr` and the flags `isr_started`,
+ * `isr_done`, `isr_overflow` are written only by the ISR; `rd`, the
+ * configuration and `run` only by the main loop, which changes the
+ * configuration and resets the ring and the ISR's flags only while run == 0
+ * (the ISR then returns at once) and sets run last.
  * Every shared field is one byte or one 16-bit word (atomic on the dsPIC).
  *
  * Frame (both directions), all multi-byte fields little-endian:
