@@ -87,8 +87,10 @@ static void test_core_should_start_the_hurst_and_hold_the_pot_speed(void **state
     err_stats_print("angle at 1500 rpm (used - true)", &ang, "deg");
     assert_true(fabs(err_stats_mean(&spd)) < 0.01 * target);
     assert_true(spd.max_abs < 0.05 * target);
-    assert_true(fabs(err_stats_mean(&ang)) < 5.0);
-    assert_true(ang.max_abs < 15.0);
+    /* The project's claim (README, test_cl_accuracy): 2 deg on every sample
+     * at 1000..3000 rpm (measured 0.7 on this bench's seed). */
+    assert_true(fabs(err_stats_mean(&ang)) < 2.0);
+    assert_true(ang.max_abs < 2.0);
 }
 
 static void test_core_should_reach_top_speed_with_field_weakening_from_the_table(void **state)
@@ -154,8 +156,11 @@ test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation(void
         err_stats_add(&ang, mc_bench_angle_err_deg(&b), (double)k);
     }
     err_stats_print("angle at the minimum speed (500 rpm), dead-time compensation on", &ang, "deg");
-    assert_true(fabs(err_stats_mean(&ang)) < 5.0);
-    assert_true(ang.max_abs < 20.0);
+    /* The claim at the lowest speed: 2.5 deg, ADC-noise limited (measured
+     * 1.95 on this bench's seed; 1.4..2.25 over eight seeds in
+     * test_cl_accuracy). */
+    assert_true(fabs(err_stats_mean(&ang)) < 2.0);
+    assert_true(ang.max_abs < 2.5);
 }
 
 static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target(void **state)
