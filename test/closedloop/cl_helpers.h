@@ -115,6 +115,19 @@ static inline double cl_run_until_at_speed(simcore_t *s, double target_rpm, doub
     return -1.0;
 }
 
+/* Pot at rpm and START, then cl_run_until_at_speed (2 %, held 0.2 s) within
+ * max_s; the test fails, saying where the core is, if that does not happen. */
+static inline void cl_start_and_reach(simcore_t *s, double rpm, double max_s)
+{
+    simcore_set_speed(s, rpm);
+    simcore_request(s, MC_REQUEST_START);
+    if (cl_run_until_at_speed(s, rpm, 2.0, 0.2, max_s) < 0.0) {
+        fail_msg("%.0f rpm not reached within %.1f s: state %s, fault %s, true %.0f rpm", rpm,
+                 max_s, simcore_state_name(s->now.state), simcore_fault_name(s->now.fault),
+                 s->now.speed_rpm);
+    }
+}
+
 /* Runs until closed loop with the speed reference (ramped by the core) at
  * 99.9 % of ref_rpm or more, a FAULT, or max_s, whichever comes first. The
  * caller's window then tells which (a FAULT leaves closed loop). */

@@ -21,17 +21,10 @@ static void check_speed(double rpm, double load_nm, double ang_max_deg)
     static simcore_t s;
     simcore_cfg_t cfg;
     cl_window_t w;
-    double t_at;
     simcore_cfg_default(&cfg);
     cfg.theta0_rad = 1.0;
     cl_setup(&s, &cfg, "hurst", "mclv");
-    simcore_set_speed(&s, rpm);
-    simcore_request(&s, MC_REQUEST_START);
-    t_at = cl_run_until_at_speed(&s, rpm, 2.0, 0.2, 10.0);
-    if (t_at < 0.0) {
-        fail_msg("%.0f rpm not reached: state %s, fault %s, true %.0f rpm", rpm,
-                 simcore_state_name(s.now.state), simcore_fault_name(s.now.fault), s.now.speed_rpm);
-    }
+    cl_start_and_reach(&s, rpm, 10.0);
     if (load_nm > 0.0) {
         cl_event(&s, SIM_EV_LOAD, load_nm, 0.0);
     }

@@ -1,19 +1,6 @@
 /* test_cl_faults.c - protections in closed loop: detection time, outputs off, restart. */
 #include "cl_helpers.h"
 
-static void start_and_reach(simcore_t *s, double rpm)
-{
-    double t_at;
-    simcore_set_speed(s, rpm);
-    simcore_request(s, MC_REQUEST_START);
-    t_at = cl_run_until_at_speed(s, rpm, 2.0, 0.2, 8.0);
-    if (t_at < 0.0) {
-        fail_msg("did not reach %.0f rpm: state %s, fault %s, true %.0f rpm", rpm,
-                 simcore_state_name(s->now.state), simcore_fault_name(s->now.fault),
-                 s->now.speed_rpm);
-    }
-}
-
 /* Runs until FAULT (or max_s); returns the time of the step that reported it,
  * -1 if none. Checks the same step switched the outputs off. */
 static double run_until_fault(simcore_t *s, double max_s)
@@ -32,7 +19,7 @@ static double run_until_fault(simcore_t *s, double max_s)
 static void restart_should_work(simcore_t *s, double rpm, const char *what)
 {
     double t0 = s->rig.t;
-    start_and_reach(s, rpm);
+    cl_start_and_reach(s, rpm, 8.0);
     printf("measured: %s: restart by START back at %.0f rpm after %.2f s\n", what, rpm,
            s->rig.t - t0);
 }
@@ -42,7 +29,7 @@ static void setup_running(simcore_t *s, double rpm)
     simcore_cfg_t cfg;
     simcore_cfg_default(&cfg);
     cl_setup(s, &cfg, "hurst", "mclv");
-    start_and_reach(s, rpm);
+    cl_start_and_reach(s, rpm, 8.0);
     cl_run(s, 0.3);
 }
 

@@ -49,18 +49,10 @@ static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void
     static simcore_t s;
     simcore_cfg_t cfg;
     cl_window_t w;
-    double t_at;
     (void)state;
     simcore_cfg_default(&cfg);
     cl_setup(&s, &cfg, "hispeed", "mchv");
-    simcore_set_speed(&s, (double)SPEED_REF_MIN_RPM);
-    simcore_request(&s, MC_REQUEST_START);
-    t_at = cl_run_until_at_speed(&s, (double)SPEED_REF_MIN_RPM, 2.0, 0.2, 10.0);
-    if (t_at < 0.0) {
-        fail_msg("%.0f rpm not reached: state %s, fault %s, true %.0f rpm",
-                 (double)SPEED_REF_MIN_RPM, simcore_state_name(s.now.state),
-                 simcore_fault_name(s.now.fault), s.now.speed_rpm);
-    }
+    cl_start_and_reach(&s, (double)SPEED_REF_MIN_RPM, 10.0);
     cl_run(&s, 0.5);
     cl_measure(&s, 1.0, &w);
     printf(
