@@ -516,8 +516,8 @@ static void test_smc_should_report_not_valid_below_the_minimum_speed_without_ove
             if (n > 2000) {
                 valid_count += smc_valid(&s) ? 1 : 0;
                 err_stats_add(&ang, angle_err_deg(&s, &m), (double)n);
-                /* Defined ranges: |omega| <= full scale, K at its floor or
-                 * above, the ratio saturating rather than wrapping. */
+                /* Defined ranges: K at its floor or above, the ratio
+                 * saturating rather than wrapping negative. */
                 assert_true(s.k >= hurst.k_min);
                 assert_true(s.emf_ratio >= 0);
             }
@@ -707,8 +707,8 @@ static void
 test_smc_phase_lead_should_be_the_observer_lag_in_a_double_precision_simulation(void **state)
 {
     /* The derivation itself: a double-precision copy of the observer (same
-     * order of operations, exact ZOH plant, no quantisation) lags the rotor
-     * by exactly the formula's value (note 3). */
+     * order of operations, no internal quantisation, fed the Q15 samples of
+     * the exact ZOH plant) lags the rotor by the formula's value (note 3). */
     static const double rpms[] = {500, 1500, 3000, 5300};
     const smc_params_t *p = &hurst;
     bench_t b = bench_hurst();
