@@ -154,7 +154,8 @@ static void test_a_start_at_2000_rpm_over_the_uart_should_reach_the_core(void **
     assert_int_equal(st.speed_target, (int16_t)(2000.0 * 32768.0 / MC_SPEED_FULLSCALE_RPM + 0.5));
 }
 
-static void test_a_stream_through_a_slow_uart_should_arrive_whole_and_in_order(void **state)
+static void
+test_a_full_rate_snapshot_through_a_slow_uart_should_arrive_whole_and_in_order(void **state)
 {
     static mon_frame_t fr[2048];
     uint8_t sel[4] = {1, 0, 1, 16}; /* decim 1 (full rate), one channel: vbus */
@@ -195,8 +196,8 @@ int main(void)
         cmocka_unit_test_setup(
             test_the_app_should_hand_the_uart_to_the_monitor_and_send_no_status_line, setup),
         cmocka_unit_test_setup(test_a_start_at_2000_rpm_over_the_uart_should_reach_the_core, setup),
-        cmocka_unit_test_setup(test_a_stream_through_a_slow_uart_should_arrive_whole_and_in_order,
-                               setup),
+        cmocka_unit_test_setup(
+            test_a_full_rate_snapshot_through_a_slow_uart_should_arrive_whole_and_in_order, setup),
         cmocka_unit_test_setup(test_the_text_protocol_should_return_when_the_client_is_removed,
                                setup),
     };
