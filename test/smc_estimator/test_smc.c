@@ -190,6 +190,19 @@ static steady_t run_steady(const smc_params_t *p, const bench_t *b, double rpm, 
     return r;
 }
 
+/* The table of the steady-state tests, one row per speed. */
+static void steady_print_header(void)
+{
+    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms   "
+           "emf ratio\n");
+}
+
+static void steady_print_row(double rpm, const steady_t *r)
+{
+    printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f     %.2f..%.2f\n",
+           rpm, r->err_max, r->err_mean, r->speed_max, r->conv_ms, r->ratio_min, r->ratio_max);
+}
+
 static void
 test_smc_should_hold_the_angle_within_2_degrees_and_the_speed_within_1_percent_from_500_to_5300_rpm(
     void **state)
@@ -204,13 +217,10 @@ test_smc_should_hold_the_angle_within_2_degrees_and_the_speed_within_1_percent_f
     err_stats_init(&ang);
     err_stats_init(&spd);
     printf("measured: hurst steady state (settle 150 ms, then one mechanical turn)\n");
-    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms   "
-           "emf ratio\n");
+    steady_print_header();
     for (k = 0; k < sizeof rpms / sizeof rpms[0]; k++) {
         steady_t r = run_steady(&hurst, &b, rpms[k], 150.0);
-        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f     "
-               "%.2f..%.2f\n",
-               rpms[k], r.err_max, r.err_mean, r.speed_max, r.conv_ms, r.ratio_min, r.ratio_max);
+        steady_print_row(rpms[k], &r);
         err_stats_add(&ang, r.err_max, rpms[k]);
         err_stats_add(&spd, r.speed_max, rpms[k]);
         assert_true(r.err_max <= 2.0);
@@ -231,13 +241,10 @@ test_smc_should_hold_the_angle_within_2_degrees_on_a_2_pole_pair_motor_up_to_170
     (void)state;
     err_stats_init(&ang);
     printf("measured: hispeed (2 pp, 1.2 ohm, 4 mH, 10 V/krpm, 320 V) steady state\n");
-    printf("measured:   rpm   max|angle err| deg   mean deg   max|speed err| %%   conv ms   "
-           "emf ratio\n");
+    steady_print_header();
     for (k = 0; k < sizeof rpms / sizeof rpms[0]; k++) {
         steady_t r = run_steady(&hispeed, &b, rpms[k], 60.0);
-        printf("measured: %5.0f   %8.3f            %7.3f    %8.4f            %5.1f     "
-               "%.2f..%.2f\n",
-               rpms[k], r.err_max, r.err_mean, r.speed_max, r.conv_ms, r.ratio_min, r.ratio_max);
+        steady_print_row(rpms[k], &r);
         err_stats_add(&ang, r.err_max, rpms[k]);
         assert_true(r.err_max <= 2.0);
         assert_true(r.speed_max <= 1.0);
