@@ -88,7 +88,6 @@ void sim_plant_init(sim_plant_t *p, const sim_motor_params_t *m, double theta_e0
     p->s.theta_m = p->s.theta_e / (double)m->pole_pairs;
     p->s.locked = false;
     p->s.stuck = true;
-    p->s.te_nm = 0.0;
 }
 
 void sim_plant_step(sim_plant_t *p, double v_alpha, double v_beta, double dt, bool open)
@@ -150,7 +149,6 @@ void sim_plant_step(sim_plant_t *p, double v_alpha, double v_beta, double dt, bo
     p->s.iq = x.iq;
     p->s.omega_m = x.w;
     p->s.theta_e = sim_wrap_pi(x.th);
-    p->s.te_nm = torque_of(&p->m, x.id, x.iq);
 }
 
 void sim_plant_currents(const sim_plant_t *p, double *ia, double *ib, double *ic)

@@ -49,7 +49,6 @@ typedef struct {
     double theta_m; /* mechanical angle, rad, unwrapped (turns counted) */
     bool locked;    /* rotor held at its present angle (locked-rotor fault) */
     bool stuck;     /* at rest, held by the passive torque */
-    double te_nm;   /* electromagnetic torque of the last step, N m */
 } sim_plant_state_t;
 
 typedef struct {
