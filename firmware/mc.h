@@ -137,7 +137,12 @@ typedef struct {
                                BOARD_I_FULLSCALE_A */
     int16_t speed_target;   /* speed reference before the ramp, Q15 of MC_SPEED_FULLSCALE_RPM */
     int16_t theta_forced;   /* open-loop angle, Q15 binary angle */
-    int16_t bemf;           /* estimated back-EMF magnitude, Q15 of the SVGen full scale */
+    int16_t bemf;           /* the estimator's filtered back-EMF magnitude |e_final|, Q15 of
+                               its E_FS = SMC_EMF_FS_RATIO (2) x MC_VOLTAGE_FULLSCALE_V; the two
+                               filter stages leave about SMC_STAGE_GAIN (0.3..0.4) of the true
+                               phase amplitude, so this is a consistency figure (the stall
+                               check's), not volts of back-EMF: 1503 rpm on the simulated
+                               Hurst (6.3 V) reads 2385 */
     int16_t ia, ib;         /* offset-corrected phase currents, Q15 of BOARD_I_FULLSCALE_A */
     uint16_t duty[3];       /* duties of the last step (what the next period applies) */
     bool outputs_on;        /* as in the last mc_pwm_out_t */
