@@ -2,7 +2,7 @@
 
 import textwrap
 
-from .derive import fmt_num
+from .derive import Value, fmt_num
 
 # Macros every profile defines, in the order motor_hurst.h has them, by section.
 SECTIONS = [
@@ -44,9 +44,8 @@ def render(desc, t, tool_cmd):
     d = desc
     guard = f"MOTOR_{d.name.upper()}_H"
     vals = dict(t.by)
-    # the electrical data (inputs, converted)
-    from .derive import Value
 
+    # the electrical data (inputs, converted)
     def add(macro, number, unit, reason, fmt="{:.4g}"):
         vals[macro] = Value(macro, number, unit, reason, fmt)
 
