@@ -15,7 +15,8 @@ Q15_STATIC_ASSERT(MONITOR_MAX_PAYLOAD >= 36U && MONITOR_MAX_PAYLOAD <= 250U,
 /* ---- the variables ----------------------------------------------------------- *
  * Full scales are the core's scale macros (engineering units x 1000, rounded);
  * an angle's full scale is 180 degrees (Q15 binary angle: 32768 = pi). */
-#define FS_MILLI(x) ((int32_t)((x)*1000.0 + 0.5))
+#define FS_MILLI(x)     ((int32_t)((x)*1000.0 + 0.5))
+#define EMF_FULLSCALE_V (SMC_EMF_FS_RATIO * MC_VOLTAGE_FULLSCALE_V) /* smc.h E_FS */
 
 const monitor_var_t monitor_vars[MONITOR_NUM_VARS] = {
     {"state", "", MONITOR_KIND_INT, 1000},
@@ -33,7 +34,9 @@ const monitor_var_t monitor_vars[MONITOR_NUM_VARS] = {
     {"ib", "A", MONITOR_KIND_Q15, FS_MILLI(BOARD_I_FULLSCALE_A)},
     {"vd", "V", MONITOR_KIND_Q15, FS_MILLI(MC_VOLTAGE_FULLSCALE_V)},
     {"vq", "V", MONITOR_KIND_Q15, FS_MILLI(MC_VOLTAGE_FULLSCALE_V)},
-    {"bemf", "V", MONITOR_KIND_Q15, FS_MILLI(MC_VOLTAGE_FULLSCALE_V)},
+    /* the estimator's filtered |e| (mc.h mc_status_t.bemf): Q15 of its E_FS = 2 V_FS, and
+     * about 0.3..0.4 of the true phase amplitude (a consistency figure, not volts of EMF) */
+    {"bemf", "V", MONITOR_KIND_Q15, FS_MILLI(EMF_FULLSCALE_V)},
     {"vbus", "V", MONITOR_KIND_Q15, FS_MILLI(BOARD_VBUS_FULLSCALE_V)},
     {"est_valid", "", MONITOR_KIND_INT, 1000},
 };

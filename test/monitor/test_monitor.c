@@ -3,6 +3,7 @@
 #include "test_support.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "mon_util.h"
@@ -268,6 +269,10 @@ static void test_var_info_should_name_every_variable_with_its_unit_and_full_scal
     }
     assert_int_equal(monitor_vars[2].fs_milli, (int32_t)(MC_SPEED_FULLSCALE_RPM * 1000.0 + 0.5));
     assert_int_equal(monitor_vars[7].fs_milli, (int32_t)(BOARD_I_FULLSCALE_A * 1000.0 + 0.5));
+    /* bemf is in the estimator's back-EMF scale E_FS = 2 V_FS (smc.h), twice vd's */
+    assert_string_equal(monitor_vars[15].name, "bemf");
+    assert_string_equal(monitor_vars[13].name, "vd");
+    assert_true(labs((long)monitor_vars[15].fs_milli - 2L * (long)monitor_vars[13].fs_milli) <= 1L);
     i = MONITOR_NUM_VARS;
     expect_error(transact(MONITOR_CMD_VAR_INFO, &i, 1), MONITOR_CMD_VAR_INFO, MONITOR_ERR_RANGE);
 }
