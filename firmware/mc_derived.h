@@ -37,10 +37,10 @@
     (__GNUC__ < 4 || (__GNUC__ == 4 && __GNUC_MINOR__ < 6))
 #define MC_CHECK(param, cond, msg)                                                                 \
     struct Q15_CAT(mc_check_line_, __LINE__) {                                                     \
-        unsigned param##__out_of_range : ((cond) ? 1 : -1);                                        \
+        unsigned param##__out_of_range : Q15_CHECK_WIDTH_(cond);                                   \
     }
 #else
-#define MC_CHECK(param, cond, msg) _Static_assert(cond, #param ": " msg)
+#define MC_CHECK(param, cond, msg) _Static_assert((int)(cond), #param ": " msg)
 #endif
 
 /* ---- timing ------------------------------------------------------------- */

@@ -42,28 +42,41 @@ typedef int16_t angle_q15_t;
 
 /* ---- compile-time checks ------------------------------------------------ */
 
-/* Q15_STATIC_ASSERT(cond, "message naming the parameter and why").
- * _Static_assert where the compiler has it (gcc >= 4.6 accepts it in C99 mode
- * as an extension); elsewhere a negative-size array whose name carries the
- * line number, so older XC16 still stops the build. */
+/* Q15_CHECK_WIDTH_(cond): 1 when cond holds, -1 (an illegal bit-field width)
+ * when it does not. The (int) cast turns a floating-point condition into a
+ * constant that every supported compiler folds where a bit-field width is
+ * read (gcc >= 4.5 and so XC16, avr-gcc, clang); as an array size the same
+ * condition would be a variable-length array to gcc 4.5 and clang. */
+#define Q15_CHECK_WIDTH_(cond) (((int)(cond)) ? 1 : -1)
+
+/* An expression that is 0 when cond holds and stops the build with
+ * "negative width in bit-field 'name'" when it does not. Usable inside
+ * constant expressions (static initializers included), at file scope and
+ * in functions. */
+#define Q15_CHECK_EXPR(name, cond)                                                                 \
+    ((int)(0 * sizeof(struct { unsigned name : Q15_CHECK_WIDTH_(cond); })))
+
+/* Q15_STATIC_ASSERT(cond, "message naming the parameter and why"), at file or
+ * block scope. _Static_assert where the compiler has it (gcc >= 4.6 accepts
+ * it in C99 mode as an extension); elsewhere, as in XC16's gcc 4.5, a
+ * bit-field of width -1, which stops the build the same way. __COUNTER__
+ * (gcc >= 4.3) keeps two asserts on the same line number of two headers
+ * from declaring the same struct tag. */
 #define Q15_CAT_(a, b) a##b
 #define Q15_CAT(a, b)  Q15_CAT_(a, b)
 #if defined(__GNUC__) && ((__GNUC__ > 4) || (__GNUC__ == 4 && __GNUC_MINOR__ >= 6))
-#define Q15_STATIC_ASSERT(cond, msg) _Static_assert(cond, msg)
-#elif defined(__COUNTER__)
-/* __COUNTER__ (gcc >= 4.3, so every XC16) keeps two asserts on the same line
- * number of two headers from declaring the same typedef. */
-#define Q15_STATIC_ASSERT(cond, msg)                                                               \
-    typedef char Q15_CAT(static_assert_failed_, __COUNTER__)[(cond) ? 1 : -1]
+#define Q15_STATIC_ASSERT(cond, msg) _Static_assert((int)(cond), msg)
 #else
 #define Q15_STATIC_ASSERT(cond, msg)                                                               \
-    typedef char Q15_CAT(static_assert_failed_line_, __LINE__)[(cond) ? 1 : -1]
+    struct Q15_CAT(q15_static_assert_, __COUNTER__) {                                              \
+        unsigned static_assertion_failed : Q15_CHECK_WIDTH_(cond);                                 \
+    }
 #endif
 
-/* An expression that is 0 when x is inside [lo, hi] and does not compile
- * ("size of unnamed array is negative") when it is outside. Usable inside
- * constant expressions, at file scope and in functions. */
-#define Q15_RANGE_CHECK(x, lo, hi) ((int)(0 * sizeof(char[((x) >= (lo) && (x) <= (hi)) ? 1 : -1])))
+/* 0 when x is inside [lo, hi]; outside, the build stops ("negative width in
+ * bit-field 'q15_constant_out_of_range'"). */
+#define Q15_RANGE_CHECK(x, lo, hi)                                                                 \
+    Q15_CHECK_EXPR(q15_constant_out_of_range, (x) >= (lo) && (x) <= (hi))
 
 /* Raw value of x * 32768 rounded half away from zero, 1.0 saturating to
  * 32767; only for x already range-checked. */

@@ -108,10 +108,6 @@ typedef struct {
 
 /* ---- compile-time parameter computation ---------------------------------- */
 
-/* An expression that is 0, and fails to compile with the error
- * "negative width in bit-field '<name>'" when cond is false. */
-#define SMC_CHECK(name, cond) ((int)(0 * sizeof(struct { unsigned name : ((cond) ? 1 : -1); })))
-
 /* Smallest shift s in 0..15 with x < 2^s, for 0 <= x < 32768 (a larger x
  * gives 15, and the callers' range checks reject it): q15.h's 0..7
  * convention (Q15_SHIFT7_OF, Q15_MANT7_OF) extended by 8 for x >= 128
@@ -205,42 +201,44 @@ typedef struct {
  */
 #define SMC_PARAMS_INIT(r, l, ts, vfs, ifs, ks, me, wfs, fmin, irp, fspd, ke)                      \
     {                                                                                              \
-        /* f */ (q15_t)(SMC_CHECK(smc_Ts_R_over_L_must_be_in_0_1,                                  \
-                                  SMC_Y_(r, l, ts) > 0.0 && SMC_Y_(r, l, ts) <= 1.0) +             \
+        /* f */ (q15_t)(Q15_CHECK_EXPR(smc_Ts_R_over_L_must_be_in_0_1,                             \
+                                       SMC_Y_(r, l, ts) > 0.0 && SMC_Y_(r, l, ts) <= 1.0) +        \
                         Q15(SMC_F_(r, l, ts))), /* g */                                            \
-            (q15_t)(SMC_CHECK(smc_G_Ts_over_L_times_2Vfs_over_Ifs_must_be_in_1e_4_to_128,          \
-                              SMC_GE_(r, l, ts, vfs, ifs) >= 1e-4 &&                               \
-                                  SMC_GE_(r, l, ts, vfs, ifs) < 128.0) +                           \
+            (q15_t)(Q15_CHECK_EXPR(smc_G_Ts_over_L_times_2Vfs_over_Ifs_must_be_in_1e_4_to_128,     \
+                                   SMC_GE_(r, l, ts, vfs, ifs) >= 1e-4 &&                          \
+                                       SMC_GE_(r, l, ts, vfs, ifs) < 128.0) +                      \
                     Q15_MANT7_OF(SMC_GE_(r, l, ts, vfs, ifs))),                                    \
             /* g_shift */ (uint8_t)Q15_SHIFT7_OF(SMC_GE_(r, l, ts, vfs, ifs)), /* kslide */        \
-            (q15_t)(SMC_CHECK(smc_Kslide_must_be_in_0_2_of_V_FS, (ks) > 0.0 && (ks) < 2.0) +       \
+            (q15_t)(Q15_CHECK_EXPR(smc_Kslide_must_be_in_0_2_of_V_FS, (ks) > 0.0 && (ks) < 2.0) +  \
                     Q15(SMC_KSE_(ks))), /* max_err */                                              \
-            (q15_t)(SMC_CHECK(smc_MaxSMCError_must_be_in_1_LSB_to_1,                               \
-                              (me) >= 1.0 / 32768.0 && (me) < 1.0) +                               \
+            (q15_t)(Q15_CHECK_EXPR(smc_MaxSMCError_must_be_in_1_LSB_to_1,                          \
+                                   (me) >= 1.0 / 32768.0 && (me) < 1.0) +                          \
                     Q15(me)), /* kz */                                                             \
-            (q15_t)(SMC_CHECK(smc_Kslide_over_MaxSMCError_must_be_below_32768,                     \
-                              SMC_KZ_(ks, me) < 32768.0) +                                         \
+            (q15_t)(Q15_CHECK_EXPR(smc_Kslide_over_MaxSMCError_must_be_below_32768,                \
+                                   SMC_KZ_(ks, me) < 32768.0) +                                    \
                     SMC_MANT_OF(SMC_KZ_(ks, me))),                                                 \
             /* kz_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KZ_(ks, me)), /* k_per_omega */               \
-            (q15_t)(SMC_CHECK(smc_2pi_omega_fs_Ts_must_be_below_1, SMC_KPW_(ts, wfs) < 1.0) +      \
+            (q15_t)(Q15_CHECK_EXPR(smc_2pi_omega_fs_Ts_must_be_below_1, SMC_KPW_(ts, wfs) < 1.0) + \
                     Q15(SMC_KPW_(ts, wfs))), /* k_min */                                           \
-            (q15_t)(SMC_CHECK(smc_min_speed_must_be_in_0_omega_fs,                                 \
-                              (fmin) > 0.0 && (fmin) < (wfs) &&                                    \
-                                  SMC_KPW_(ts, fmin) >= 1.0 / 32768.0) +                           \
+            (q15_t)(Q15_CHECK_EXPR(smc_min_speed_must_be_in_0_omega_fs,                            \
+                                   (fmin) > 0.0 && (fmin) < (wfs) &&                               \
+                                       SMC_KPW_(ts, fmin) >= 1.0 / 32768.0) +                      \
                     Q15(SMC_KPW_(ts, fmin))),                                                      \
             /* omega_min */ Q15((double)(fmin) / (double)(wfs)), /* kspeed */                      \
-            (q15_t)(SMC_CHECK(smc_speed_scale_1_over_2_IRP_Ts_omega_fs_must_be_below_32768,        \
-                              SMC_KSPEED_(ts, wfs, irp) < 32768.0) +                               \
+            (q15_t)(Q15_CHECK_EXPR(smc_speed_scale_1_over_2_IRP_Ts_omega_fs_must_be_below_32768,   \
+                                   SMC_KSPEED_(ts, wfs, irp) < 32768.0) +                          \
                     SMC_MANT_OF(SMC_KSPEED_(ts, wfs, irp))),                                       \
             /* kspeed_shift */ (uint8_t)SMC_SHIFT_OF(SMC_KSPEED_(ts, wfs, irp)), /* irp_percalc */ \
-            (uint16_t)(SMC_CHECK(smc_IRP_PERCALC_must_be_in_1_256, (irp) >= 1 && (irp) <= 256) +   \
+            (uint16_t)(Q15_CHECK_EXPR(smc_IRP_PERCALC_must_be_in_1_256,                            \
+                                      (irp) >= 1 && (irp) <= 256) +                                \
                        (irp)), /* k_speed_lpf */                                                   \
-            (q15_t)(SMC_CHECK(smc_speed_lpf_2pi_fc_IRP_Ts_must_be_in_0_1,                          \
-                              SMC_KSLPF_(ts, irp, fspd) > 0.0 &&                                   \
-                                  SMC_KSLPF_(ts, irp, fspd) < 1.0) +                               \
+            (q15_t)(Q15_CHECK_EXPR(smc_speed_lpf_2pi_fc_IRP_Ts_must_be_in_0_1,                     \
+                                   SMC_KSLPF_(ts, irp, fspd) > 0.0 &&                              \
+                                       SMC_KSLPF_(ts, irp, fspd) < 1.0) +                          \
                     Q15(SMC_KSLPF_(ts, irp, fspd))), /* emf_gain */                                \
-            (q15_t)(SMC_CHECK(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_8,                        \
-                              SMC_EMFG_(ke, wfs, vfs) >= 0.0 && SMC_EMFG_(ke, wfs, vfs) < 8.0) +   \
+            (q15_t)(Q15_CHECK_EXPR(smc_Ke_omega_fs_over_Vfs_gain_must_be_in_0_8,                   \
+                                   SMC_EMFG_(ke, wfs, vfs) >= 0.0 &&                               \
+                                       SMC_EMFG_(ke, wfs, vfs) < 8.0) +                            \
                     Q15(SMC_EMFG_(ke, wfs, vfs) / 8.0)),                                           \
             /* emf_shift */ (uint8_t)3,                                                            \
             /* tf_mdc */ SMC_Q12(SMC_MDC_(r, l, ts, vfs, ifs, ks, me)),                            \

@@ -36,7 +36,9 @@ uint32_t emit_count(void);     /* vectors emitted so far */
 /*
  * Deterministic inputs: xorshift32, identical on every compiler. Each
  * section should call vec_seed() with its own constant so that adding
- * vectors to one section does not shift the inputs of the others.
+ * vectors to one section does not shift the inputs of the others. Never
+ * draw twice in one expression or one argument list: C leaves the order of
+ * the two calls unspecified, and XC16 and gcc on the PC choose differently.
  */
 void vec_seed(uint32_t seed);
 uint32_t vec_rand_u32(void);

@@ -197,7 +197,11 @@ static void protections(void)
     mc_init(&mc);
     /* Random frames while stopped, then a start into the lock. */
     for (n = 0U; n < 300U; n++) {
-        step_frame(vec_rand_i16(), vec_rand_i16(), vec_rand_between(0, 19000), vec_rand_i16());
+        /* Four draws, sequenced (emit.h): as arguments their order would be unspecified. */
+        int16_t ia = vec_rand_i16();
+        int16_t ib = vec_rand_i16();
+        int16_t vbus = vec_rand_between(0, 19000);
+        step_frame(ia, ib, vbus, vec_rand_i16());
     }
     mc_request(&mc, MC_REQUEST_START_STOP);
     for (n = 0U; n < 700U; n++) {

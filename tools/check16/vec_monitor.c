@@ -140,9 +140,13 @@ static uint8_t build_request(uint8_t *f)
     f[4 + len] = (uint8_t)(c >> 8);
     n = (uint8_t)(len + 5U);
     switch (vec_rand_u16() % 6U) {
-        case 0:
-            f[vec_rand_u16() % n] ^= (uint8_t)(1U << (vec_rand_u16() % 8U));
+        case 0: {
+            /* Two draws, sequenced: inside one expression their order would be
+             * unspecified (gcc on the PC and XC16 pick different orders). */
+            uint8_t at = (uint8_t)(vec_rand_u16() % n);
+            f[at] ^= (uint8_t)(1U << (vec_rand_u16() % 8U));
             break;
+        }
         case 1:
             n = (uint8_t)(vec_rand_u16() % n);
             break;
