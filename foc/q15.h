@@ -79,7 +79,8 @@ typedef int16_t angle_q15_t;
     Q15_CHECK_EXPR(q15_constant_out_of_range, (x) >= (lo) && (x) <= (hi))
 
 /* Raw value of x * 32768 rounded half away from zero, 1.0 saturating to
- * 32767; only for x already range-checked. */
+ * 32767; only for x already range-checked. Unlike Q15() it also works on a
+ * value known only at run time (the tests sweep it). */
 #define Q15_ROUND_(x)                                                                              \
     ((x)*32768.0 >= 32767.5 ? 32767L : (long)((x)*32768.0 + ((x) >= 0 ? 0.5 : -0.5)))
 

@@ -1,7 +1,7 @@
 /* smc.c - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages. */
 #include "smc.h"
 
-#include "cordic.h"
+#include "atan2.h"
 
 /*
  * Arithmetic of the per-period path (smc_update), per axis:
@@ -16,15 +16,14 @@
  *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
  *          +-Kslide (rounding could step one LSB past it).
  *  stages  foc/lpf.h (32-bit states, exact to 2^-30).
- *  angle   both Q31 e_final components shifted right together until the
- *          larger fits 15 bits, then the CORDIC (which normalises again):
- *          the angle keeps 15 bits of resolution at any back-EMF amplitude.
+ *  angle   atan2_q31 of the Q31 e_final components (foc/atan2.h): the
+ *          angle keeps its resolution at any back-EMF amplitude.
  *  speed   angle steps (angle_sub, in [-pi, pi)) summed in int32: the
  *          window of at most 256 periods sums to at most 2^23.
  * No division and no multiply wider than 16 x 16 in this path.
  *
  * Once per window (smc_speed_refresh): the speed scaling (note 7), K, the
- * compensation from the transfer functions (notes 3-4: two CORDIC calls
+ * compensation from the transfer functions (notes 3-4: two atan2 calls
  * and about twenty 16 x 16 products), the back-EMF amplitude and one
  * 32 / 16 division for the consistency figure.
  */
@@ -43,27 +42,6 @@ static int32_t smc_mul_q15(int32_t a, q15_t b)
 static int32_t smc_shl32(int32_t x, uint8_t n)
 {
     return (int32_t)((uint32_t)x << n);
-}
-
-/* Angle of (x, y) for 32-bit components: both shifted right by the same
- * amount so the larger magnitude fits 15 bits, then cordic_atan2. */
-static angle_q15_t smc_atan2_32(int32_t y, int32_t x)
-{
-    uint32_t ux = (x < 0) ? ((uint32_t)0U - (uint32_t)x) : (uint32_t)x;
-    uint32_t uy = (y < 0) ? ((uint32_t)0U - (uint32_t)y) : (uint32_t)y;
-    uint32_t m = ux | uy;
-    uint8_t sh = 0U;
-    if (m > 0x7FFFFFUL) {
-        m >>= 8;
-        sh = 8U;
-    }
-    while (m > 0x7FFFUL) {
-        m >>= 1;
-        sh++;
-    }
-    /* After the shift (|x| OR |y|) >> sh <= 32767, so x >> sh and y >> sh
-     * (rounded toward -infinity) lie in [-32768, 32767]: plain casts. */
-    return cordic_atan2((int16_t)(y >> sh), (int16_t)(x >> sh));
 }
 
 /* One axis of the digitised model: F i + G (v - e - z), rounded, saturated. */
@@ -159,8 +137,8 @@ angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x)
     int32_t re1 =
         q15_dsp_mulss(k, p->tf_mdc) + smc_shl32(smc_mul_q15(ur, b1), 3U) + smc_mul_q15(u2r, b2);
     int32_t im1 = smc_shl32(smc_mul_q15(ui, b1), 3U) + smc_mul_q15(u2i, b2);
-    angle_q15_t a1 = smc_atan2_32(im1, re1);
-    angle_q15_t a2 = smc_atan2_32(im2, re2);
+    angle_q15_t a1 = atan2_q31(im1, re1);
+    angle_q15_t a2 = atan2_q31(im2, re2);
     angle_q15_t adv = q15_mul(x, p->tf_xadv);
     return angle_add(angle_add(a1, a2), adv);
 }
@@ -313,7 +291,7 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
      * -2^31, which is clamped (one part in 2^31). */
     {
         int32_t a = s->ef_alpha.state;
-        s->theta_raw = smc_atan2_32((a == Q31_MIN) ? Q31_MAX : -a, s->ef_beta.state);
+        s->theta_raw = atan2_q31((a == Q31_MIN) ? Q31_MAX : -a, s->ef_beta.state);
     }
 
     /* Speed window. */
@@ -326,7 +304,7 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
              * transients added to the angle steps (note 8). */
             int32_t wa = s->w_alpha.state;
             angle_q15_t lag = angle_sub(
-                smc_atan2_32((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state), s->theta_raw);
+                atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state), s->theta_raw);
             int32_t dl = s->lag_valid ? (int32_t)angle_sub(lag, s->lag) : 0;
             int32_t dz;
             if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {

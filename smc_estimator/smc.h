@@ -16,7 +16,7 @@
  *                                                            +-Kslide outside it
  *   e(n)     = e(n-1)  + K (z(n) - e(n-1))                   first stage (in the loop)
  *   ef(n)    = ef(n-1) + K (e(n) - ef(n-1))                  second stage (plain)
- *   theta_raw(n) = atan2(-ef_alpha, ef_beta)                 CORDIC, foc/cordic.h
+ *   theta_raw(n) = atan2(-ef_alpha, ef_beta)                 foc/atan2.h
  *   theta(n) = theta_raw(n) + comp(omega) (+ pi when omega < 0)
  *
  * with F = exp(-Ts R / L) and G = (1 - F) / R (per-phase R and L; AN1078's
@@ -61,9 +61,9 @@
  * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 492 min,
  * 762 mean, 2018 max (the window end); state 73 bytes and parameters 38
  * bytes with 16-bit pointers (avr-gcc, as on the dsPIC). Per period: 2 model
- * steps, 2 switches, 6 first-order updates (32-bit states) and one CORDIC;
- * no division, no float. Once every IRP_PERCALC periods: one more CORDIC
- * (the lag), the speed scaling, the compensation (two CORDIC calls and
+ * steps, 2 switches, 6 first-order updates (32-bit states) and one atan2;
+ * no division, no float. Once every IRP_PERCALC periods: one more atan2
+ * (the lag), the speed scaling, the compensation (two atan2 calls and
  * about twenty 16 x 16 products) and one 32 / 16 division (the back-EMF
  * consistency figure).
  */
@@ -320,7 +320,7 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
  * the loop delay for a positive frequency x (electrical rad per PWM period,
  * Q15, 0 <= x < 1) with stage coefficient k (Q15, >= 1): notes 2-4.
  * smc_update adds it (negated, plus pi, for reverse rotation) to theta_raw.
- * Scaling: Q27 arithmetic with 16 x 16 products only; two CORDIC calls. */
+ * Scaling: Q27 arithmetic with 16 x 16 products only; two atan2 calls. */
 angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x);
 
 /* Speed (Q15 of omega_fs, signed, saturated at +-32767) from a window's sum
@@ -408,7 +408,7 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *    The constants mdc = 1 + c - p, B1 = b10 + K b1k, p and the x / 2 term
  *    are computed by SMC_PARAMS_INIT; smc_phase_lead evaluates the rest once
  *    per speed window (1 - cos x and sin x by their Taylor series in Q27,
- *    two CORDIC arctangents). Measured: smc_phase_lead is within 0.017
+ *    two atan2 arctangents). Measured: smc_phase_lead is within 0.017
  *    degree of the formula in double, and the formula within 0.05 degree of
  *    the lag of a double-precision copy of the observer run on the exact
  *    plant (test_smc.c). For the Hurst settings (dead-beat band, note 5) the

@@ -128,13 +128,13 @@ static void run_lpf(uint32_t n)
 }
 #endif
 
-#if defined(BENCH_HAVE_CORDIC)
-#include "cordic.h"
-static void run_cordic(uint32_t n)
+#if defined(BENCH_HAVE_ATAN2)
+#include "atan2.h"
+static void run_atan2(uint32_t n)
 {
     uint32_t k;
     for (k = 0U; k < n; k++) {
-        bench_sink += cordic_atan2(bench_rand_i16(), bench_rand_i16());
+        bench_sink += atan2_q15(bench_rand_i16(), bench_rand_i16());
     }
 }
 #endif
@@ -218,8 +218,8 @@ void bench_foc(void)
 #if defined(BENCH_HAVE_LPF)
     bench_add("lpf_update", "lpf_update", CALLS, run_lpf);
 #endif
-#if defined(BENCH_HAVE_CORDIC)
-    bench_add("cordic_atan2", "cordic_atan2", CALLS, run_cordic);
+#if defined(BENCH_HAVE_ATAN2)
+    bench_add("atan2_q15", "atan2_q15", CALLS, run_atan2);
 #endif
 #if defined(BENCH_HAVE_Q15_SQRT)
     bench_add("q15_sqrt", "q15_sqrt", CALLS, run_sqrt);

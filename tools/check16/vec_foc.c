@@ -507,13 +507,13 @@ static void vec_lpf(void)
 }
 #endif
 
-#if defined(CHECK16_HAVE_CORDIC)
-#include "cordic.h"
+#if defined(CHECK16_HAVE_ATAN2)
+#include "atan2.h"
 
-static void vec_cordic(void)
+static void vec_atan2(void)
 {
     uint32_t k;
-    emit_section("cordic");
+    emit_section("atan2_q15");
     vec_seed(0xC0U);
     for (k = 0U; k < 6000U; k++) {
         int16_t y;
@@ -521,7 +521,7 @@ static void vec_cordic(void)
         if (vec_edge_pair(k, &y, &x)) {
             /* every pair of edges first; then the cases below */
         } else if (k < VEC_N_EDGES * VEC_N_EDGES + 81U) {
-            /* Every small vector in [-4, 4]^2, where normalisation matters. */
+            /* Every small vector in [-4, 4]^2. */
             y = (int16_t)((int16_t)((k - VEC_N_EDGES * VEC_N_EDGES) / 9U) - 4);
             x = (int16_t)((int16_t)((k - VEC_N_EDGES * VEC_N_EDGES) % 9U) - 4);
         } else if ((k & 1U) != 0U) {
@@ -536,7 +536,31 @@ static void vec_cordic(void)
         emit_i16(y);
         emit_i16(x);
         emit_sep();
-        emit_i16(cordic_atan2(y, x));
+        emit_i16(atan2_q15(y, x));
+        emit_end();
+    }
+    emit_section("atan2_q31");
+    vec_seed(0xC1U);
+    for (k = 0U; k < 6000U; k++) {
+        int32_t y;
+        int32_t x;
+        if (k < 16U) {
+            /* The 32-bit extremes against each other and 0. */
+            static const int32_t ext[4] = {INT32_MIN, -1L, 0L, INT32_MAX};
+            y = ext[k / 4U];
+            x = ext[k % 4U];
+        } else {
+            /* Random lengths from 1 to 32 bits. */
+            uint8_t sh = (uint8_t)(vec_rand_u16() % 32U);
+            uint32_t ry = vec_rand_u32();
+            uint32_t rx = vec_rand_u32();
+            y = (int32_t)ry >> sh;
+            x = (int32_t)rx >> sh;
+        }
+        emit_i32(y);
+        emit_i32(x);
+        emit_sep();
+        emit_i16(atan2_q31(y, x));
         emit_end();
     }
 }
@@ -761,8 +785,8 @@ void vec_foc(void)
 #if defined(CHECK16_HAVE_LPF)
     vec_lpf();
 #endif
-#if defined(CHECK16_HAVE_CORDIC)
-    vec_cordic();
+#if defined(CHECK16_HAVE_ATAN2)
+    vec_atan2();
 #endif
 #if defined(CHECK16_HAVE_Q15_SQRT)
     vec_q15_sqrt();

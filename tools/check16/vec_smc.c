@@ -1,5 +1,5 @@
 /* vec_smc.c - 16-bit check vectors for the sliding-mode estimator (smc_estimator/). */
-/* check16-requires: smc_estimator/smc.c foc/lpf.c foc/cordic.c foc/sincos.c */
+/* check16-requires: smc_estimator/smc.c foc/lpf.c foc/atan2.c foc/sincos.c */
 #include "emit.h"
 
 #include "sincos.h"
