@@ -21,9 +21,9 @@
  *   rounds onto -32768.
  *   Accuracy (test/foc/test_atan2.c, against double atan2 of the same
  *   integers): max |error| <= 1.0 LSB = 0.0055 degrees at every magnitude
- *   for inputs within 16 bits, <= 1.3 LSB for larger ones (atan2.c note 1). Cost: one div.ud, two table reads, one 16 x 16
- *   multiply; 258 bytes of const table.
- * atan2_q15(y, x): the same for int16 inputs.
+ *   for inputs within 16 bits, <= 1.3 LSB for larger ones (atan2.c note 1). Cost: one div.ud, two
+ * table reads, one 16 x 16 multiply; 258 bytes of const table. atan2_q15(y, x): the same for int16
+ * inputs.
  */
 angle_q15_t atan2_q31(int32_t y, int32_t x);
 angle_q15_t atan2_q15(int16_t y, int16_t x);

@@ -303,8 +303,8 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
              * back-EMF: its change over the window is what the stages'
              * transients added to the angle steps (note 8). */
             int32_t wa = s->w_alpha.state;
-            angle_q15_t lag = angle_sub(
-                atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state), s->theta_raw);
+            angle_q15_t lag = angle_sub(atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state),
+                                        s->theta_raw);
             int32_t dl = s->lag_valid ? (int32_t)angle_sub(lag, s->lag) : 0;
             int32_t dz;
             if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {

@@ -12,7 +12,7 @@
  * 360 / 65536 = 0.0055 degrees. */
 #define ATAN2_MAX_ERR_LSB   1.0
 #define ATAN2_MAX_ERR32_LSB 1.3
-#define LSB_PER_DEG        (65536.0 / 360.0)
+#define LSB_PER_DEG         (65536.0 / 360.0)
 
 /* Error of atan2_q15(y, x) against atan2 of the same integers, in LSB of
  * the binary angle, taking the wrap at +-pi into account. */
@@ -72,8 +72,7 @@ static void test_atan2_q15_should_stay_within_bound_at_every_magnitude(void **st
             err_stats_add(&e, err, th * 180.0 / M_PI);
             err_stats_add(&all, err, magnitudes[m]);
         }
-        (void)snprintf(name, sizeof name, "atan2_q15 4096 angles at magnitude %.0f",
-                       magnitudes[m]);
+        (void)snprintf(name, sizeof name, "atan2_q15 4096 angles at magnitude %.0f", magnitudes[m]);
         err_stats_print(name, &e, "LSB");
         print_deg(name, &e);
         assert_true(e.max_abs <= ATAN2_MAX_ERR_LSB);
