@@ -3,28 +3,6 @@
 
 #define PI_KP_SHIFT_MAX 7U
 
-/* sat32(sum + p * 2^n), n in 0..7, exact: the sum the dsPIC forms in its
- * 40-bit accumulator (guard bits) before it saturates on the store. A
- * separately saturated p * 2^n would be wrong: Sum = 0.6 plus a true
- * P term of -1.5 must give -0.9, not -0.4 (note 2). */
-static q31_t pi_sum_shifted_sat(q31_t sum, q31_t p, uint8_t n)
-{
-    q31_t hi = sum >> n;                                                /* floor(sum / 2^n) */
-    uint32_t lo = (uint32_t)sum & (((uint32_t)1U << n) - (uint32_t)1U); /* 0..2^n - 1 */
-    q31_t v = q31_add_sat(hi, p);                                       /* U = v 2^n + lo */
-    if (n == 0U) {
-        return v; /* lo = 0; q31_add_sat already saturated the true sum */
-    }
-    q31_t lim = (q31_t)((uint32_t)1U << (31U - n)); /* 2^(31 - n), n >= 1 */
-    if (v >= lim) {
-        return Q31_MAX;
-    }
-    if (v < -lim) {
-        return Q31_MIN;
-    }
-    return (q31_t)(((uint32_t)v << n) | lo); /* in range: exact (q15.h note 2) */
-}
-
 void pi_set_limits(pi_t *pi, q15_t out_min, q15_t out_max)
 {
     pi->p.out_max = out_max;
@@ -57,23 +35,16 @@ q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
 {
     uint8_t shift = (pi->p.kp_shift > PI_KP_SHIFT_MAX) ? PI_KP_SHIFT_MAX : pi->p.kp_shift;
     q15_t err = q15_sub_sat(ref, meas);
-
-    /* U = Sum + Kp 2^shift Err (Q31). */
-    q31_t u = pi_sum_shifted_sat(pi->sum, q31_mul_q15(pi->p.kp, err), shift);
-
+    /* U = Sum + Kp 2^shift Err (Q31), formed in 40 bits, then saturated (note 2). */
+    q31_t u = q15_dsp_add_shl(pi->sum, pi->p.kp, err, shift);
     /* Out = clamp(round(U)). */
     q15_t out = q15_clamp(q15_from_q31(u), pi->p.out_min, pi->p.out_max);
-
     /* Exc = U - Out, rounded to Q15 for the multiplier (note 1): inside the
      * limits |U - round(U)| <= 0.5 LSB rounds to 0, so Kc acts only while
      * the output is limited. */
-    q15_t exc = q15_from_q31(q31_sub_sat(u, q31_from_q15(out)));
-
+    q15_t exc = q15_dsp_sub_r(u, out);
     /* Sum += Ki Err - Kc Exc. */
-    q31_t sum = q31_mac_sat(pi->sum, pi->p.ki, err);
-    sum = q31_sub_sat(sum, q31_mul_q15(pi->p.kc, exc));
-
-    pi->sum = sum;
+    pi->sum = q15_dsp_mac_msc(pi->sum, pi->p.ki, err, pi->p.kc, exc);
     pi->out = out;
     return out;
 }
@@ -93,12 +64,9 @@ q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
  *    Exc saturates at +-1.0 (only when a limit is more than 1.0 away from
  *    U); the correction then keeps its sign and is merely slower.
  *
- * 2. pi_sum_shifted_sat: with sum = hi 2^n + lo (hi = sum >> n, 0 <= lo <
- *    2^n) the true U = (hi + p) 2^n + lo. v = hi + p saturates only when
- *    |hi + p| >= 2^31, and then U is far outside the Q31 range with the
- *    same sign, so the saturated v still decides correctly. U fits 32 bits
- *    iff -2^(31-n) <= v < 2^(31-n); then v 2^n has n zero low bits and
- *    OR-ing lo adds it. For n = 0 the saturated sum is U itself. No 64-bit
- *    arithmetic is needed (the dsPIC's accumulator has 8 guard bits; a
- *    proportional gain up to 2^7 and Sum together use 39 of them).
+ * 2. U. Kp Err 2^shift is formed in the dsPIC's B accumulator, which runs
+ *    unsaturated (8 guard bits: |2 Kp Err 2^7| <= 2^38), and added to Sum in
+ *    A, which saturates at the Q31 range only then (q15_dsp_add_shl). A
+ *    separately saturated P term would be wrong: Sum = 0.6 plus a true P
+ *    term of -1.5 must give -0.9, not -0.4.
  */

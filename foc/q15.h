@@ -169,10 +169,10 @@ static inline q15_t q15_abs_sat(q15_t a)
 /* ---- multiply ----------------------------------------------------------- */
 
 /* a * b in Q15, rounded to nearest (ties up). Max error 0.5 LSB.
- * Saturates only for -1 * -1 -> 0x7FFF. */
+ * Saturates only for -1 * -1 -> 0x7FFF. (mpy + sac.r on the dsPIC.) */
 static inline q15_t q15_mul(q15_t a, q15_t b)
 {
-    return q15_sat((q15_dsp_mulss(a, b) + (int32_t)0x4000) >> 15);
+    return q15_dsp_mpy_r(a, b);
 }
 
 /* a * b in Q15, truncated toward -infinity. Error in (-1, 0] LSB.

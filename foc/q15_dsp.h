@@ -1,5 +1,5 @@
-/* q15_dsp.h - the multiply/divide primitives, XC16 built-ins on the dsPIC, bit-identical C
- * elsewhere. */
+/* q15_dsp.h - the dsPIC's multiplier, divider and DSP accumulators: XC16 built-ins on the chip,
+ * bit-identical C elsewhere. */
 #ifndef Q15_DSP_H
 #define Q15_DSP_H
 
@@ -8,7 +8,12 @@
 /*
  * This is the only place the core touches a compiler intrinsic. Every
  * function has two bodies that must return the same bits for every input:
+ * the XC16 one (built-ins, under __XC16__) and a portable twin. make
+ * check-16bit compares the twin on a 16-bit-int target with the PC, and the
+ * same vectors run through the XC16 build on a dsPIC33F instruction
+ * simulator (docs/performance.md).
  *
+ * Multiplier and divider (CORCON does not affect these):
  *   q15_dsp_mulss(a, b)  16 x 16 -> 32 signed product, exact (mul.ss).
  *                        |result| <= 2^30, cannot overflow.
  *   q15_dsp_divsd(n, d)  32 / 16 -> 16 signed quotient, truncated toward
@@ -24,12 +29,99 @@
  *   q15_dsp_clz16(v)     leading zeros of a non-zero 16-bit value, 0..15
  *                        (ff1l - 1); v == 0 is outside the contract.
  *
+ * The accumulators (40 bits each), with CORCON as hal_init() sets it once
+ * (HAL_CORCON_SET): IF = 0, fractional products, a * b gives 2ab on the
+ * Q31 scale; US = 0, signed operands; SATA = 1 with ACCSAT = 0, every
+ * write to A saturates at the Q31 range [-2^31, 2^31 - 1] (-1 x -1 = 2^31
+ * saturates to 2^31 - 1 when it lands in A); SATB = 0, B is an unsaturated
+ * scratch with 8 guard bits, used only where the value stays below 2^39;
+ * SATDW = 1, a store of an accumulator saturates to 16 bits; RND = 1,
+ * sac.r rounds to nearest, ties up (q15.h's rule). Each primitive below is
+ * a complete load-compute-store sequence: nothing is left in an
+ * accumulator between calls, so any context may use them (the ADC
+ * interrupt, being a non-leaf interrupt function, has XC16 save and
+ * restore both accumulators around it). sat31() below is the clamp to the
+ * Q31 range; "round" is (v + 2^15) >> 16 followed by the 16-bit clamp.
+ *
+ *   q15_dsp_mpy_r(a, b)          round(sat31(2ab)): q15_mul, mpy + sac.r
+ *   q15_dsp_mac2_r(a, b, c, d)   round(sat31(sat31(2ab) + 2cd))
+ *   q15_dsp_msc2_r(a, b, c, d)   round(sat31(sat31(2ab) - 2cd))
+ *   q15_dsp_add_shl(s, a, b, n)  sat31(s + 2ab 2^n), n in 0..7: the sum is
+ *                                formed in 40 bits before it saturates
+ *   q15_dsp_sub_r(u, q)          round(sat31(u - q 2^16))
+ *   q15_dsp_mac_msc(s, a, b, c, d)  sat31(sat31(s + 2ab) - 2cd)
+ *   q15_dsp_lpf(y, x, k)         *y = *y + k (x 2^16 - *y) / 2^15 on a Q31
+ *                                state, k in 0..32767 (note 1); returns the
+ *                                new state rounded to Q15
+ *
  * The portable bodies widen before multiplying, which is what makes them
  * correct where int is 16 bits (avr-gcc, XC16): `a * b` of two int16_t is a
- * 16-bit product there.
+ * 16-bit product there. They model the 40-bit accumulator in int64_t.
  */
 
+/* ---- portable model of the accumulator -------------------------------------- */
+
+static inline int32_t q15_dsp_sat31_(int64_t v)
+{
+    if (v > (int64_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (v < (int64_t)INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)v;
+}
+
+/* sac.r: round the Q31 part to Q15 (ties up), saturate to 16 bits. */
+static inline int16_t q15_dsp_round_(int64_t v)
+{
+    int64_t r = (v + 0x8000) >> 16;
+    if (r > 32767) {
+        return 32767;
+    }
+    if (r < -32768) {
+        return -32768;
+    }
+    return (int16_t)r;
+}
+
+/* The fractional product 2ab, exact (2^31 for -1 x -1). */
+static inline int64_t q15_dsp_frac_(int16_t a, int16_t b)
+{
+    return 2 * (int64_t)((int32_t)a * (int32_t)b);
+}
+
 #if defined(__XC16__)
+
+/* The two accumulators, as XC16 names them (file-scope register variables;
+ * the built-ins require `volatile`). */
+volatile register int16_t q15_dsp_acca_ asm("A");
+volatile register int16_t q15_dsp_accb_ asm("B");
+
+/* ACCAL, the low word of A (data sheet: SFR 0x0022 on every dsPIC30F/33F):
+ * lac loads the high word, this store completes a 32-bit load. */
+#define Q15_DSP_ACCAL_ (*(volatile uint16_t *)0x0022)
+
+typedef union {
+    int32_t l;
+    uint16_t w[2]; /* little-endian: w[0] low, w[1] high */
+} q15_dsp_w32_;
+
+static inline void q15_dsp_load_a_(int32_t v)
+{
+    q15_dsp_w32_ u;
+    u.l = v;
+    q15_dsp_acca_ = __builtin_lac((int16_t)u.w[1], 0);
+    Q15_DSP_ACCAL_ = u.w[0];
+}
+
+static inline int32_t q15_dsp_read_a_(void)
+{
+    q15_dsp_w32_ u;
+    u.w[0] = (uint16_t)__builtin_ACCL(q15_dsp_acca_);
+    u.w[1] = (uint16_t)__builtin_ACCH(q15_dsp_acca_);
+    return u.l;
+}
 
 static inline int32_t q15_dsp_mulss(int16_t a, int16_t b)
 {
@@ -49,6 +141,66 @@ static inline uint16_t q15_dsp_divud(uint32_t num, uint16_t den)
 static inline uint8_t q15_dsp_clz16(uint16_t v)
 {
     return (uint8_t)(__builtin_ff1l(v) - 1U);
+}
+
+static inline int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
+{
+    q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+static inline int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+static inline int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+static inline int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+{
+    q15_dsp_accb_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
+    q15_dsp_load_a_(s);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_); /* A = A + B, saturating */
+    return q15_dsp_read_a_();
+}
+
+static inline int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+{
+    q15_dsp_accb_ = __builtin_lac(q, 0);
+    q15_dsp_load_a_(u);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_); /* A = A - B, saturating */
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+static inline int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    q15_dsp_load_a_(s);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, a, b, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
+    return q15_dsp_read_a_();
+}
+
+static inline int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
+{
+    q15_dsp_w32_ u;
+    u.l = *y;
+    q15_dsp_accb_ = __builtin_mpy(k, (int16_t)(u.w[0] >> 1), 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, 15);
+    q15_dsp_acca_ = __builtin_lac((int16_t)u.w[1], 0);
+    Q15_DSP_ACCAL_ = u.w[0];
+    q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, k, (int16_t)u.w[1], 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, k, x, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
+    *y = q15_dsp_read_a_();
+    return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
 #else
@@ -90,6 +242,69 @@ static inline uint8_t q15_dsp_clz16(uint16_t v)
     return n;
 }
 
+static inline int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
+{
+    return q15_dsp_round_(q15_dsp_sat31_(q15_dsp_frac_(a, b)));
+}
+
+static inline int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
+    return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d)));
+}
+
+static inline int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
+    return q15_dsp_round_(q15_dsp_sat31_(acc - q15_dsp_frac_(c, d)));
+}
+
+static inline int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+{
+    /* |2ab 2^n| <= 2^38: the product shifted in B without loss (n <= 7). */
+    return q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b) * ((int64_t)1 << n));
+}
+
+static inline int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+{
+    return q15_dsp_round_(q15_dsp_sat31_((int64_t)u - (int64_t)q * 65536));
+}
+
+static inline int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
+{
+    int64_t acc = q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b));
+    return q15_dsp_sat31_(acc - q15_dsp_frac_(c, d));
+}
+
+static inline int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
+{
+    int32_t hi = *y >> 16; /* arithmetic (q15.h) */
+    uint16_t lo = (uint16_t)((uint32_t)*y & 0xFFFFU);
+    /* B = 2 k (lo / 2) >> 15: k lo / 2^15 with lo's last bit and the rest
+     * truncated, 0 <= B < 2^16 (note 1). */
+    int64_t b = q15_dsp_frac_(k, (int16_t)(lo >> 1)) >> 15;
+    int64_t acc = (int64_t)*y - q15_dsp_frac_(k, (int16_t)hi) + q15_dsp_frac_(k, x) - b;
+    *y = (int32_t)acc; /* never saturates: note 1 */
+    return q15_dsp_round_(acc);
+}
+
 #endif
+
+/*
+ * Notes
+ *
+ * 1. q15_dsp_lpf. With the state y = hi 2^16 + lo (lo unsigned) and
+ *    k' = k / 2^15, the exact step is y + k' (x 2^16 - y) = y - 2k hi +
+ *    2k x - k lo / 2^15. The first three terms are exact accumulator
+ *    operations (lac/ACCAL, msc, mac); the last is formed in B from lo / 2
+ *    (a signed multiplier operand must be below 2^15) and shifted right by
+ *    15, which truncates: the step is short of exact by e in [0, 2) Q31 LSB
+ *    (k 1 / 2^15 for the dropped bit plus the truncation). In steady state
+ *    that leaves the state e 2^15 / k Q31 LSB = e / (2k) Q15 LSB above its
+ *    input: below 0.003 LSB at the observer's smallest gain (k = 429) and
+ *    one LSB at k = 1. Range: for 0 <= k < 2^15 every partial sum lies
+ *    between y and x 2^16 + lo (both in the Q31 range), so A never
+ *    saturates and the int32 store of the twin is exact.
+ */
 
 #endif /* Q15_DSP_H */

@@ -164,21 +164,23 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 #define HAL_PR1        ((uint16_t)(BOARD_FCY_HZ / 8L / 1000L - 1L))
 Q15_STATIC_ASSERT(BOARD_FCY_HZ / 8L / 1000L - 1L <= 0xFFFFL, "PR1 is 16 bits");
 
-/* ---- CORCON (hardware.md 4.6), set once in hal_init() ---------------------- *
- * Only our code uses the DSP engine, and only from the ADC interrupt; no
- * other context changes CORCON, so it is set once and never saved. The
- * core's fast path today uses mul.ss / div.sd, which CORCON does not affect;
- * the settings serve the accumulator built-ins (__builtin_mac/sac/sacr):
+/* ---- CORCON (docs/board.md), set once in hal_init() ------------------------ *
+ * The DSP engine serves the core's accumulator primitives (foc/q15_dsp.h),
+ * which rely on exactly these modes:
  *   IF = 0      fractional multiplies (1.15 x 1.15 -> 1.31);
  *   US = 0      signed operands;
- *   SATA/SATB = 1, ACCSAT = 0   saturate the accumulators at 1.31, like
- *               q31_add_sat (no 9.31 guard bits to hide overflow);
- *   SATDW = 1   saturate accumulator stores to data space, like q15_sat;
- *   RND = 1     conventional (biased) rounding in sacr, the ties-up rule of
- *               q15_mul.
+ *   SATA = 1, ACCSAT = 0   A saturates at 1.31, like q31_add_sat;
+ *   SATB = 0    B is unsaturated (8 guard bits): the PI's Kp Err 2^shift is
+ *               formed there before the sum in A saturates;
+ *   SATDW = 1   accumulator stores saturate to 16 bits, like q15_sat;
+ *   RND = 1     conventional (biased) rounding in sac.r, the ties-up rule
+ *               of q15_mul.
+ * No other code changes CORCON, so it is set once and never saved; XC16
+ * saves and restores both accumulators around the ADC interrupt (a
+ * non-leaf interrupt function), so the core may use them in every context.
  * PSV, IPL3 and the DO-loop bits are left as the C start-up set them. */
-#define HAL_CORCON_SET   0x00E2u /* SATA | SATB | SATDW | RND */
-#define HAL_CORCON_CLEAR 0x1011u /* US | ACCSAT | IF */
+#define HAL_CORCON_SET   0x00A2u /* SATA | SATDW | RND */
+#define HAL_CORCON_CLEAR 0x1051u /* US | SATB | ACCSAT | IF */
 
 /* The ADC interrupt vector (hal_isr.c); the tests call it as a function. */
 void HAL_ISR _ADC1Interrupt(void);

@@ -7,15 +7,16 @@
 #include "lpf.h"
 
 /*
- * Bound (stated in lpf.h): each update rounds K (x - y) to half an LSB of
- * Q30 = 2^-16 LSB of Q15; a first-order filter with pole 1 - K sums those to
- * at most 2^-16 / (k / 32768) = 0.5 / k LSB in the state, and the Q15 output
- * adds its own half-LSB rounding. So |output - reference| <= 0.5 + 0.5 / k
- * LSB and |state - reference| <= 0.5 / k LSB, k the raw Q15 gain.
+ * Bound (stated in lpf.h): each update lands 0 to 2 Q31 LSB = 0 to 2^-15 LSB
+ * of Q15 above the exact step (q15_dsp.h note 1); a first-order filter with
+ * pole 1 - K sums those to at most 2^-15 / (k / 32768) = 1 / k LSB in the
+ * state, and the Q15 output adds its own half-LSB rounding. So
+ * |output - reference| <= 0.5 + 1 / k LSB and 0 <= state - reference <=
+ * 1 / k LSB, k the raw Q15 gain.
  */
 static double state_bound_lsb(q15_t k)
 {
-    return 0.5 / (double)k + 1e-9;
+    return 1.0 / (double)k + 1e-9;
 }
 
 static double output_bound_lsb(q15_t k)

@@ -73,12 +73,12 @@ static void test_hal_init_should_set_corcon_once_for_saturating_signed_fractiona
     assert_int_equal(CORCONbits.IF, 0);
     assert_int_equal(CORCONbits.US, 0);
     assert_int_equal(CORCONbits.SATA, 1);
-    assert_int_equal(CORCONbits.SATB, 1);
+    assert_int_equal(CORCONbits.SATB, 0);
     assert_int_equal(CORCONbits.ACCSAT, 0);
     assert_int_equal(CORCONbits.SATDW, 1);
     assert_int_equal(CORCONbits.RND, 1);
     assert_int_equal(CORCONbits.PSV, 1); /* left as the C start-up set it */
-    assert_int_equal(CORCON, 0x00E6);
+    assert_int_equal(CORCON, 0x00A6);
 }
 
 /* ---- MCPWM1 ------------------------------------------------------------------ */
