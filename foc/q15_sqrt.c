@@ -1,30 +1,62 @@
 /* q15_sqrt.c - integer and Q15 square roots, rounded to nearest. */
 #include "q15_sqrt.h"
 
+/* round(sqrt((16 + j) 2^24)), j = 0..48: sqrt over [2^28, 2^30] in 48 steps;
+ * const, so the dsPIC linker places it in flash (98 bytes). */
+static const uint16_t q15_sqrt_table[49] = {
+    16384U, 16888U, 17378U, 17854U, 18318U, 18770U, 19212U, 19644U, 20066U, 20480U,
+    20886U, 21283U, 21674U, 22058U, 22435U, 22806U, 23170U, 23530U, 23884U, 24232U,
+    24576U, 24915U, 25249U, 25580U, 25905U, 26227U, 26545U, 26859U, 27170U, 27477U,
+    27780U, 28081U, 28378U, 28672U, 28963U, 29251U, 29537U, 29819U, 30099U, 30377U,
+    30652U, 30924U, 31194U, 31462U, 31727U, 31991U, 32252U, 32511U, 32768U,
+};
+
+/* n > 65535.5^2 rounds to 65536, the one result outside 16 bits. */
+#define Q15_ISQRT_TOP 0xFFFF0001UL
+
 uint32_t q15_isqrt_u32(uint32_t n)
 {
-    /* Restoring square root, two bits of n per step, a fixed 16 steps (the
-     * same time for every input, which suits an ISR). Invariant:
-     * rem = n_consumed - root^2 (note 1). */
-    uint32_t rem = n;
-    uint32_t root = 0UL;
-    uint32_t bit = 0x40000000UL;
-    uint8_t k;
-    for (k = 0U; k < 16U; k++) {
-        if (rem >= root + bit) {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
+    uint16_t hi = (uint16_t)(n >> 16);
+    uint8_t lz;
+    uint32_t m;
+    uint16_t y;
+    uint16_t j;
+    uint32_t r;
+    if (n < 2UL) {
+        return n;
     }
-    /* root = floor(sqrt(n)), rem = n - root^2. sqrt(n) > root + 1/2 iff
-     * n > root^2 + root + 1/4, i.e. rem > root for integers. */
-    if (rem > root) {
-        root++;
+    if (n >= Q15_ISQRT_TOP) {
+        return 65536UL;
     }
-    return root;
+    /* m = n 4^s (s in -1..14) in [2^28, 2^30), so sqrt(m) in [2^14, 2^15). */
+    lz = (hi != 0U) ? q15_dsp_clz16(hi) : (uint8_t)(16U + q15_dsp_clz16((uint16_t)n));
+    if (lz >= 2U) {
+        m = n << ((lz - 2U) & ~1U);
+    } else {
+        m = n >> 2; /* n >= 2^30: the two bits dropped are restored below */
+    }
+    /* Seed from the table (within 5 units), then one Newton step (note 1). */
+    j = (uint16_t)((m >> 24) - 16UL);
+    y = (uint16_t)(q15_sqrt_table[j] +
+                   (uint16_t)(((uint32_t)(uint16_t)(q15_sqrt_table[j + 1U] - q15_sqrt_table[j]) *
+                               (uint32_t)((m >> 16) & 0xFFUL)) >>
+                              8));
+    y = (uint16_t)(((uint32_t)y + (uint32_t)q15_dsp_divud(m, y)) >> 1);
+    /* Back to n's scale, then the exact rounding: round(sqrt(n)) = r iff
+     * r^2 - r < n <= r^2 + r (note 2). */
+    if (lz >= 2U) {
+        uint8_t s = (uint8_t)((lz - 2U) >> 1);
+        r = (s > 0U) ? (((uint32_t)y + ((uint32_t)1U << (s - 1U))) >> s) : (uint32_t)y;
+    } else {
+        r = (uint32_t)y << 1;
+    }
+    while (n > r * r + r) {
+        r++;
+    }
+    while (r * r - r >= n) {
+        r--;
+    }
+    return r;
 }
 
 q15_t q15_sqrt(q15_t x)
@@ -39,7 +71,15 @@ q15_t q15_sqrt(q15_t x)
 /*
  * Notes
  *
- * 1. The loop keeps root scaled by the current bit: after the last step it
- *    is floor(sqrt(n)). root + bit never exceeds 2^16 + 2^30, and rem only
- *    decreases, so no step can overflow 32 bits.
+ * 1. The seed interpolates the table linearly between steps of 2^24 in m:
+ *    the chord of sqrt is within 5 units of the curve (sqrt'' is largest at
+ *    2^28). One Newton step y' = (y + m / y) / 2 squares the relative
+ *    error (5 / 2^14 -> 5e-8) and truncates twice, so y' is within one unit
+ *    of sqrt(m). m / y < 2^15 fits div.ud's 16-bit quotient.
+ *
+ * 2. Scaled back, the estimate is within about 2 of round(sqrt(n)); the two
+ *    loops step it onto the exact answer, one or two steps at most, with
+ *    r <= 65535 so r^2 + r <= 2^32 - 2^16 fits 32 bits and r^2 - r never
+ *    goes below 0 (r >= 1 for n >= 2). An exact tie cannot occur:
+ *    sqrt(n) = k + 1/2 has no integer n.
  */

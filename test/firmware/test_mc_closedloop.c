@@ -231,7 +231,7 @@ static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(
     }
     err_stats_print("Vd, Vq after ripple compensation vs Equation 8 (double)", &e, "LSB");
     assert_true(n_up > 1000 && n_down > 1000);
-    assert_true(e.max_abs <= 0.5);
+    assert_true(e.max_abs <= 1.0); /* ripple.h: one gain per period, then one product */
 }
 
 static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate(void **state)

@@ -23,9 +23,21 @@ static double eq8(q15_t v_pi, q15_t vbus, q15_t target)
     return fmin(fmax(r, -32768.0), 32767.0);
 }
 
-/* One rounding of the exact Vpi * Target / DCbus: |error| <= 0.5 LSB
- * (after saturation, which the reference applies too). */
-#define RIPPLE_BOUND_LSB (0.5 + 1e-9)
+/* The gain rounded to Q15 (at most |Vpi| 2^-16 < 0.5 LSB of V) and the
+ * product rounded (0.5 LSB): |error| <= 1 LSB after saturation, which the
+ * reference applies too, wherever DCbus > Target / 2 (ripple.h). */
+#define RIPPLE_BOUND_LSB (1.0 + 1e-9)
+
+/* Equation 8 with the gain capped as ripple.h states (Target / DCbus at
+ * most 65535 / 32768). */
+static double eq8_capped(q15_t v_pi, q15_t vbus, q15_t target)
+{
+    double g = (double)target / (double)vbus;
+    if (g > 65535.0 / 32768.0) {
+        return fmin(fmax((double)v_pi * 65535.0 / 32768.0, -32768.0), 32767.0);
+    }
+    return eq8(v_pi, vbus, target);
+}
 
 static void test_ripple_compensate_should_follow_equation_8_over_a_dense_grid(void **state)
 {
@@ -37,7 +49,7 @@ static void test_ripple_compensate_should_follow_equation_8_over_a_dense_grid(vo
         for (int32_t t = 1; t <= 32767; t = (t < 16) ? t + 1 : t + t / 12 + 1) {
             for (int32_t v = -32768; v <= 32767; v += 331) {
                 q15_t out = ripple_compensate((q15_t)v, (q15_t)vb, (q15_t)t);
-                double ref = eq8((q15_t)v, (q15_t)vb, (q15_t)t);
+                double ref = eq8_capped((q15_t)v, (q15_t)vb, (q15_t)t);
                 err_stats_add(&e, (double)out - ref, (double)vb);
                 if (ref >= 32767.0 || ref <= -32768.0) {
                     saturated++;
@@ -48,7 +60,8 @@ static void test_ripple_compensate_should_follow_equation_8_over_a_dense_grid(vo
                 q15_t vv[2] = {(q15_t)v, (q15_t)(-v - 1)};
                 for (int k = 0; k < 2; k++) {
                     q15_t out = ripple_compensate(vv[k], (q15_t)vb, (q15_t)t);
-                    err_stats_add(&e, (double)out - eq8(vv[k], (q15_t)vb, (q15_t)t), (double)vb);
+                    err_stats_add(&e, (double)out - eq8_capped(vv[k], (q15_t)vb, (q15_t)t),
+                                  (double)vb);
                 }
             }
         }
@@ -92,26 +105,29 @@ static void test_ripple_compensate_should_never_divide_by_zero_or_overflow(void 
     const q15_t vs[] = {-32768, -32767, -1000, -1, 0, 1, 1000, 32767};
     for (unsigned i = 0; i < sizeof vs / sizeof vs[0]; i++) {
         q15_t v = vs[i];
-        q15_t sat = (v > 0) ? 32767 : ((v < 0) ? -32768 : 0);
-        /* DCbus <= 0: the limit DCbus -> 0+, saturated. */
-        assert_int_equal(ripple_compensate(v, 0, Q15(0.5)), sat);
-        assert_int_equal(ripple_compensate(v, -1, Q15(0.5)), sat);
-        assert_int_equal(ripple_compensate(v, -32768, 32767), sat);
-        /* Tiny DCbus: saturated unless Vpi is small enough (Vpi = -1 gives
-         * -32767, which fits). */
-        assert_int_equal(ripple_compensate(v, 1, 32767), (q15_t)lround(eq8(v, 1, 32767)));
-        assert_int_equal(ripple_compensate(v, 1, 2), (q15_t)lround(eq8(v, 1, 2)));
+        q15_t capped = (q15_t)lround(eq8_capped(v, 1, 32767));
+        /* DCbus <= 0 or below Target / 2: the gain stays at its top. */
+        assert_int_equal(ripple_compensate(v, 0, Q15(0.5)), capped);
+        assert_int_equal(ripple_compensate(v, -1, Q15(0.5)), capped);
+        assert_int_equal(ripple_compensate(v, -32768, 32767), capped);
+        assert_int_equal(ripple_compensate(v, 1, 32767), capped);
+        assert_int_equal(ripple_compensate(v, 1, 2), capped);
         /* Target <= 0: compensation off. */
         assert_int_equal(ripple_compensate(v, Q15(0.5), 0), v);
         assert_int_equal(ripple_compensate(v, Q15(0.5), -32768), v);
     }
+    assert_int_equal(ripple_gain(0, Q15(0.5)), 65535);
+    assert_int_equal(ripple_gain(Q15(0.5), 0), 32768);
+    assert_int_equal(ripple_gain(Q15(0.5), Q15(0.5)), 32768);
+    assert_int_equal(ripple_gain(16384, 32767), 65534); /* 1.99994, still exact */
+    assert_int_equal(ripple_gain(16383, 32767), 65535); /* above 2 - 2^-16: capped */
     /* DCbus = 1 LSB, Target = 1 LSB: V = Vpi. DCbus = 2, Target = 1: halves,
      * rounded to nearest, ties up. */
     assert_int_equal(ripple_compensate(12345, 1, 1), 12345);
     assert_int_equal(ripple_compensate(3, 2, 1), 2);
     assert_int_equal(ripple_compensate(-3, 2, 1), -1);
     assert_int_equal(ripple_compensate(-32768, 2, 1), -16384);
-    /* Largest boost that still fits, and the first that does not. */
+    /* The largest boost that still fits, and the first that does not. */
     assert_int_equal(ripple_compensate(16383, 16384, 32767), 32765);
     assert_int_equal(ripple_compensate(16384, 16384, 32767), 32767);
     assert_int_equal(ripple_compensate(-16384, 16384, 32767), -32767);
