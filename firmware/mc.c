@@ -24,10 +24,15 @@
  *      the applied voltage, d PI, Vq limit from the voltage circle, q PI,
  *      ripple compensation (ENVOLTRIPPLE), inverse Park at the angle the
  *      voltage will be applied at, SVGen, dead-time compensation;
- *      every IRP_PERCALC periods: speed ramp, speed PI (or the torque
- *      reference), field weakening, stall detection.
- * No division in the per-period path except the one inside the ripple
- * compensation (two div.sd, AN1078's Equation 8 is a quotient).
+ *   6. every MC_SLOW_STEP_PERIODS periods, the window end: this window's
+ *      inputs out to the slow step, whose results come back
+ *      MC_SLOW_APPLY_PERIODS periods later (mc.h note 4).
+ * mc_slow_step(), once per window outside the interrupt: the estimator's
+ * speed and compensation, the speed ramp, speed PI (or the torque
+ * reference), field weakening, stall detection.
+ * Divisions in the per-period path: atan2's ratio, the ripple gain and the
+ * circle limit's square root (one div.ud each; docs/performance.md says
+ * what the alternatives cost).
  */
 
 /* ---- constant parameters (compile-time, mc_derived.h) --------------------- */
@@ -57,7 +62,7 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "slow for the speed range)");
 #define MC_ADV_K Q15(MC_ADV_K_)
 
-/* Speed-PI Kp schedule (mc_speed_loop): factor sched in Q15 = |speed_ref| /
+/* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
  * for |speed_ref| < MC_KP_FULL_Q15, so the product stays below 2^30. */
 #define MC_KP_FULL_Q15  MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM)
@@ -76,6 +81,11 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
 #define MC_I_TOTAL_Q15 MC_Q15_AMPS(0.9 * MC_OVERCURRENT_A)
 
 #define MC_TIMER_MAX 0xFFFFFFFFUL
+
+/* A compiler barrier: the stores before it are not moved after it. Every
+ * supported compiler (gcc, clang, XC16's gcc) understands it; the dsPIC
+ * executes stores in order. */
+#define MC_BARRIER() __asm__ __volatile__("" ::: "memory")
 
 /* sqrt(3) / 2 in Q15 (28378), for the phase currents from alpha/beta. */
 #define MC_SQRT3_2 Q15(0.86602540378443865)
@@ -194,9 +204,8 @@ static void mc_apply_gains(mc_t *mc)
     mc->pi_q.p.ki = ki;
     mc->pi_d.p.kc = ki;
     mc->pi_q.p.kc = ki;
-    mc->spd_kp_base = mc->gain_posted[MC_GAIN_SPD_KP];
+    mc->spd_kp_base = mc->gain_posted[MC_GAIN_SPD_KP]; /* to the slow step at the window end */
     mc->spd_ki_base = mc->gain_posted[MC_GAIN_SPD_KI];
-    mc->pi_w.p.kc = mc->spd_ki_base;
 }
 
 /* ---- state changes --------------------------------------------------------------- */
@@ -223,7 +232,8 @@ static void mc_outputs_off(mc_t *mc)
     mc->v_hist[1] = mc->v_hist[0];
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
-    pi_reset(&mc->pi_w);
+    mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
+    mc->preset_pending = false;
 }
 
 static void mc_fault(mc_t *mc, uint16_t code)
@@ -272,8 +282,8 @@ static void mc_enter_lock(mc_t *mc)
 {
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
-    pi_reset(&mc->pi_w);
     smc_reset(&mc->smc);
+    mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
     mc->ol_step = 0U;
     mc->theta = 0;
@@ -310,49 +320,50 @@ static void mc_enter_closed_loop(mc_t *mc)
     smc_preset_speed(&mc->smc, MC_RAMP_END_Q15);
     mc->speed_ref =
         (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
-    mc->speed_meas = MC_RAMP_END_Q15;
     /* Bumpless: the speed PI starts from the torque-producing part of the
      * ramp's current, i.e. the measured current on the estimated q axis (in
      * open loop the rotor runs at a load angle, so most of the forced Iq
-     * lies on its d axis and makes no torque). */
+     * lies on its d axis and makes no torque). The slow step presets the PI
+     * with it; until its first result arrives, the references are what the
+     * preset PI puts out. */
     dq_q15_t i_est = park_forward(mc->i_ab, sincos_compute(est));
-    pi_preset(&mc->pi_w, i_est.q);
-    mc->i_ref.q = mc->pi_w.out;
+    mc->i_ref.q = q15_clamp(i_est.q, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15);
     mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
-    mc->speed_div = 0U;
-    mc->stall_cnt[0] = 0U;
-    mc->stall_cnt[1] = 0U;
-    mc->stall_cnt[2] = 0U;
+    mc->epoch = (uint8_t)(mc->epoch + 1U);
+    mc->preset_pending = true;
+    mc->preset_iq = i_est.q;
+    mc->preset_speed_ref = mc->speed_ref;
     mc_enter(mc, MC_STATE_CLOSED_LOOP);
 }
 
 /* ---- pieces of the step ---------------------------------------------------------------- */
 
-/* Speed-loop work, every IRP_PERCALC periods in CLOSED_LOOP. Returns false
- * when a stall fault was raised. */
-static bool mc_speed_loop(mc_t *mc)
+/* Speed-loop work of the slow step (CLOSED_LOOP): the speed from the
+ * estimator's fresh result, the ramp, field weakening, the speed PI (or the
+ * torque reference) and the stall check, into out. */
+static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t *out)
 {
-    q15_t w = smc_omega(&mc->smc);
-    mc->speed_meas = w;
+    q15_t w = est->omega;
+    dq_q15_t i_ref;
 
 #if defined(TORQUEMODE)
-    mc->i_ref.q = mc->torque_target;
-    mc->speed_ref = w;
-    mc->i_ref.d = mc_id_floor(fieldweak_id_ref(&mc->fw, w), mc->i_ref.q);
+    i_ref.q = out->torque_target;
+    mc->spd_ref = w;
+    i_ref.d = mc_id_floor(fieldweak_id_ref(&mc->fw, w), i_ref.q);
 #else
     /* Ramp the reference towards the target. */
-    int32_t diff = (int32_t)mc->speed_target - (int32_t)mc->speed_ref;
+    int32_t diff = (int32_t)out->speed_target - (int32_t)mc->spd_ref;
     if (diff > MC_SPEED_RAMP_STEP) {
         diff = MC_SPEED_RAMP_STEP;
     } else if (diff < -MC_SPEED_RAMP_STEP) {
         diff = -MC_SPEED_RAMP_STEP;
     }
-    mc->speed_ref = (q15_t)((int32_t)mc->speed_ref + diff);
+    mc->spd_ref = (q15_t)((int32_t)mc->spd_ref + diff);
 
     /* Field weakening from the reference (AN1078), then what is left of the
      * current budget for Iq. */
-    mc->i_ref.d = fieldweak_id_ref(&mc->fw, mc->speed_ref);
-    q15_t iq_max = vlimit_vq_max(mc->i_ref.d, MC_I_TOTAL_Q15);
+    i_ref.d = fieldweak_id_ref(&mc->fw, mc->spd_ref);
+    q15_t iq_max = vlimit_vq_max(i_ref.d, MC_I_TOTAL_Q15);
     if (iq_max > MC_IQ_MAX_Q15) {
         iq_max = MC_IQ_MAX_Q15;
     }
@@ -362,22 +373,23 @@ static bool mc_speed_loop(mc_t *mc)
      * speed is noisiest at low speed, where a full Kp turns that noise into
      * current and speed ripple. */
     q15_t sched = MC_KP_SCHED_ONE;
-    if (mc->speed_ref < MC_KP_FULL_Q15) {
-        int32_t f = ((int32_t)q15_abs_sat(mc->speed_ref) * MC_KP_SCHED_K) >> 15;
+    if (mc->spd_ref < MC_KP_FULL_Q15) {
+        int32_t f = ((int32_t)q15_abs_sat(mc->spd_ref) * MC_KP_SCHED_K) >> 15;
         sched = (f < MC_KP_SCHED_MIN) ? MC_KP_SCHED_MIN : (q15_t)f;
     }
-    mc->pi_w.p.kp = q15_mul(mc->spd_kp_base, sched);
-    mc->pi_w.p.ki = q15_mul(mc->spd_ki_base, sched);
-    mc->i_ref.q = pi_update(&mc->pi_w, mc->speed_ref, w);
+    mc->pi_w.p.kp = q15_mul(mc->slow_in.spd_kp, sched);
+    mc->pi_w.p.ki = q15_mul(mc->slow_in.spd_ki, sched);
+    mc->pi_w.p.kc = mc->slow_in.spd_ki;
+    i_ref.q = pi_update(&mc->pi_w, mc->spd_ref, w);
     /* After Iq: the floor only asks |Id| + |Iq| <= MC_ID_MIN_Q15, inside
      * the current budget the limit above was computed from. */
-    mc->i_ref.d = mc_id_floor(mc->i_ref.d, mc->i_ref.q);
+    i_ref.d = mc_id_floor(i_ref.d, i_ref.q);
 #endif
 
     /* Stall / loss of synchronisation (note 2). */
     mc_stall_in_t si;
     si.speed = w;
-    si.emf_ratio = smc_emf_ratio(&mc->smc);
+    si.emf_ratio = est->emf_ratio;
     /* The low back-EMF side is waived in field weakening only while the
      * estimator still vouches for its back-EMF: the linear (dead-beat)
      * observer reads the rotor flux, which Id does not weaken, so a valid
@@ -385,20 +397,18 @@ static bool mc_speed_loop(mc_t *mc)
      * weakening makes the estimated speed swing by thousands of rpm, so
      * neither the speed nor the tracking condition persists, and only the
      * back-EMF catches it. */
-    si.fw_active = q15_abs_sat(mc->speed_ref) > mc_fw_params.speed_nominal && smc_valid(&mc->smc);
+    si.fw_active = q15_abs_sat(mc->spd_ref) > mc_fw_params.speed_nominal && est->valid;
 #if defined(TORQUEMODE)
     si.speed_err = 0;
     si.saturated = false;
 #else
-    si.speed_err = q15_sub_sat(mc->speed_ref, w);
-    si.saturated = (mc->i_ref.q >= mc->pi_w.p.out_max) || (mc->i_ref.q <= mc->pi_w.p.out_min);
+    si.speed_err = q15_sub_sat(mc->spd_ref, w);
+    si.saturated = (i_ref.q >= mc->pi_w.p.out_max) || (i_ref.q <= mc->pi_w.p.out_min);
 #endif
-    uint16_t code = mc_stall_check(mc->stall_cnt, &si);
-    if (code != MC_FAULT_NONE) {
-        mc_fault(mc, code);
-        return false;
-    }
-    return true;
+    out->fault = mc_stall_check(mc->stall_cnt, &si);
+    out->i_ref = i_ref;
+    out->speed_ref = mc->spd_ref;
+    out->loop = true;
 }
 
 /* Clarke of this sample and the estimator update, first thing in every
@@ -501,9 +511,101 @@ void mc_init(mc_t *mc)
     mc->spd_ki_base = MC_SPD_KI;
     mc->speed_ref = MC_SPEED_REF_MIN_Q15;
     mc->speed_target = MC_SPEED_REF_MIN_Q15;
+    mc->spd_ref = MC_SPEED_REF_MIN_Q15;
     mc_outputs_off(mc);
+    mc->slow_epoch = mc->epoch;
     mc->fault = MC_FAULT_NONE;
     mc_enter(mc, MC_STATE_STOPPED);
+}
+
+/* MC_SLOW_APPLY_PERIODS after a window end (mc.h note 4): the slow step's
+ * results in. */
+static void mc_slow_apply(mc_t *mc)
+{
+    const mc_slow_out_t *so = &mc->slow_out;
+    if (mc->slow_busy) {
+        mc_fault(mc, MC_FAULT_OVERRUN); /* the slow step has not finished in time */
+        return;
+    }
+    if (!mc->slow_posted) {
+        return; /* no window posted since mc_init */
+    }
+    smc_apply(&mc->smc);
+    mc->speed_target = so->speed_target;
+    mc->torque_target = so->torque_target;
+    if (so->loop && so->epoch == mc->epoch && mc->state == MC_STATE_CLOSED_LOOP) {
+        mc->i_ref = so->i_ref;
+        mc->speed_ref = so->speed_ref;
+        if (so->fault != MC_FAULT_NONE) {
+            mc_fault(mc, so->fault);
+        }
+    }
+}
+
+/* The window end (mc.h note 4): this window's inputs out to the slow step. */
+static void mc_window_end(mc_t *mc)
+{
+    mc_slow_in_t *si = &mc->slow_in;
+    if (mc->slow_busy) {
+        mc_fault(mc, MC_FAULT_OVERRUN); /* the slow step of the last window never finished */
+        return;
+    }
+    smc_window_end(&mc->smc);
+    si->epoch = mc->epoch;
+    si->state = mc->state;
+    si->pot = mc->pot;
+    si->ref_remote = mc->ref_remote;
+    si->ref_from_remote = mc->ref_from_remote;
+    si->spd_kp = mc->spd_kp_base;
+    si->spd_ki = mc->spd_ki_base;
+    si->preset = mc->preset_pending;
+    si->preset_iq = mc->preset_iq;
+    si->preset_speed_ref = mc->preset_speed_ref;
+    mc->preset_pending = false;
+    mc->slow_posted = true;
+    MC_BARRIER(); /* every field above is written before the flag hands it over */
+    mc->slow_busy = true;
+}
+
+void mc_slow_step(mc_t *mc)
+{
+    const mc_slow_in_t *si = &mc->slow_in;
+    mc_slow_out_t *so = &mc->slow_out;
+    if (!mc->slow_busy) {
+        return;
+    }
+    smc_slow_step(&mc->smc);
+#if defined(TORQUEMODE)
+    so->speed_target = MC_SPEED_REF_MIN_Q15;
+    so->torque_target = si->ref_from_remote
+                            ? q15_clamp(si->ref_remote, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15)
+                            : mc_pot_to_torque(si->pot);
+#else
+    so->torque_target = 0;
+    so->speed_target = si->ref_from_remote
+                           ? q15_clamp(si->ref_remote, MC_SPEED_REF_MIN_Q15, MC_SPEED_REF_MAX_Q15)
+                           : mc_pot_to_speed(si->pot);
+#endif
+    if (si->epoch != mc->slow_epoch) {
+        mc->slow_epoch = si->epoch;
+        if (si->preset) {
+            /* Closed loop entered in this window: the speed loop starts from
+             * the hand-off (mc_enter_closed_loop). */
+            pi_preset(&mc->pi_w, si->preset_iq);
+            mc->spd_ref = si->preset_speed_ref;
+            mc->stall_cnt[0] = 0U;
+            mc->stall_cnt[1] = 0U;
+            mc->stall_cnt[2] = 0U;
+        }
+    }
+    so->loop = false;
+    so->fault = MC_FAULT_NONE;
+    if (si->state == MC_STATE_CLOSED_LOOP) {
+        mc_slow_speed_loop(mc, &mc->smc.res, so);
+    }
+    so->epoch = si->epoch;
+    MC_BARRIER(); /* the results are written before the flag hands them back */
+    mc->slow_busy = false;
 }
 
 void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
@@ -528,20 +630,6 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         mc->ref_remote_seen = seq;
         mc->ref_from_remote = true;
     }
-#if defined(TORQUEMODE)
-    if (mc->ref_from_remote) {
-        mc->torque_target = q15_clamp(mc->ref_remote, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15);
-    } else {
-        mc->torque_target = mc_pot_to_torque(in->pot);
-    }
-#else
-    if (mc->ref_from_remote) {
-        mc->speed_target = q15_clamp(mc->ref_remote, MC_SPEED_REF_MIN_Q15, MC_SPEED_REF_MAX_Q15);
-    } else {
-        mc->speed_target = mc_pot_to_speed(in->pot);
-    }
-#endif
-
     /* 2. Offsets off; ic from the other two. */
     mc->ia = q15_sub_sat(in->ia, mc->offset_a);
     mc->ib = q15_sub_sat(in->ib, mc->offset_b);
@@ -594,9 +682,10 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                 mc->offset_acc_a += in->ia;
                 mc->offset_acc_b += in->ib;
                 if (mc->timer - mc->calib_wait >= (uint32_t)(MC_CALIB_PERIODS - 1U)) {
-                    /* One division per start, not per period. */
-                    mc->offset_a = (q15_t)(mc->offset_acc_a / (int32_t)MC_CALIB_PERIODS);
-                    mc->offset_b = (q15_t)(mc->offset_acc_b / (int32_t)MC_CALIB_PERIODS);
+                    /* Two divisions per start, not per period: the mean of
+                     * MC_CALIB_PERIODS <= 32767 int16 samples fits div.sd. */
+                    mc->offset_a = q15_dsp_divsd(mc->offset_acc_a, (int16_t)MC_CALIB_PERIODS);
+                    mc->offset_b = q15_dsp_divsd(mc->offset_acc_b, (int16_t)MC_CALIB_PERIODS);
                     if (q15_abs_sat(mc->offset_a) > MC_OFFSET_MAX_Q15 ||
                         q15_abs_sat(mc->offset_b) > MC_OFFSET_MAX_Q15) {
                         mc->offset_a = 0;
@@ -663,17 +752,23 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->theta = angle_add(smc_theta(&mc->smc), off);
             adv = q15_mul(smc_omega(&mc->smc), MC_ADV_K);
             mc_current_control(mc, adv);
-            mc->speed_div++;
-            if (mc->speed_div >= IRP_PERCALC) {
-                mc->speed_div = 0U;
-                (void)mc_speed_loop(mc);
-            }
             break;
         }
         default: /* STOPPED, FAULT: outputs stay off */
             break;
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
+
+    /* 6. The slow step's results MC_SLOW_APPLY_PERIODS after a window end,
+     * and the window end every MC_SLOW_STEP_PERIODS calls since mc_init. */
+    mc->slow_div++;
+    if (mc->slow_div == MC_SLOW_APPLY_PERIODS) {
+        mc_slow_apply(mc);
+    }
+    if (mc->slow_div >= MC_SLOW_STEP_PERIODS) {
+        mc->slow_div = 0U;
+        mc_window_end(mc);
+    }
 
     /* 5. Outputs: every path writes all of them. */
     out->duty[0] = mc->duty[0];

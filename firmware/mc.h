@@ -18,7 +18,7 @@
  *       SPEED_REF_MAX_RPM       speed reference at pot = 32767 (speed mode)
  *     plus MC_VOLTAGE_FULLSCALE_V, the voltage scale of vd/vq (the SVGen full
  *     scale: the nominal bus over sqrt(3), a phase-voltage amplitude);
- *   - the types and the four entry points below, and mc_t as a complete type
+ *   - the types and the entry points below, and mc_t as a complete type
  *     so the caller allocates it (normally one static instance owned by the
  *     ADC interrupt).
  *
@@ -26,7 +26,8 @@
  * sampled at the start of that period; the duties it returns take effect at
  * the start of the next period (the dsPIC loads PDCx at the period boundary).
  *
- * Concurrency: mc_step() runs in the ADC interrupt. mc_request() and
+ * Concurrency: mc_step() runs in the ADC interrupt, mc_slow_step() in a
+ * context the interrupt pre-empts (note 4). mc_request() and
  * mc_set_reference() may be called from the main loop (or any other
  * context) while mc_step() runs: they only post into a mailbox that
  * mc_step() reads at its next call, each field of which has exactly one
@@ -105,16 +106,17 @@ typedef enum {
  * threshold (code 2), at or above the overvoltage one (code 3). The core
  * cannot see the FLTA pin: the HAL posts MC_REQUEST_HW_FAULT again while
  * the pin is still asserted. */
-#define MC_FAULT_NONE         0U /* no fault */
-#define MC_FAULT_OVERCURRENT  1U /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */
-#define MC_FAULT_UNDERVOLTAGE 2U /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */
-#define MC_FAULT_OVERVOLTAGE  3U /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */
-#define MC_FAULT_HARDWARE     4U /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
-#define MC_FAULT_START_FAILED 5U /* no valid estimate at the end of the ramp, retries used up */
-#define MC_FAULT_STALL_SPEED  6U /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, persisting */
-#define MC_FAULT_STALL_BEMF   7U /* closed loop: back-EMF inconsistent with speed, persisting */
-#define MC_FAULT_STALL_TRACK  8U /* closed loop: speed error with the speed PI saturated */
-#define MC_FAULT_OFFSET       9U /* current offset out of range at calibration (amplifier) */
+#define MC_FAULT_NONE         0U  /* no fault */
+#define MC_FAULT_OVERCURRENT  1U  /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */
+#define MC_FAULT_UNDERVOLTAGE 2U  /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */
+#define MC_FAULT_OVERVOLTAGE  3U  /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */
+#define MC_FAULT_HARDWARE     4U  /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
+#define MC_FAULT_START_FAILED 5U  /* no valid estimate at the end of the ramp, retries used up */
+#define MC_FAULT_STALL_SPEED  6U  /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, persisting */
+#define MC_FAULT_STALL_BEMF   7U  /* closed loop: back-EMF inconsistent with speed, persisting */
+#define MC_FAULT_STALL_TRACK  8U  /* closed loop: speed error with the speed PI saturated */
+#define MC_FAULT_OFFSET       9U  /* current offset out of range at calibration (amplifier) */
+#define MC_FAULT_OVERRUN      10U /* mc_slow_step of a window not finished at the next window end */
 
 /* ---- status ---------------------------------------------------------------- */
 
@@ -160,6 +162,45 @@ typedef enum {
     MC_GAIN_COUNT   /* number of gains, not a gain */
 } mc_gain_t;
 
+/* ---- the slow step ------------------------------------------------------ *
+ * The work that follows the speed loop's rate runs outside the PWM
+ * interrupt, in mc_slow_step(): the estimator's speed, K and phase
+ * compensation, the speed ramp and PI, field weakening and stall detection.
+ * mc_step() posts a window's inputs every MC_SLOW_STEP_PERIODS calls
+ * (counting from mc_init) and applies the results of the window before at
+ * the same moment (note 4). */
+
+/* mc_step() calls per mc_slow_step() call: the speed loop's period. */
+#define MC_SLOW_STEP_PERIODS IRP_PERCALC
+
+/* MC_SLOW_APPLY_PERIODS (mc_derived.h): mc_step() calls after a window end
+ * at which the slow step's results are taken, i.e. the time mc_slow_step()
+ * has to finish. */
+
+/* What mc_step() hands the slow step at a window end. */
+typedef struct {
+    uint8_t epoch;          /* the run it belongs to (mc_t.epoch) */
+    mc_state_t state;       /* state at the window end */
+    int16_t pot;            /* the pot, for the reference */
+    int16_t ref_remote;     /* the remote reference ... */
+    bool ref_from_remote;   /* ... when it replaces the pot */
+    q15_t spd_kp, spd_ki;   /* the speed gains as posted (mc_set_gain) */
+    bool preset;            /* closed loop entered in this window: */
+    q15_t preset_iq;        /* the speed PI's integral, Q15 current */
+    q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
+} mc_slow_in_t;
+
+/* What the slow step hands back; applied at the next window end. */
+typedef struct {
+    uint8_t epoch;       /* of the window it was computed from */
+    bool loop;           /* the speed loop ran (CLOSED_LOOP): the fields below count */
+    dq_q15_t i_ref;      /* current references for the next window */
+    q15_t speed_ref;     /* the ramped reference */
+    uint16_t fault;      /* a stall fault, or MC_FAULT_NONE */
+    q15_t speed_target;  /* the reference before the ramp (every state) */
+    q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
+} mc_slow_out_t;
+
 /* ---- the instance ------------------------------------------------------- *
  * Complete so the caller can allocate it; its members are private to the
  * core and may change between versions (read them through mc_status()). */
@@ -180,7 +221,6 @@ typedef struct {
     uint16_t fault;
     uint32_t timer;      /* periods spent in the current state (saturates) */
     uint8_t retries;     /* failed starts since START */
-    uint8_t speed_div;   /* counts periods up to IRP_PERCALC */
     uint16_t calib_wait; /* CALIBRATE: periods to coast before averaging */
 
     /* current offsets, Q15 */
@@ -192,22 +232,19 @@ typedef struct {
     ab_q15_t i_ab;
     dq_q15_t i_dq;
 
-    /* current and speed control */
-    pi_t pi_d, pi_q, pi_w;
-    fieldweak_t fw;
+    /* current control */
+    pi_t pi_d, pi_q;
     dq_q15_t i_ref;
     dq_q15_t v_dq;         /* after the circle limit and ripple compensation */
-    int16_t speed_target;  /* unramped reference, Q15 speed */
-    int16_t speed_ref;     /* ramped reference, Q15 speed */
-    int16_t speed_meas;    /* Q15 speed used by the speed loop */
-    int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE */
+    int16_t speed_target;  /* unramped reference, Q15 speed (from the slow step) */
+    int16_t speed_ref;     /* ramped reference, Q15 speed (from the slow step) */
+    int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE (from the slow step) */
 
     /* angle */
-    angle_q15_t theta;     /* angle the transforms use this period */
-    uint32_t ol_angle;     /* open-loop angle, 32-bit binary angle */
-    uint32_t ol_step;      /* open-loop angle increment per period, 32-bit binary angle */
-    int16_t theta_offset;  /* theta_forced - theta_est at hand-off, bled to 0 */
-    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
+    angle_q15_t theta;    /* angle the transforms use this period */
+    uint32_t ol_angle;    /* open-loop angle, 32-bit binary angle */
+    uint32_t ol_step;     /* open-loop angle increment per period, 32-bit binary angle */
+    int16_t theta_offset; /* theta_forced - theta_est at hand-off, bled to 0 */
 
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
@@ -216,6 +253,24 @@ typedef struct {
     /* outputs */
     uint16_t duty[3];
     bool outputs_on;
+
+    /* the hand-over to the slow step (note 4) */
+    uint16_t slow_div;       /* mc_step calls since the last window end */
+    uint8_t epoch;           /* incremented when a run starts, hands off or stops */
+    volatile bool slow_busy; /* a window posted, its slow step not finished */
+    bool slow_posted;        /* slow_out holds a result to apply */
+    bool preset_pending;     /* closed loop entered since the last window end */
+    q15_t preset_iq;
+    q15_t preset_speed_ref;
+    mc_slow_in_t slow_in;   /* written by mc_step while !slow_busy */
+    mc_slow_out_t slow_out; /* written by mc_slow_step while slow_busy */
+
+    /* owned by the slow step */
+    pi_t pi_w;             /* speed PI */
+    fieldweak_t fw;        /* its Id table (constant after mc_init) */
+    int16_t spd_ref;       /* the ramp's state, Q15 speed */
+    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
+    uint8_t slow_epoch;    /* the run the slow step's state belongs to */
 } mc_t;
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */
@@ -226,6 +281,13 @@ void mc_init(mc_t *mc);
  * *out; in STOPPED, CALIBRATE and FAULT the duties are PWM_DUTY_MAX / 2 and
  * outputs_on is false. Protections run first, in every state. */
 void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
+
+/* The slow work of one window (the slow step above): call it after every
+ * MC_SLOW_STEP_PERIODS-th mc_step() (counting from mc_init()), from a
+ * context the PWM interrupt may pre-empt; it must finish before the
+ * MC_SLOW_STEP_PERIODS-th mc_step() after that, or that step faults with
+ * MC_FAULT_OVERRUN. A call with no window posted does nothing. */
+void mc_slow_step(mc_t *mc);
 
 /* Post a request; mc_step() acts on it at its next call. */
 void mc_request(mc_t *mc, mc_request_t r);
@@ -282,6 +344,23 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    low-speed schedule multiplies spd_kp_base / spd_ki_base each speed-loop
  *    tick, so a posted speed gain survives it (writing pi_w's gains directly
  *    would be overwritten within IRP_PERCALC periods).
+ *
+ * 4. The slow step. Every MC_SLOW_STEP_PERIODS-th mc_step() ends a window:
+ *    it applies the slow step's results of the window before (the
+ *    estimator's through smc_window_end, the speed loop's current
+ *    references and a stall fault if they belong to the present run,
+ *    epoch) and posts this window's inputs (slow_in and the estimator's
+ *    snapshot), then sets slow_busy. mc_slow_step() computes from those
+ *    alone into slow_out and the estimator's res, and clears slow_busy
+ *    last. Each side writes only its own fields while the flag says it
+ *    may, so on the dsPIC mc_slow_step() runs in a lower-priority interrupt
+ *    with no masking, and the outcome is the same bits whenever it runs
+ *    inside the window (the simulator calls it straight after the step).
+ *    The cost is one window of delay in the speed loop and in the
+ *    estimator's K and compensation; in exchange the PWM interrupt never
+ *    carries the slow work. A window end that finds slow_busy still set
+ *    faults with MC_FAULT_OVERRUN (the CPU is overloaded, or no context
+ *    runs mc_slow_step()).
  */
 
 #endif /* MC_H */

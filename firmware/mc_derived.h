@@ -32,11 +32,12 @@
  * PARAM. With a C11-capable compiler: "static assertion failed: "PARAM: why"".
  * Where _Static_assert is unavailable or hidden (glibc's <sys/cdefs.h>
  * redefines it as a macro in C99 mode, losing the message): "negative width
- * in bit-field 'PARAM__out_of_range'". */
+ * in bit-field 'PARAM__out_of_range'" (__COUNTER__, gcc >= 4.3, keeps the
+ * struct tags of two checks apart even on the same line of two files). */
 #if defined(_Static_assert) || !defined(__GNUC__) ||                                               \
     (__GNUC__ < 4 || (__GNUC__ == 4 && __GNUC_MINOR__ < 6))
 #define MC_CHECK(param, cond, msg)                                                                 \
-    struct Q15_CAT(mc_check_line_, __LINE__) {                                                     \
+    struct Q15_CAT(mc_check_, __COUNTER__) {                                                       \
         unsigned param##__out_of_range : Q15_CHECK_WIDTH_(cond);                                   \
     }
 #else
@@ -66,6 +67,14 @@ MC_CHECK(MC_SPEED_LOOP_HZ,
          "in 1..256");
 /* PWM periods per speed-loop run (AN1078 IRP_PERCALC). */
 #define IRP_PERCALC ((uint16_t)(PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ))
+/* PWM periods after a window end at which the core takes the slow step's
+ * results (mc.h): the time mc_slow_step() has to finish, 250 us at 20 kHz.
+ * Short, because it sits inside the speed loop; docs/performance.md shows
+ * the slow step's cycles against it. */
+#define MC_SLOW_APPLY_PERIODS 5U
+MC_CHECK(MC_SPEED_LOOP_HZ, PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ > MC_SLOW_APPLY_PERIODS,
+         "IRP_PERCALC = PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ must exceed "
+         "MC_SLOW_APPLY_PERIODS (5): the slow step's results come back inside the window");
 
 /* ---- scales -------------------------------------------------------------- */
 
@@ -214,8 +223,8 @@ MC_CHECK(MOTOR_LOCK_TIME_S,
 
 MC_CHECK(MC_OFFSET_CALIB_TIME_S,
          MC_OFFSET_CALIB_TIME_S *PWM_FREQUENCY_HZ >= 16.0 &&
-             MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
-         "must be 16..65000 PWM periods");
+             MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ <= 32767.0,
+         "must be 16..32767 PWM periods (the offset mean is one div.sd)");
 #define MC_CALIB_PERIODS ((uint16_t)(MC_OFFSET_CALIB_TIME_S * PWM_FREQUENCY_HZ + 0.5))
 
 MC_CHECK(MC_RETRY_COAST_S,

@@ -94,9 +94,11 @@ static inline int64_t q15_dsp_frac_(int16_t a, int16_t b)
 #if defined(__XC16__)
 
 /* The two accumulators, as XC16 names them (file-scope register variables;
- * the built-ins require `volatile`). */
-volatile register int16_t q15_dsp_acca_ asm("A");
-volatile register int16_t q15_dsp_accb_ asm("B");
+ * the built-ins require `volatile`, which gcc's -Wall questions for a
+ * register variable: here it is what XC16 documents). */
+#pragma GCC diagnostic ignored "-Wvolatile-register-var"
+register volatile int16_t q15_dsp_acca_ asm("A");
+register volatile int16_t q15_dsp_accb_ asm("B");
 
 /* ACCAL, the low word of A (data sheet: SFR 0x0022 on every dsPIC30F/33F):
  * lac loads the high word, this store completes a 32-bit load. */

@@ -15,17 +15,18 @@
  *  switch  err = i_est - i_meas (32 bits); outside the band +-Kslide;
  *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
  *          +-Kslide (rounding could step one LSB past it).
- *  stages  foc/lpf.h (32-bit states, exact to 2^-30).
+ *  stages  foc/lpf.h (32-bit states).
  *  angle   atan2_q31 of the Q31 e_final components (foc/atan2.h): the
  *          angle keeps its resolution at any back-EMF amplitude.
  *  speed   angle steps (angle_sub, in [-pi, pi)) summed in int32: the
  *          window of at most 256 periods sums to at most 2^23.
- * No division and no multiply wider than 16 x 16 in this path.
+ * One division (atan2's) and no multiply wider than 16 x 16 in this path.
  *
- * Once per window (smc_speed_refresh): the speed scaling (note 7), K, the
- * compensation from the transfer functions (notes 3-4: two atan2 calls
- * and about twenty 16 x 16 products), the back-EMF amplitude and one
- * 32 / 16 division for the consistency figure.
+ * Slow side, once per window (smc_slow_step, smc.h note 10): the lag
+ * correction (one atan2), the speed scaling (note 7), K, the compensation
+ * from the transfer functions (notes 3-4: two atan2 calls and about twenty
+ * 16 x 16 products), the back-EMF amplitude and one 32 / 16 division for
+ * the consistency figure.
  */
 
 /* a * b / 2^15 rounded (ties up), for |a| < 2^30: a = hi 2^15 + lo with
@@ -154,53 +155,88 @@ static q15_t smc_magnitude(q15_t a, q15_t b)
     return q15_add_sat(q15_mul(mx, Q15(0.96043387)), q15_mul(mn, Q15(0.39782473)));
 }
 
-/* Everything that follows the speed: K, the compensation, the back-EMF
- * figures and the validity flag. */
-static void smc_speed_refresh(smc_t *s)
+/* Everything that follows the speed (slow side): K, the compensation, the
+ * back-EMF figures and the validity flag, from sl->omega and the window's
+ * e_final, into r. */
+static void smc_refresh(const smc_params_t *p, smc_slow_t *sl, const smc_window_t *w,
+                        smc_result_t *r)
 {
-    const smc_params_t *p = s->p;
-    q15_t aw = q15_abs_sat(s->omega);
+    q15_t aw = q15_abs_sat(sl->omega);
     q15_t x = q15_mul(aw, p->k_per_omega);
-    uint8_t ksh = (s->startup > 0U) ? SMC_K_LPF_SHIFT_START : SMC_K_LPF_SHIFT;
-    q15_t kx = lpf_update(&s->k_lpf, x, (q15_t)(p->k_speed_lpf >> ksh));
+    uint8_t ksh = (sl->startup > 0U) ? SMC_K_LPF_SHIFT_START : SMC_K_LPF_SHIFT;
+    q15_t kx = lpf_update(&sl->k_lpf, x, (q15_t)(p->k_speed_lpf >> ksh));
 
     q15_t k = (kx > p->k_min) ? kx : p->k_min;
     angle_q15_t lead = smc_phase_lead(p, k, x);
-    ab_q15_t ef = smc_e_final(s);
     bool emf_ok = true;
 
-    s->k = k;
-    s->k_w = q15_shl_sat(k, SMC_EMF_RAW_K_SHIFT);
+    r->omega = sl->omega;
+    r->k = k;
+    r->k_w = q15_shl_sat(k, SMC_EMF_RAW_K_SHIFT);
     /* Reverse rotation: the stages' lag changes sign and atan2(-ef_a, ef_b)
      * points at the rotor plus pi (the back-EMF is reversed). */
-    s->comp = (s->omega < 0) ? angle_add(angle_sub(0, lead), Q15_MIN) : lead;
+    r->comp = (sl->omega < 0) ? angle_add(angle_sub(0, lead), Q15_MIN) : lead;
 
-    s->emf_mag = smc_magnitude(ef.alpha, ef.beta);
+    r->emf_mag = smc_magnitude(q15_from_q31(w->ef_alpha), q15_from_q31(w->ef_beta));
     if (p->emf_gain > 0) {
-        uint8_t r = (uint8_t)(15U - p->emf_shift);
+        uint8_t sh = (uint8_t)(15U - p->emf_shift);
         int32_t expect = q15_dsp_mulss(p->emf_gain, aw);
-        int32_t num = smc_shl32((int32_t)s->emf_mag, 12U);
+        int32_t num = smc_shl32((int32_t)r->emf_mag, 12U);
         q15_t den;
-        if (r > 0U) {
-            expect = (expect + (int32_t)(1L << (r - 1U))) >> r;
+        if (sh > 0U) {
+            expect = (expect + (int32_t)(1L << (sh - 1U))) >> sh;
         }
         den = q15_sat(expect);
         if (den <= 0 || num >= (int32_t)den * 32767L) {
-            s->emf_ratio = Q15_MAX;
+            r->emf_ratio = Q15_MAX;
         } else {
-            s->emf_ratio = q15_dsp_divsd(num, den);
+            r->emf_ratio = q15_dsp_divsd(num, den);
         }
-        emf_ok = (s->emf_ratio >= SMC_EMF_RATIO_LO) && (s->emf_ratio <= SMC_EMF_RATIO_HI);
+        emf_ok = (r->emf_ratio >= SMC_EMF_RATIO_LO) && (r->emf_ratio <= SMC_EMF_RATIO_HI);
     } else {
-        s->emf_ratio = SMC_EMF_RATIO_ONE;
+        r->emf_ratio = SMC_EMF_RATIO_ONE;
     }
-    s->valid = (aw >= p->omega_min) && emf_ok;
+    r->valid = (aw >= p->omega_min) && emf_ok;
+}
+
+/* The slow side back to rest (speed 0) or to a preset speed. */
+static void smc_slow_restart(const smc_params_t *p, smc_slow_t *sl, q15_t omega)
+{
+    lpf_reset(&sl->omega_lpf, omega);
+    lpf_reset(&sl->k_lpf, q15_mul(q15_abs_sat(omega), p->k_per_omega));
+    sl->omega = omega;
+    sl->lag = 0;
+    sl->lag_valid = false;
+    sl->startup = SMC_STARTUP_WINDOWS;
+}
+
+/* The results as they stand after a reset (speed 0, K at its floor). */
+static void smc_apply_rest(smc_t *s)
+{
+    s->omega = s->rest.omega;
+    s->k = s->rest.k;
+    s->k_w = s->rest.k_w;
+    s->comp = s->rest.comp;
+    s->emf_mag = s->rest.emf_mag;
+    s->emf_ratio = s->rest.emf_ratio;
+    s->valid = false;
 }
 
 void smc_init(smc_t *s, const smc_params_t *p)
 {
+    smc_window_t w;
     s->p = p;
+    /* The results at rest, once: smc_reset applies them without the cost
+     * of a refresh (the slow side computes the same from a reset). */
+    w.ef_alpha = 0;
+    w.ef_beta = 0;
+    smc_slow_restart(p, &s->slow, 0);
+    smc_refresh(p, &s->slow, &w, &s->rest);
+    s->rest.valid = false;
+    s->res = s->rest; /* nothing computed yet: the rest results */
+    s->epoch = 0U;
     smc_reset(s);
+    s->slow.epoch = s->epoch;
 }
 
 void smc_reset(smc_t *s)
@@ -217,30 +253,23 @@ void smc_reset(smc_t *s)
     lpf_reset(&s->ef_beta, 0);
     lpf_reset(&s->w_alpha, 0);
     lpf_reset(&s->w_beta, 0);
-    lpf_reset(&s->omega_lpf, 0);
-    lpf_reset(&s->k_lpf, 0);
     s->dtheta_sum = 0;
     s->count = 0U;
     s->theta_raw = 0;
     s->theta = 0;
-    s->lag = 0;
-    s->lag_valid = false;
-    s->startup = SMC_STARTUP_WINDOWS;
-    s->omega = 0;
-    smc_speed_refresh(s);
-    s->valid = false;
+    s->epoch = (uint8_t)(s->epoch + 1U);
+    s->preset_pending = false;
+    smc_apply_rest(s);
 }
 
 void smc_preset_speed(smc_t *s, q15_t omega)
 {
-    lpf_reset(&s->omega_lpf, omega);
-    lpf_reset(&s->k_lpf, q15_mul(q15_abs_sat(omega), s->p->k_per_omega));
     s->omega = omega;
     s->dtheta_sum = 0;
     s->count = 0U;
-    s->startup = SMC_STARTUP_WINDOWS;
-    smc_speed_refresh(s);
-    s->theta = angle_add(s->theta_raw, s->comp);
+    s->epoch = (uint8_t)(s->epoch + 1U);
+    s->preset_pending = true;
+    s->preset_omega = omega;
 }
 
 /*
@@ -294,40 +323,88 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
         s->theta_raw = atan2_q31((a == Q31_MIN) ? Q31_MAX : -a, s->ef_beta.state);
     }
 
-    /* Speed window. */
+    /* Speed window: the sum of the angle steps; the window end is the
+     * caller's (smc_window_end). */
     s->dtheta_sum += (int32_t)angle_sub(s->theta_raw, prev);
-    s->count++;
-    if (s->count >= p->irp_percalc) {
-        if (p->tf_xadv != 0) {
-            /* The lag of theta_raw behind the (lightly filtered) model
-             * back-EMF: its change over the window is what the stages'
-             * transients added to the angle steps (note 8). */
-            int32_t wa = s->w_alpha.state;
-            angle_q15_t lag = angle_sub(atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, s->w_beta.state),
-                                        s->theta_raw);
-            int32_t dl = s->lag_valid ? (int32_t)angle_sub(lag, s->lag) : 0;
-            int32_t dz;
-            if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {
-                s->startup = SMC_STARTUP_WINDOWS; /* a transient: track it closely */
-            }
-            dz = (s->startup > 0U) ? (int32_t)0 : (int32_t)SMC_LAG_DEADZONE;
-            s->lag_valid = true;
-            if (dl > dz) {
-                s->dtheta_sum += dl - dz;
-            } else if (dl < -dz) {
-                s->dtheta_sum += dl + dz;
-            }
-            s->lag = lag;
-        }
-        s->omega =
-            lpf_update(&s->omega_lpf, smc_speed_from_steps(p, s->dtheta_sum), p->k_speed_lpf);
-        s->dtheta_sum = 0;
-        s->count = 0U;
-        smc_speed_refresh(s);
-        if (s->startup > 0U) {
-            s->startup--;
-        }
+    if (s->count < 0xFFFFU) {
+        s->count++;
     }
 
     s->theta = angle_add(s->theta_raw, s->comp);
+}
+
+void smc_apply(smc_t *s)
+{
+    /* The results of the last window, if they still belong to this run. */
+    if (s->res.epoch == s->epoch) {
+        s->omega = s->res.omega;
+        s->k = s->res.k;
+        s->k_w = s->res.k_w;
+        s->comp = s->res.comp;
+        s->emf_mag = s->res.emf_mag;
+        s->emf_ratio = s->res.emf_ratio;
+        s->valid = s->res.valid;
+    }
+}
+
+void smc_window_end(smc_t *s)
+{
+    smc_window_t *w = &s->win;
+    w->dtheta_sum = s->dtheta_sum;
+    w->w_alpha = s->w_alpha.state;
+    w->w_beta = s->w_beta.state;
+    w->ef_alpha = s->ef_alpha.state;
+    w->ef_beta = s->ef_beta.state;
+    w->theta_raw = s->theta_raw;
+    w->epoch = s->epoch;
+    w->full = (s->count == s->p->irp_percalc);
+    w->preset = s->preset_pending;
+    w->preset_omega = s->preset_omega;
+    s->preset_pending = false;
+    s->dtheta_sum = 0;
+    s->count = 0U;
+}
+
+void smc_slow_step(smc_t *s)
+{
+    const smc_params_t *p = s->p;
+    const smc_window_t *w = &s->win;
+    smc_slow_t *sl = &s->slow;
+    int32_t sum = w->dtheta_sum;
+
+    if (w->epoch != sl->epoch) {
+        /* A reset or a preset since the last window. */
+        smc_slow_restart(p, sl, w->preset ? w->preset_omega : 0);
+        sl->epoch = w->epoch;
+    }
+    if (p->tf_xadv != 0) {
+        /* The lag of theta_raw behind the (lightly filtered) model
+         * back-EMF: its change over the window is what the stages'
+         * transients added to the angle steps (note 8). */
+        int32_t wa = w->w_alpha;
+        angle_q15_t lag =
+            angle_sub(atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, w->w_beta), w->theta_raw);
+        int32_t dl = sl->lag_valid ? (int32_t)angle_sub(lag, sl->lag) : 0;
+        int32_t dz;
+        if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {
+            sl->startup = SMC_STARTUP_WINDOWS; /* a transient: track it closely */
+        }
+        dz = (sl->startup > 0U) ? (int32_t)0 : (int32_t)SMC_LAG_DEADZONE;
+        sl->lag_valid = true;
+        if (dl > dz) {
+            sum += dl - dz;
+        } else if (dl < -dz) {
+            sum += dl + dz;
+        }
+        sl->lag = lag;
+    }
+    if (w->full) {
+        /* A window cut short by a reset or preset measures no speed. */
+        sl->omega = lpf_update(&sl->omega_lpf, smc_speed_from_steps(p, sum), p->k_speed_lpf);
+    }
+    smc_refresh(p, sl, w, &s->res);
+    s->res.epoch = w->epoch;
+    if (sl->startup > 0U) {
+        sl->startup--;
+    }
 }

@@ -58,14 +58,13 @@
  *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
  *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
  *
- * Cost (make bench: x86-64 instructions per smc_update, gcc -O2): 492 min,
- * 762 mean, 2018 max (the window end); state 73 bytes and parameters 38
- * bytes with 16-bit pointers (avr-gcc, as on the dsPIC). Per period: 2 model
- * steps, 2 switches, 6 first-order updates (32-bit states) and one atan2;
- * no division, no float. Once every IRP_PERCALC periods: one more atan2
- * (the lag), the speed scaling, the compensation (two atan2 calls and
- * about twenty 16 x 16 products) and one 32 / 16 division (the back-EMF
- * consistency figure).
+ * Two sides (note 10). The fast side runs in the PWM interrupt:
+ * smc_update every period (2 model steps, 2 switches, 6 first-order updates
+ * with 32-bit states, one atan2) and smc_window_end every irp_percalc
+ * periods (a snapshot). The slow side, smc_slow_step, runs once per window
+ * in a context the interrupt pre-empts: the speed, K, the compensation and
+ * the back-EMF check; its results reach the fast side at the next window
+ * end, one window later. Cycle figures: docs/performance.md.
  */
 
 /* The back-EMF quantities (z, e, e_final, Kslide, the amplitude) are Q15 of
@@ -250,8 +249,47 @@ typedef struct {
 
 /* ---- state --------------------------------------------------------------- */
 
+/* The window end's snapshot for the slow side (smc_window_end fills it). */
+typedef struct {
+    int32_t dtheta_sum; /* sum of theta_raw steps over the window, angle counts */
+    int32_t w_alpha;    /* model back-EMF filter states at the window end, Q31 */
+    int32_t w_beta;
+    int32_t ef_alpha; /* e_final states at the window end, Q31 */
+    int32_t ef_beta;
+    angle_q15_t theta_raw; /* at the window end */
+    uint8_t epoch;         /* resets and presets so far (the run the window belongs to) */
+    bool full;             /* irp_percalc periods since the last window end, reset or preset */
+    bool preset;           /* the last change of epoch was smc_preset_speed ... */
+    q15_t preset_omega;    /* ... to this speed */
+} smc_window_t;
+
+/* What the slow side computes from a window (smc_slow_step); the fast side
+ * takes it at the next window end. */
+typedef struct {
+    q15_t omega;      /* filtered speed, Q15 of omega_fs, signed */
+    q15_t k;          /* Kslf, Q15 */
+    q15_t k_w;        /* 4 k, the gain smoothing the model back-EMF (note 8), Q15 */
+    angle_q15_t comp; /* compensation added to theta_raw (incl. pi if omega < 0) */
+    q15_t emf_mag;    /* |ef| (Q15 of E_FS) */
+    q15_t emf_ratio;  /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
+    bool valid;       /* |omega| >= omega_min and emf_ratio inside the band */
+    uint8_t epoch;    /* of the window it was computed from */
+} smc_result_t;
+
+/* The slow side's own state: written only by smc_slow_step (and smc_init). */
+typedef struct {
+    lpf_t k_lpf;     /* x = |omega| 2 pi Ts filtered again: K before its floor, Q31 */
+    lpf_t omega_lpf; /* filtered speed, Q31 of omega_fs */
+    q15_t omega;     /* its output */
+    angle_q15_t lag; /* lag of theta_raw behind the model back-EMF at the last window end */
+    bool lag_valid;  /* lag holds a measurement */
+    uint8_t startup; /* windows left in the start-up phase (note 8) */
+    uint8_t epoch;   /* the run this state belongs to */
+} smc_slow_t;
+
 typedef struct {
     const smc_params_t *p;
+    /* fast side: smc_update, every period */
     ab_q15_t i_est; /* model current, Q15 of I_FS */
     ab_q15_t z;     /* sliding-mode correction, Q15 of E_FS */
     ab_q15_t e;     /* first stage e rounded to Q15 (what the model is fed) */
@@ -261,22 +299,26 @@ typedef struct {
     lpf_t ef_beta;
     lpf_t w_alpha; /* model back-EMF from the correction (note 8), smoothed, Q31 of E_FS */
     lpf_t w_beta;
-    lpf_t k_lpf;           /* x = |omega| 2 pi Ts filtered again: K before its floor, Q31 */
-    lpf_t omega_lpf;       /* filtered speed, Q31 of omega_fs */
     int32_t dtheta_sum;    /* sum of theta_raw steps this window, angle counts */
-    uint16_t count;        /* periods in this window, 0..irp_percalc-1 */
+    uint16_t count;        /* periods since the last window end, reset or preset */
     angle_q15_t theta_raw; /* atan2 of ef, uncompensated */
     angle_q15_t theta;     /* compensated: the rotor angle at t_n */
-    angle_q15_t comp;      /* compensation added to theta_raw (incl. pi if omega < 0) */
-    angle_q15_t lag;       /* lag of theta_raw behind the model back-EMF at the last window end */
-    q15_t omega;           /* filtered speed, Q15 of omega_fs, signed */
-    q15_t k;               /* Kslf in use, Q15 */
-    q15_t k_w;             /* 4 k, the gain smoothing the model back-EMF (note 8), Q15 */
-    q15_t emf_mag;         /* |ef| (Q15 of E_FS), refreshed every window */
-    q15_t emf_ratio;       /* |ef| / expected at |omega|, Q12 (4096 = as expected) */
-    bool valid;            /* |omega| >= omega_min and emf_ratio inside the band */
-    bool lag_valid;        /* lag holds a measurement (false until the first window end) */
-    uint8_t startup;       /* windows left in the start-up phase (note 8) */
+    /* the slow side's results in use (smc_window_end takes them) */
+    q15_t omega;
+    q15_t k;
+    q15_t k_w;
+    angle_q15_t comp;
+    q15_t emf_mag;
+    q15_t emf_ratio;
+    bool valid;
+    /* the hand-over between the two sides */
+    uint8_t epoch;       /* incremented by smc_reset and smc_preset_speed */
+    bool preset_pending; /* a preset the slow side has not seen yet */
+    q15_t preset_omega;
+    smc_window_t win;  /* fast -> slow, written at the window end */
+    smc_result_t res;  /* slow -> fast, written by smc_slow_step */
+    smc_result_t rest; /* the results at rest (speed 0), computed once by smc_init */
+    smc_slow_t slow;
 } smc_t;
 
 /* Fixed design constants of the speed path (notes 7-8). */
@@ -295,26 +337,46 @@ typedef struct {
 
 /* ---- API ----------------------------------------------------------------- */
 
-/* Bind the parameters (kept by pointer: they must outlive s) and reset. */
+/* Bind the parameters (kept by pointer: they must outlive s) and reset.
+ * Computes the results at rest once (a phase lead: not for the 50 us path). */
 void smc_init(smc_t *s, const smc_params_t *p);
 
-/* All state to zero: model currents, corrections and filters 0, speed 0
- * (so K starts at its floor), window empty, theta 0, not valid. */
+/* Fast side. All state to zero: model currents, corrections and filters 0,
+ * the results at rest (speed 0, K at its floor, not valid), theta the
+ * compensation at rest; the slow side restarts from speed 0 at its next
+ * window (note 10). */
 void smc_reset(smc_t *s);
 
-/* Preset the speed (Q15 of omega_fs, signed) at a hand-off from open loop:
- * the speed filter, K and the compensation take the value at once; the
- * window restarts. The back-EMF filters are left as they are (the observer
- * runs during the open-loop start-up and has already converged). */
+/* Fast side. Preset the speed (Q15 of omega_fs, signed) at a hand-off from
+ * open loop: omega takes the value at once; the slow side restarts its
+ * filters from it at the next window, K and the compensation follow from
+ * that window's results (note 10). The back-EMF filters are left as they
+ * are (the observer runs during the open-loop start-up and has already
+ * converged). */
 void smc_preset_speed(smc_t *s, q15_t omega);
 
-/* One PWM period: see the timing contract above. Scaling and overflow:
- * model and correction in 32-bit products rounded to Q15 and saturated
- * (|v - e - z| saturates at full scale before the multiply by G); filters
- * with 32-bit states (foc/lpf.h); the angle-step sum is 32 bits, so no
- * speed below the Nyquist limit (|delta theta| < pi per period) wraps; the
- * speed saturates at +-omega_fs. No division in the per-period path. */
+/* Fast side, one PWM period: see the timing contract above. Scaling and
+ * overflow: model and correction in 32-bit products rounded to Q15 and
+ * saturated (|v - e - z| saturates at full scale before the multiply by G);
+ * filters with 32-bit states (foc/lpf.h); the angle-step sum is 32 bits, so
+ * no speed below the Nyquist limit (|delta theta| < pi per period) wraps.
+ * One division (atan2), no float. */
 void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
+
+/* Fast side, every irp_percalc periods, after smc_update: snapshots this
+ * window for the slow side (note 10). */
+void smc_window_end(smc_t *s);
+
+/* Slow side, once after each smc_window_end and before the next one: the
+ * speed (with the lag correction of note 8), K, the compensation (two
+ * atan2 and about twenty products), the back-EMF amplitude and one 32 / 16
+ * division for the consistency figure; the speed saturates at +-omega_fs. */
+void smc_slow_step(smc_t *s);
+
+/* Fast side, once the slow step of the last window has run: takes its
+ * results (omega, K, the compensation, the back-EMF figures, valid) if they
+ * belong to the present run (note 10). */
+void smc_apply(smc_t *s);
 
 /* The phase lead (angle counts) that cancels the lag of the two stages and
  * the loop delay for a positive frequency x (electrical rad per PWM period,
@@ -484,6 +546,23 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *    the speed and the angle keep being computed (saturating, never
  *    wrapping) but valid is false; a stalled rotor with a speed estimate
  *    left over drops the flag through the speed and the ratio.
+ *
+ * 10. Fast and slow sides. Everything that changes only once per window
+ *    (the speed, K, k_w, the compensation, the back-EMF figures, valid) is
+ *    computed by smc_slow_step from a snapshot (win) that smc_window_end
+ *    takes, and handed back in res, which smc_apply takes over at a fixed
+ *    period after the window end (the caller's choice). So the slow side
+ *    may run at any time in between (on the dsPIC, in a lower-priority
+ *    interrupt), the outcome does not depend on when, and each side writes
+ *    only its own fields: win and the fast state belong to the fast side,
+ *    res and slow to the slow side. The price is that delay: K and the
+ *    compensation follow the speed a fraction of a window later than they
+ *    would in one context, which the stages' own time constant (about
+ *    1 / K, 12 ms at the lowest speed) dwarfs. A reset or
+ *    preset changes the epoch; the slow side restarts its filters when it
+ *    sees the new epoch in a window, and results of an older epoch are
+ *    dropped. A window a reset or preset cut short measures no speed (its
+ *    angle sum spans fewer periods than the scaling assumes).
  */
 
 #endif /* SMC_H */

@@ -188,6 +188,15 @@ static void tick_init(void)
     T1CONbits.TON = 1;
 }
 
+/* The slow step's interrupt: Timer2's vector, with Timer2 itself never
+ * started, so only the ADC interrupt's software write to T2IF raises it. */
+static void slow_irq_init(void)
+{
+    IEC0bits.T2IE = 0; /* hal_motor_start() enables it */
+    IFS0bits.T2IF = 0;
+    IPC1bits.T2IP = HAL_SLOW_IRQ_PRIORITY;
+}
+
 void hal_init(void)
 {
     clock_init();
@@ -195,6 +204,7 @@ void hal_init(void)
     pins_init();
     pwm_init();
     adc_init();
+    slow_irq_init();
     uart_init();
     tick_init();
 }

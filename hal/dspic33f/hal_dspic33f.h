@@ -142,6 +142,12 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 #define HAL_AD1_ADCS 3u
 /* ADC interrupt priority (1..7; the critical section masks up to 7). */
 #define HAL_ADC_IRQ_PRIORITY 5u
+/* The core's slow step (mc_slow_step) runs in Timer2's interrupt, raised in
+ * software by the ADC interrupt once per window (Timer2 stays off): below
+ * the ADC interrupt, which pre-empts it, above the main loop (0).
+ * T2IF/T2IE are IFS0/IEC0 bit 7, T2IP is IPC1<14:12> [MEM: the dsPIC33F
+ * interrupt vector table, DS70283 / FRM section 6]. */
+#define HAL_SLOW_IRQ_PRIORITY 2u
 
 /* ---- pins (hardware.md 1.8) ---------------------------------------------- */
 #define HAL_S2_PORTA_BIT    8u /* S2 on RA8, active low [SRC] */
@@ -182,7 +188,9 @@ Q15_STATIC_ASSERT(BOARD_FCY_HZ / 8L / 1000L - 1L <= 0xFFFFL, "PR1 is 16 bits");
 #define HAL_CORCON_SET   0x00A2u /* SATA | SATDW | RND */
 #define HAL_CORCON_CLEAR 0x1051u /* US | SATB | ACCSAT | IF */
 
-/* The ADC interrupt vector (hal_isr.c); the tests call it as a function. */
+/* The ADC interrupt vector and the slow step's (hal_isr.c); the tests call
+ * them as functions. */
 void HAL_ISR _ADC1Interrupt(void);
+void HAL_ISR _T2Interrupt(void);
 
 #endif /* HAL_DSPIC33F_H */

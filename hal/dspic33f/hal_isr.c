@@ -21,6 +21,10 @@ static mc_t motor;
 static hal_motor_observer_t observer;
 static void *observer_ctx;
 
+/* mc_step() calls since the last window end (mc.h: the slow step follows
+ * every MC_SLOW_STEP_PERIODS-th, counting from mc_init). */
+static uint16_t slow_div;
+
 /* Vector of the ADC: the four results are ready (SMPI = 0, one interrupt
  * per special-event conversion set). Clearing the flag first means an
  * overrun (a step longer than a period) re-enters at once instead of
@@ -35,16 +39,31 @@ void HAL_ISR _ADC1Interrupt(void)
     hal_adc_read(&frame);
     mc_step(&motor, &frame, &out);
     hal_pwm_write(&out);
+    if (++slow_div >= MC_SLOW_STEP_PERIODS) {
+        slow_div = 0U;
+        IFS0bits.T2IF = 1; /* the window's slow step, as soon as this interrupt returns */
+    }
     if (observer != NULL) {
         observer(observer_ctx, &motor);
     }
 }
 
+/* The slow step, pre-empted by the ADC interrupt (mc.h note 4). */
+void HAL_ISR _T2Interrupt(void)
+{
+    IFS0bits.T2IF = 0;
+    mc_slow_step(&motor);
+}
+
 void hal_motor_start(void)
 {
     IEC0bits.AD1IE = 0;
+    IEC0bits.T2IE = 0;
     mc_init(&motor);
+    slow_div = 0U;
     IFS0bits.AD1IF = 0; /* a stale conversion is not a period of the new motor */
+    IFS0bits.T2IF = 0;
+    IEC0bits.T2IE = 1;
     IEC0bits.AD1IE = 1;
 }
 

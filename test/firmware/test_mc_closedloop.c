@@ -177,7 +177,8 @@ static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_t
         /* At most one step per speed-loop run; a full step while the
          * target (the pot, with its ADC noise) is more than a step away. */
         assert_true(abs(d) <= MC_SPEED_RAMP_STEP);
-        if (b.st.speed_target - prev > MC_SPEED_RAMP_STEP && b.mc.speed_div == 0U) {
+        if (b.st.speed_target - prev > MC_SPEED_RAMP_STEP &&
+            b.mc.slow_div == MC_SLOW_APPLY_PERIODS) {
             assert_int_equal(d, MC_SPEED_RAMP_STEP);
             runs++;
         }

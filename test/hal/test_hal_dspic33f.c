@@ -227,6 +227,12 @@ static void test_hal_init_should_leave_the_adc_interrupt_for_motor_start(void **
     assert_int_equal(IEC0bits.AD1IE, 0);
     assert_int_equal(IFS0bits.AD1IF, 0);
     assert_int_equal(IPC3bits.AD1IP, 5);
+    /* The slow step's software interrupt: below the ADC, above the main loop,
+     * and Timer2 never started (only software raises T2IF). */
+    assert_int_equal(IEC0bits.T2IE, 0);
+    assert_int_equal(IFS0bits.T2IF, 0);
+    assert_int_equal(IPC1bits.T2IP, 2);
+    assert_true(IPC1bits.T2IP < IPC3bits.AD1IP && IPC1bits.T2IP > 0);
 }
 
 /* Raw signed-fractional word of 10-bit code n (0..1023): (n - 512) << 6. */

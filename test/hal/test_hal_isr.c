@@ -49,6 +49,13 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     out->outputs_on = (bool)mock();
 }
 
+void mc_slow_step(mc_t *mc)
+{
+    function_called();
+    check_same_motor(mc);
+    assert_int_equal(IFS0bits.T2IF, 0); /* cleared first */
+}
+
 void mc_request(mc_t *mc, mc_request_t r)
 {
     int request = (int)r;
@@ -136,10 +143,35 @@ static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(
     (void)state;
     IEC0bits.AD1IE = 1;
     IFS0bits.AD1IF = 1;
+    IFS0bits.T2IF = 1;
     expect_function_call(mc_init);
     hal_motor_start();
     assert_int_equal(IFS0bits.AD1IF, 0);
+    assert_int_equal(IFS0bits.T2IF, 0);
     assert_int_equal(IEC0bits.AD1IE, 1);
+    assert_int_equal(IEC0bits.T2IE, 1);
+}
+
+static void test_adc_isr_should_raise_the_slow_step_interrupt_after_every_window_counted_from_start(
+    void **state)
+{
+    (void)state;
+    expect_function_call(mc_init);
+    hal_motor_start();
+    for (unsigned w = 0; w < 3U; w++) {
+        for (unsigned k = 1; k <= MC_SLOW_STEP_PERIODS; k++) {
+            P1DC1 = 0xAAAAu; /* the mock's marker: not yet written this period */
+            P1DC2 = 0xAAAAu;
+            P1DC3 = 0xAAAAu;
+            expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+            _ADC1Interrupt();
+            /* Raised by the window's last step, not before. */
+            assert_int_equal(IFS0bits.T2IF, (k == MC_SLOW_STEP_PERIODS) ? 1 : 0);
+        }
+        expect_function_call(mc_slow_step);
+        _T2Interrupt();
+        assert_int_equal(IFS0bits.T2IF, 0);
+    }
 }
 
 static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void **state)
@@ -205,6 +237,9 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
                                setup),
+        cmocka_unit_test_setup(
+            test_adc_isr_should_raise_the_slow_step_interrupt_after_every_window_counted_from_start,
+            setup),
         cmocka_unit_test_setup(test_motor_mailbox_should_call_the_core_with_interrupts_masked,
                                setup),
     };

@@ -110,6 +110,20 @@ static bench_t bench_hispeed(void)
                       0x7654321U, HS_WFS);
 }
 
+/* One period, the estimator driven with its results taken straight after
+ * the slow step (the core takes them a few periods later): smc_update, and
+ * every irp_percalc periods the window end, the slow step and the apply
+ * (smc.h note 10). */
+static void smc_period(smc_t *s, ab_q15_t i, ab_q15_t v)
+{
+    smc_update(s, i, v);
+    if (s->count >= s->p->irp_percalc) {
+        smc_window_end(s);
+        smc_slow_step(s);
+        smc_apply(s);
+    }
+}
+
 /* n periods of motor and estimator, nothing checked on the way. */
 static void run_periods(smc_t *s, pmsm_ideal_t *m, long n)
 {
@@ -118,7 +132,7 @@ static void run_periods(smc_t *s, pmsm_ideal_t *m, long n)
         ab_q15_t i;
         ab_q15_t v;
         pmsm_ideal_step(m, &i, &v);
-        smc_update(s, i, v);
+        smc_period(s, i, v);
     }
 }
 
@@ -166,7 +180,7 @@ static steady_t run_steady(const smc_params_t *p, const bench_t *b, double rpm, 
         ab_q15_t v;
         double e;
         pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         e = angle_err_deg(&s, &m);
         if (fabs(e) > 2.0) {
             r.conv_ms = (double)(n + 1) * TS * 1000.0;
@@ -321,7 +335,7 @@ static double convergence_ms(const smc_params_t *p, const bench_t *b, double rpm
         ab_q15_t i;
         ab_q15_t v;
         pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         if (fabs(angle_err_deg(&s, &m)) > 2.0) {
             last = n + 1;
         }
@@ -376,7 +390,7 @@ static void run_ramp(const smc_params_t *p, const bench_t *b, double rpm0, doubl
             pmsm_ideal_set_speed(&m, rpm1, rpm_per_s);
         }
         pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         if (n >= n_settle) {
             double rpm = pmsm_ideal_rpm(&m);
             err_stats_add(ang, angle_err_deg(&s, &m), rpm);
@@ -519,7 +533,7 @@ static void test_smc_should_report_not_valid_below_the_minimum_speed_without_ove
             ab_q15_t i;
             ab_q15_t v;
             pmsm_ideal_step(&m, &i, &v);
-            smc_update(&s, i, v);
+            smc_period(&s, i, v);
             if (n > 2000) {
                 valid_count += smc_valid(&s) ? 1 : 0;
                 err_stats_add(&ang, angle_err_deg(&s, &m), (double)n);
@@ -557,7 +571,7 @@ test_smc_should_become_valid_above_the_minimum_speed_and_saturate_past_full_scal
         ab_q15_t i;
         ab_q15_t v;
         pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         if (n > 1500) {
             assert_true(smc_omega(&s) > 30000);
         }
@@ -597,7 +611,7 @@ static void test_smc_should_flag_a_stalled_rotor_through_the_emf_ratio(void **st
         ab_q15_t i;
         ab_q15_t v;
         pmsm_ideal_step(&m, &i, &v);
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         if (n > 400) {
             valid_late += smc_valid(&s) ? 1 : 0;
         }
@@ -805,6 +819,15 @@ static void test_smc_speed_from_steps_should_match_the_scaled_sum(void **state)
     assert_true(es.max_abs <= 0.0);
 }
 
+/* A window end, its slow step and the apply: what a preset or a reset has
+ * become once the slow side's results are in (smc.h note 10). */
+static void smc_round_trip(smc_t *s)
+{
+    smc_window_end(s);
+    smc_slow_step(s);
+    smc_apply(s);
+}
+
 static void test_smc_reset_and_preset_should_define_every_output(void **state)
 {
     smc_t s;
@@ -815,20 +838,35 @@ static void test_smc_reset_and_preset_should_define_every_output(void **state)
     assert_int_equal(smc_omega(&s), 0);
     assert_false(smc_valid(&s));
     assert_int_equal(s.k, hurst.k_min);
+    assert_int_equal(s.comp, smc_phase_lead(&hurst, hurst.k_min, 0));
     assert_int_equal(smc_e_final(&s).alpha, 0);
+    /* A preset takes the speed at once, K and the compensation with the
+     * slow side's next results. */
     smc_preset_speed(&s, 8192);
     assert_int_equal(smc_omega(&s), 8192);
+    assert_int_equal(s.k, hurst.k_min);
+    smc_round_trip(&s);
+    assert_int_equal(smc_omega(&s), 8192); /* a window cut short measures no speed */
     assert_true(s.k > hurst.k_min);
     assert_int_equal(s.comp, smc_phase_lead(&hurst, s.k, q15_mul(8192, hurst.k_per_omega)));
     smc_preset_speed(&s, -8192);
+    assert_int_equal(smc_omega(&s), -8192);
+    smc_round_trip(&s);
     assert_int_equal(smc_omega(&s), -8192);
     /* Reverse: the lead is negated and pi added. */
     assert_int_equal(
         s.comp,
         angle_add(angle_sub(0, smc_phase_lead(&hurst, s.k, q15_mul(8192, hurst.k_per_omega))),
                   Q15_MIN));
+    /* A reset returns to rest at once, and a result computed before it is
+     * dropped. */
+    smc_window_end(&s);
+    smc_slow_step(&s);
     smc_reset(&s);
+    smc_apply(&s);
     assert_int_equal(smc_omega(&s), 0);
+    assert_int_equal(s.k, hurst.k_min);
+    assert_false(smc_valid(&s));
 }
 
 static void test_smc_update_should_saturate_at_the_input_extremes(void **state)
@@ -847,14 +885,14 @@ static void test_smc_update_should_saturate_at_the_input_extremes(void **state)
         for (b2 = 0; b2 < 6; b2++) {
             ab_q15_t i = {edges[a], edges[b2]};
             ab_q15_t v = {edges[b2], edges[a]};
-            smc_update(&s, i, v);
+            smc_period(&s, i, v);
             assert_true(abs(s.z.alpha) <= hurst.kslide && abs(s.z.beta) <= hurst.kslide);
         }
     }
     for (n = 0; n < 20000; n++) {
         ab_q15_t i = {test_rand_i16(&st), test_rand_i16(&st)};
         ab_q15_t v = {test_rand_i16(&st), test_rand_i16(&st)};
-        smc_update(&s, i, v);
+        smc_period(&s, i, v);
         assert_true(abs(s.z.alpha) <= hurst.kslide && abs(s.z.beta) <= hurst.kslide);
     }
 }

@@ -36,6 +36,7 @@ static void run_steps(uint32_t n, bool start)
         mc_pwm_out_t out;
         frame(&in);
         mc_step(&mc, &in, &out);
+        mc_slow_step(&mc);
         bench_sink += out.duty[0];
     }
 }

@@ -58,14 +58,19 @@ static void frame_in(mc_adc_frame_t *in)
     in->pot = f.pot;
 }
 
-/* The counted symbol. */
+/* The counted symbols: the step, and the slow step after each window end. */
 __attribute__((noinline)) void mc_bench_cl_step(const mc_adc_frame_t *in, mc_pwm_out_t *out);
 __attribute__((noinline)) void mc_bench_cl_step(const mc_adc_frame_t *in, mc_pwm_out_t *out)
 {
     mc_step(&mc, in, out);
 }
+__attribute__((noinline)) void mc_bench_cl_slow(void);
+__attribute__((noinline)) void mc_bench_cl_slow(void)
+{
+    mc_slow_step(&mc);
+}
 
-static void run_closed_loop(uint32_t n)
+static void run_periods(uint32_t n)
 {
     uint32_t k;
     mc_adc_frame_t in;
@@ -77,6 +82,7 @@ static void run_closed_loop(uint32_t n)
     for (k = 0U; k < 200000UL && mc.state != MC_STATE_CLOSED_LOOP; k++) {
         frame_in(&in);
         mc_step(&mc, &in, &out);
+        mc_slow_step(&mc);
         sim_rig_advance(&rig, out.duty, out.outputs_on);
     }
     for (k = 0U; k < n; k++) {
@@ -85,12 +91,31 @@ static void run_closed_loop(uint32_t n)
         rig.pot = (k < n / 4U) ? 0.2 : 1.0;
         frame_in(&in);
         mc_bench_cl_step(&in, &out);
+        if (mc.slow_busy) {
+            mc_bench_cl_slow();
+        } else {
+            mc_slow_step(&mc); /* the same no-op, uncounted */
+        }
         sim_rig_advance(&rig, out.duty, out.outputs_on);
         bench_sink += (int32_t)out.duty[0] + (int32_t)mc.state;
     }
 }
 
+/* n periods: n calls of mc_bench_cl_step. */
+static void run_closed_loop(uint32_t n)
+{
+    run_periods(n);
+}
+
+/* n calls of mc_bench_cl_slow: one per window. */
+static void run_closed_loop_slow(uint32_t n)
+{
+    run_periods(n * MC_SLOW_STEP_PERIODS);
+}
+
 void bench_mc_closedloop(void)
 {
     bench_add("mc_step/closed_loop_sim", "mc_bench_cl_step", 20000U, run_closed_loop);
+    bench_add("mc_slow_step/closed_loop_sim", "mc_bench_cl_slow", 20000U / MC_SLOW_STEP_PERIODS,
+              run_closed_loop_slow);
 }

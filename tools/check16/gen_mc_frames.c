@@ -40,6 +40,7 @@ int main(void)
         in.vbus = mc_frames_bus(n);
         in.pot = mc_frames_pot(n);
         mc_step(&b.mc, &in, &b.out);
+        mc_slow_step(&b.mc);
         sim_rig_advance(&b.rig, b.out.duty, b.out.outputs_on);
         mc_status(&b.mc, &b.st);
         printf("%d,%d,%s", in.ia, in.ib, (n % 8U == 7U) ? "\n" : "");

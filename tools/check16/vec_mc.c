@@ -163,6 +163,7 @@ static void replay(void)
         in.vbus = mc_frames_bus(n);
         in.pot = mc_frames_pot(n);
         mc_step(&mc, &in, &out);
+        mc_slow_step(&mc);
         emit_i16(in.ia);
         emit_i16(in.ib);
         emit_i16(in.vbus);
@@ -180,6 +181,7 @@ static void step_frame(int16_t ia, int16_t ib, int16_t vbus, int16_t pot)
     in.vbus = vbus;
     in.pot = pot;
     mc_step(&mc, &in, &out);
+    mc_slow_step(&mc);
     emit_i16(ia);
     emit_i16(ib);
     emit_i16(vbus);

@@ -66,8 +66,8 @@ static void emit_state(void)
     emit_i16(mc.ref_remote);
     emit_i16(mc.pi_d.p.kp);
     emit_i16(mc.pi_q.p.ki);
-    emit_i16(mc.pi_w.p.kp);
-    emit_i16(mc.pi_w.p.kc);
+    emit_i16(mc.spd_kp_base);
+    emit_i16(mc.spd_ki_base);
 }
 
 static void vec_tables(void)
@@ -220,6 +220,7 @@ static void run_periods(uint32_t n)
         in.vbus = vec_rand_between(14000, 16000);
         in.pot = vec_rand_between(0, 32767);
         mc_step(&mc, &in, &out);
+        mc_slow_step(&mc);
         (void)monitor_sample(&mon, &mc);
         if ((k % 20U) == 19U) {
             monitor_tick_1ms(&mon);

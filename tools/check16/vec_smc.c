@@ -138,6 +138,11 @@ static void run_drive(const smc_params_t *p, uint32_t seed)
             smc_preset_speed(&s, -12000);
         }
         smc_update(&s, i, v);
+        if (s.count >= p->irp_percalc) { /* the window end and its slow step */
+            smc_window_end(&s);
+            smc_slow_step(&s);
+            smc_apply(&s);
+        }
         emit_i16(i.alpha);
         emit_i16(i.beta);
         emit_i16(v.alpha);

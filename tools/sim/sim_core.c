@@ -378,6 +378,7 @@ void simcore_step(simcore_t *s)
     n->torque_nm = sim_plant_torque(p);
 
     mc_step(&s->mc, &in, &out);
+    mc_slow_step(&s->mc); /* a no-op except after a window end (mc.h note 4) */
     mc_status(&s->mc, &s->st);
 
     n->state = (int)s->st.state;

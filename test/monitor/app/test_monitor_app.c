@@ -110,6 +110,7 @@ static void run_ms(unsigned ms)
             mc_adc_frame_t in = {0, 0, Q15(0.4545), 0};
             mc_pwm_out_t out;
             mc_step(&motor, &in, &out);
+            mc_slow_step(&motor);
             (void)monitor_sample(&mon, &motor);
         }
         tick = true;

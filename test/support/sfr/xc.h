@@ -190,6 +190,15 @@ SFR_DECLARE(IEC3, IEC3BITS);
 #define IEC3     sfr_IEC3.w
 #define IEC3bits sfr_IEC3.bits
 
+typedef struct { /* IPC1: T2IP at bits 12-14 [MEM] */
+    uint16_t : 12;
+    uint16_t T2IP : 3;
+    uint16_t : 1;
+} IPC1BITS;
+SFR_DECLARE(IPC1, IPC1BITS);
+#define IPC1     sfr_IPC1.w
+#define IPC1bits sfr_IPC1.bits
+
 typedef struct { /* IPC3: AD1IP at bits 4-6 [MEM] */
     uint16_t : 4;
     uint16_t AD1IP : 3;
