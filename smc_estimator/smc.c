@@ -228,8 +228,16 @@ void smc_init(smc_t *s, const smc_params_t *p)
     s->p = p;
     /* The results at rest, once: smc_reset applies them without the cost
      * of a refresh (the slow side computes the same from a reset). */
+    w.dtheta_sum = 0;
+    w.w_alpha = 0;
+    w.w_beta = 0;
     w.ef_alpha = 0;
     w.ef_beta = 0;
+    w.theta_raw = 0;
+    w.epoch = 0U;
+    w.full = false;
+    w.preset = false;
+    w.preset_omega = 0;
     smc_slow_restart(p, &s->slow, 0);
     smc_refresh(p, &s->slow, &w, &s->rest);
     s->rest.valid = false;
