@@ -92,32 +92,6 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
 
 /* ---- pure helpers (mc_internal.h) ------------------------------------------ */
 
-int16_t mc_deadtime_counts(q15_t i)
-{
-    if (i >= MC_DT_BAND_Q15) {
-        return MC_DT_COUNTS;
-    }
-    if (i <= (q15_t)(-MC_DT_BAND_Q15)) {
-        return (int16_t)(-MC_DT_COUNTS);
-    }
-    return (int16_t)(((int32_t)i * MC_DT_SLOPE + (int32_t)0x4000) >> 15);
-}
-
-ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
-{
-    ab_q15_t v;
-    q15_t vb = (vbus < 0) ? 0 : vbus;
-    /* Volts per duty count relative to V_FS, Q12: alpha's (2 da - db - dc)
-     * and beta's (db - dc) factors (the latter sqrt(3) larger). */
-    int32_t ga = ((int32_t)vb * MC_VAPP_K + (int32_t)0x1000) >> 13;          /* <= 85236 */
-    int32_t gb = ((int32_t)vb * MC_VAPP_KB + (int32_t)0x1000) >> 13;         /* <= 147639 */
-    int32_t na = (int32_t)2 * duty[0] - (int32_t)duty[1] - (int32_t)duty[2]; /* |na| <= 4 DMAX */
-    int32_t nb = (int32_t)duty[1] - (int32_t)duty[2];                        /* |nb| <= 2 DMAX */
-    v.alpha = q15_sat((na * ga + (int32_t)0x800) >> 12);
-    v.beta = q15_sat((nb * gb + (int32_t)0x800) >> 12);
-    return v;
-}
-
 /* Both maps run every period: Q15 x Q15 products, written as 16 x 16 -> 32
  * (gcc narrows the 32-bit form too: avr-gcc -O1 emits the same widening
  * multiply for either, so this states the cost rather than changing it). */

@@ -14,26 +14,6 @@
  * saturation of the rounded result.
  */
 
-#define CLARKE_INV_SQRT3_Q16 ((int32_t)37837)  /* round(65536 / sqrt(3)) */
-#define CLARKE_U_MAX         ((int32_t)56755)  /* largest u with beta rounding to 32767 */
-#define CLARKE_U_MIN         ((int32_t)-56756) /* smallest u with beta rounding to -32768 */
-#define CLARKE_ROUND         ((int32_t)0x8000) /* half an LSB of the Q16 product */
-
 Q15_STATIC_ASSERT((long long)CLARKE_U_MAX *CLARKE_INV_SQRT3_Q16 + CLARKE_ROUND <= 0x7FFFFFFFLL &&
                       (long long)CLARKE_U_MIN * CLARKE_INV_SQRT3_Q16 >= -0x7FFFFFFFLL - 1LL,
                   "clarke: u * 1/sqrt(3) must fit int32_t at the clamp");
-
-ab_q15_t clarke_forward(q15_t ia, q15_t ib)
-{
-    ab_q15_t out;
-    int32_t u = (int32_t)ia + (int32_t)2 * (int32_t)ib;
-
-    if (u > CLARKE_U_MAX) {
-        u = CLARKE_U_MAX;
-    } else if (u < CLARKE_U_MIN) {
-        u = CLARKE_U_MIN;
-    }
-    out.alpha = ia;
-    out.beta = (q15_t)((u * CLARKE_INV_SQRT3_Q16 + CLARKE_ROUND) >> 16);
-    return out;
-}

@@ -1,4 +1,4 @@
-/* lpf.c - first-order low-pass filter y += K (x - y) with a 32-bit state. */
+/* lpf.c - first-order low-pass filter: the functions are inline in lpf.h. */
 #include "lpf.h"
 
 /*
@@ -14,21 +14,3 @@
  * with truncating products stops moving once |x - y| < 1 / K LSB (32,768 LSB
  * at K = 1 LSB, 334 LSB at K = Q15(0.003)) and loses a small signal entirely.
  */
-
-void lpf_reset(lpf_t *f, q15_t y0)
-{
-    f->state = q31_from_q15(y0);
-}
-
-q15_t lpf_update(lpf_t *f, q15_t x, q15_t k)
-{
-    if (k <= 0) {
-        return q15_from_q31(f->state);
-    }
-    return q15_dsp_lpf(&f->state, x, k);
-}
-
-q15_t lpf_output(const lpf_t *f)
-{
-    return q15_from_q31(f->state);
-}

@@ -32,8 +32,22 @@ typedef struct {
     q31_t state; /* Q31 */
 } lpf_t;
 
-void lpf_reset(lpf_t *f, q15_t y0);
-q15_t lpf_update(lpf_t *f, q15_t x, q15_t k);
-q15_t lpf_output(const lpf_t *f);
+Q15_INLINE void lpf_reset(lpf_t *f, q15_t y0)
+{
+    f->state = q31_from_q15(y0);
+}
+
+Q15_INLINE q15_t lpf_update(lpf_t *f, q15_t x, q15_t k)
+{
+    if (k <= 0) {
+        return q15_from_q31(f->state);
+    }
+    return q15_dsp_lpf(&f->state, x, k);
+}
+
+Q15_INLINE q15_t lpf_output(const lpf_t *f)
+{
+    return q15_from_q31(f->state);
+}
 
 #endif /* LPF_H */

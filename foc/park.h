@@ -13,13 +13,12 @@
  *   beta  = d sin + q cos
  *   sc: sin/cos of the rotor angle (sincos_compute), Q15; all inputs any
  *   int16 values.
- *   Scaling/overflow: each output is the sum of two Q15 x Q15 products in a
- *   Q31 accumulator (q31_mul_q15, q31_mac_sat / q31_sub_sat: the dsPIC MAC
- *   with SATA = 1), rounded once to nearest (ties up) and saturated by
- *   q15_from_q31. |d| or |q| can reach sqrt(2) of full scale for a vector
- *   outside the unit circle: the result then saturates to the correct side,
- *   never wraps (also with -32768 in sc, where -1 x -1 saturates).
- *   Accuracy (test/foc/test_clarke_park.c, all 65,536 angles x 70 vectors):
+ *   Scaling/overflow: each output is the sum of two Q15 x Q15 products in
+ *   the Q31 accumulator (q15_dsp_mac2_r / q15_dsp_msc2_r: mpy, mac or msc,
+ *   sac.r on the dsPIC), rounded once to nearest (ties up) and saturated. |d| or |q| can reach
+ * sqrt(2) of full scale for a vector outside the unit circle: the result then saturates to the
+ * correct side, never wraps (also with -32768 in sc, where -1 x -1 saturates). Accuracy
+ * (test/foc/test_clarke_park.c, all 65,536 angles x 70 vectors):
  *   <= 0.5 LSB against the exact value with the same sc (measured 0.5000);
  *   against the true angle, inside the unit circle, <= 0.5 + sqrt(2) x 1.5
  *   = 2.62 LSB (measured 2.05 forward, 2.16 inverse). Round trip
@@ -28,7 +27,20 @@
  *   sin^2 + cos^2 != 1 in sincos_compute.
  *   Cost: four 16 x 16 multiplies per call, no division.
  */
-dq_q15_t park_forward(ab_q15_t ab, sincos_q15_t sc);
-ab_q15_t park_inverse(dq_q15_t dq, sincos_q15_t sc);
+Q15_INLINE dq_q15_t park_forward(ab_q15_t ab, sincos_q15_t sc)
+{
+    dq_q15_t out;
+    out.d = q15_dsp_mac2_r(ab.alpha, sc.cos, ab.beta, sc.sin);
+    out.q = q15_dsp_msc2_r(ab.beta, sc.cos, ab.alpha, sc.sin);
+    return out;
+}
+
+Q15_INLINE ab_q15_t park_inverse(dq_q15_t dq, sincos_q15_t sc)
+{
+    ab_q15_t out;
+    out.alpha = q15_dsp_msc2_r(dq.d, sc.cos, dq.q, sc.sin);
+    out.beta = q15_dsp_mac2_r(dq.d, sc.sin, dq.q, sc.cos);
+    return out;
+}
 
 #endif /* PARK_H */

@@ -1,14 +1,6 @@
 /* pi.c - PI controller with Kc anti-windup (AN1078 "PI Control"). */
 #include "pi.h"
 
-#define PI_KP_SHIFT_MAX 7U
-
-void pi_set_limits(pi_t *pi, q15_t out_min, q15_t out_max)
-{
-    pi->p.out_max = out_max;
-    pi->p.out_min = (out_min > out_max) ? out_max : out_min;
-}
-
 void pi_reset(pi_t *pi)
 {
     pi->sum = 0;
@@ -29,24 +21,6 @@ void pi_preset(pi_t *pi, q15_t sum)
 {
     pi->sum = q31_from_q15(sum);
     pi->out = q15_clamp(sum, pi->p.out_min, pi->p.out_max);
-}
-
-q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
-{
-    uint8_t shift = (pi->p.kp_shift > PI_KP_SHIFT_MAX) ? PI_KP_SHIFT_MAX : pi->p.kp_shift;
-    q15_t err = q15_sub_sat(ref, meas);
-    /* U = Sum + Kp 2^shift Err (Q31), formed in 40 bits, then saturated (note 2). */
-    q31_t u = q15_dsp_add_shl(pi->sum, pi->p.kp, err, shift);
-    /* Out = clamp(round(U)). */
-    q15_t out = q15_clamp(q15_from_q31(u), pi->p.out_min, pi->p.out_max);
-    /* Exc = U - Out, rounded to Q15 for the multiplier (note 1): inside the
-     * limits |U - round(U)| <= 0.5 LSB rounds to 0, so Kc acts only while
-     * the output is limited. */
-    q15_t exc = q15_dsp_sub_r(u, out);
-    /* Sum += Ki Err - Kc Exc. */
-    pi->sum = q15_dsp_mac_msc(pi->sum, pi->p.ki, err, pi->p.kc, exc);
-    pi->out = out;
-    return out;
 }
 
 /*

@@ -117,7 +117,7 @@ typedef int16_t angle_q15_t;
 /* ---- saturation --------------------------------------------------------- */
 
 /* Clamp a 32-bit value into q15. */
-static inline q15_t q15_sat(int32_t x)
+Q15_INLINE q15_t q15_sat(int32_t x)
 {
     if (x > (int32_t)Q15_MAX) {
         return Q15_MAX;
@@ -129,7 +129,7 @@ static inline q15_t q15_sat(int32_t x)
 }
 
 /* Clamp x into [lo, hi]; lo <= hi is the caller's contract. */
-static inline q15_t q15_clamp(q15_t x, q15_t lo, q15_t hi)
+Q15_INLINE q15_t q15_clamp(q15_t x, q15_t lo, q15_t hi)
 {
     if (x > hi) {
         return hi;
@@ -143,25 +143,25 @@ static inline q15_t q15_clamp(q15_t x, q15_t lo, q15_t hi)
 /* ---- add, subtract, negate, absolute value (all saturating) ------------- */
 
 /* a + b, saturated to [-32768, 32767]. Exact inside the range. */
-static inline q15_t q15_add_sat(q15_t a, q15_t b)
+Q15_INLINE q15_t q15_add_sat(q15_t a, q15_t b)
 {
     return q15_sat((int32_t)a + (int32_t)b);
 }
 
 /* a - b, saturated. */
-static inline q15_t q15_sub_sat(q15_t a, q15_t b)
+Q15_INLINE q15_t q15_sub_sat(q15_t a, q15_t b)
 {
     return q15_sat((int32_t)a - (int32_t)b);
 }
 
 /* -a, saturated: -(-32768) gives 32767. */
-static inline q15_t q15_neg_sat(q15_t a)
+Q15_INLINE q15_t q15_neg_sat(q15_t a)
 {
     return q15_sat(-(int32_t)a);
 }
 
 /* |a|, saturated: |-32768| gives 32767. */
-static inline q15_t q15_abs_sat(q15_t a)
+Q15_INLINE q15_t q15_abs_sat(q15_t a)
 {
     return (a < 0) ? q15_neg_sat(a) : a;
 }
@@ -170,14 +170,14 @@ static inline q15_t q15_abs_sat(q15_t a)
 
 /* a * b in Q15, rounded to nearest (ties up). Max error 0.5 LSB.
  * Saturates only for -1 * -1 -> 0x7FFF. (mpy + sac.r on the dsPIC.) */
-static inline q15_t q15_mul(q15_t a, q15_t b)
+Q15_INLINE q15_t q15_mul(q15_t a, q15_t b)
 {
     return q15_dsp_mpy_r(a, b);
 }
 
 /* a * b in Q15, truncated toward -infinity. Error in (-1, 0] LSB.
  * Saturates only for -1 * -1 -> 0x7FFF. */
-static inline q15_t q15_mul_trunc(q15_t a, q15_t b)
+Q15_INLINE q15_t q15_mul_trunc(q15_t a, q15_t b)
 {
     return q15_sat(q15_dsp_mulss(a, b) >> 15);
 }
@@ -185,7 +185,7 @@ static inline q15_t q15_mul_trunc(q15_t a, q15_t b)
 /* ---- shifts ------------------------------------------------------------- */
 
 /* a * 2^n for n in 0..15, saturated. */
-static inline q15_t q15_shl_sat(q15_t a, uint8_t n)
+Q15_INLINE q15_t q15_shl_sat(q15_t a, uint8_t n)
 {
     int32_t wide = (int32_t)a;
     int32_t lim = (int32_t)(0x7FFFL >> n);
@@ -199,13 +199,13 @@ static inline q15_t q15_shl_sat(q15_t a, uint8_t n)
 }
 
 /* a / 2^n for n in 0..15, truncated toward -infinity (arithmetic shift). */
-static inline q15_t q15_shr(q15_t a, uint8_t n)
+Q15_INLINE q15_t q15_shr(q15_t a, uint8_t n)
 {
     return (q15_t)(a >> n);
 }
 
 /* a / 2^n for n in 1..15, rounded to nearest (ties up). Cannot overflow. */
-static inline q15_t q15_shr_round(q15_t a, uint8_t n)
+Q15_INLINE q15_t q15_shr_round(q15_t a, uint8_t n)
 {
     return (q15_t)(((int32_t)a + (int32_t)(1L << (n - 1U))) >> n);
 }
@@ -214,7 +214,7 @@ static inline q15_t q15_shr_round(q15_t a, uint8_t n)
 
 /* a + b, saturated to the 32-bit range (the accumulator with SATA = 1,
  * ACCSAT = 0). Computed without signed overflow. */
-static inline q31_t q31_add_sat(q31_t a, q31_t b)
+Q15_INLINE q31_t q31_add_sat(q31_t a, q31_t b)
 {
     uint32_t sum = (uint32_t)a + (uint32_t)b;
     /* Overflow iff a and b share a sign and the sum's sign differs. */
@@ -225,7 +225,7 @@ static inline q31_t q31_add_sat(q31_t a, q31_t b)
 }
 
 /* a - b, saturated to the 32-bit range. */
-static inline q31_t q31_sub_sat(q31_t a, q31_t b)
+Q15_INLINE q31_t q31_sub_sat(q31_t a, q31_t b)
 {
     uint32_t diff = (uint32_t)a - (uint32_t)b;
     /* Overflow iff a and b differ in sign and the result's sign differs from a. */
@@ -236,14 +236,14 @@ static inline q31_t q31_sub_sat(q31_t a, q31_t b)
 }
 
 /* Q15 -> Q31, exact (x * 2^16). */
-static inline q31_t q31_from_q15(q15_t x)
+Q15_INLINE q31_t q31_from_q15(q15_t x)
 {
     return (q31_t)((uint32_t)(int32_t)x << 16);
 }
 
 /* a * b as a Q31 (the fractional product, mulss << 1). Exact except that
  * -1 * -1 saturates to Q31_MAX. */
-static inline q31_t q31_mul_q15(q15_t a, q15_t b)
+Q15_INLINE q31_t q31_mul_q15(q15_t a, q15_t b)
 {
     int32_t p = q15_dsp_mulss(a, b);
     if (p == 0x40000000L) {
@@ -253,13 +253,13 @@ static inline q31_t q31_mul_q15(q15_t a, q15_t b)
 }
 
 /* acc + a * b in Q31, saturated (one MAC with SATA = 1). */
-static inline q31_t q31_mac_sat(q31_t acc, q15_t a, q15_t b)
+Q15_INLINE q31_t q31_mac_sat(q31_t acc, q15_t a, q15_t b)
 {
     return q31_add_sat(acc, q31_mul_q15(a, b));
 }
 
 /* Q31 -> Q15, rounded to nearest (ties up), saturated (sacr). */
-static inline q15_t q15_from_q31(q31_t x)
+Q15_INLINE q15_t q15_from_q31(q31_t x)
 {
     if (x >= (int32_t)0x7FFF8000L) {
         return Q15_MAX;
@@ -268,7 +268,7 @@ static inline q15_t q15_from_q31(q31_t x)
 }
 
 /* Q31 -> Q15, truncated toward -infinity (sac). */
-static inline q15_t q15_from_q31_trunc(q31_t x)
+Q15_INLINE q15_t q15_from_q31_trunc(q31_t x)
 {
     return (q15_t)(x >> 16);
 }
@@ -276,13 +276,13 @@ static inline q15_t q15_from_q31_trunc(q31_t x)
 /* ---- binary angles ------------------------------------------------------ */
 
 /* a + b modulo one turn. */
-static inline angle_q15_t angle_add(angle_q15_t a, angle_q15_t b)
+Q15_INLINE angle_q15_t angle_add(angle_q15_t a, angle_q15_t b)
 {
     return (angle_q15_t)(int16_t)(uint16_t)((uint16_t)a + (uint16_t)b);
 }
 
 /* a - b modulo one turn, in [-pi, pi): the shortest signed difference. */
-static inline angle_q15_t angle_sub(angle_q15_t a, angle_q15_t b)
+Q15_INLINE angle_q15_t angle_sub(angle_q15_t a, angle_q15_t b)
 {
     return (angle_q15_t)(int16_t)(uint16_t)((uint16_t)a - (uint16_t)b);
 }

@@ -5,6 +5,16 @@
 
 #include <stdint.h>
 
+/* The small functions of the 50 us path are defined in their headers with
+ * Q15_INLINE (as CMSIS-DSP does for its Park, Clarke and PID): XC16 inlines
+ * them at every optimisation level (always_inline survives the -O1 and -Os
+ * that switch ordinary inlining off), the PC build leaves it to gcc. */
+#if defined(__XC16__)
+#define Q15_INLINE static inline __attribute__((always_inline))
+#else
+#define Q15_INLINE static inline
+#endif
+
 /*
  * This is the only place the core touches a compiler intrinsic. Every
  * function has two bodies that must return the same bits for every input:
@@ -61,7 +71,7 @@
 
 /* ---- portable model of the accumulator -------------------------------------- */
 
-static inline int32_t q15_dsp_sat31_(int64_t v)
+Q15_INLINE int32_t q15_dsp_sat31_(int64_t v)
 {
     if (v > (int64_t)INT32_MAX) {
         return INT32_MAX;
@@ -73,7 +83,7 @@ static inline int32_t q15_dsp_sat31_(int64_t v)
 }
 
 /* sac.r: round the Q31 part to Q15 (ties up), saturate to 16 bits. */
-static inline int16_t q15_dsp_round_(int64_t v)
+Q15_INLINE int16_t q15_dsp_round_(int64_t v)
 {
     int64_t r = (v + 0x8000) >> 16;
     if (r > 32767) {
@@ -86,7 +96,7 @@ static inline int16_t q15_dsp_round_(int64_t v)
 }
 
 /* The fractional product 2ab, exact (2^31 for -1 x -1). */
-static inline int64_t q15_dsp_frac_(int16_t a, int16_t b)
+Q15_INLINE int64_t q15_dsp_frac_(int16_t a, int16_t b)
 {
     return 2 * (int64_t)((int32_t)a * (int32_t)b);
 }
@@ -109,7 +119,7 @@ typedef union {
     uint16_t w[2]; /* little-endian: w[0] low, w[1] high */
 } q15_dsp_w32_;
 
-static inline void q15_dsp_load_a_(int32_t v)
+Q15_INLINE void q15_dsp_load_a_(int32_t v)
 {
     q15_dsp_w32_ u;
     u.l = v;
@@ -117,7 +127,7 @@ static inline void q15_dsp_load_a_(int32_t v)
     Q15_DSP_ACCAL_ = u.w[0];
 }
 
-static inline int32_t q15_dsp_read_a_(void)
+Q15_INLINE int32_t q15_dsp_read_a_(void)
 {
     q15_dsp_w32_ u;
     u.w[0] = (uint16_t)__builtin_ACCL(q15_dsp_acca_);
@@ -125,47 +135,47 @@ static inline int32_t q15_dsp_read_a_(void)
     return u.l;
 }
 
-static inline int32_t q15_dsp_mulss(int16_t a, int16_t b)
+Q15_INLINE int32_t q15_dsp_mulss(int16_t a, int16_t b)
 {
     return __builtin_mulss(a, b);
 }
 
-static inline int16_t q15_dsp_divsd(int32_t num, int16_t den)
+Q15_INLINE int16_t q15_dsp_divsd(int32_t num, int16_t den)
 {
     return __builtin_divsd(num, den);
 }
 
-static inline uint16_t q15_dsp_divud(uint32_t num, uint16_t den)
+Q15_INLINE uint16_t q15_dsp_divud(uint32_t num, uint16_t den)
 {
     return __builtin_divud(num, den);
 }
 
-static inline uint8_t q15_dsp_clz16(uint16_t v)
+Q15_INLINE uint8_t q15_dsp_clz16(uint16_t v)
 {
     return (uint8_t)(__builtin_ff1l(v) - 1U);
 }
 
-static inline int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
+Q15_INLINE int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
 {
     q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-static inline int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
 {
     q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
     q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-static inline int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
 {
     q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
     q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-static inline int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
 {
     q15_dsp_accb_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
     q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
@@ -174,7 +184,7 @@ static inline int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n
     return q15_dsp_read_a_();
 }
 
-static inline int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)
 {
     q15_dsp_accb_ = __builtin_lac(q, 0);
     q15_dsp_load_a_(u);
@@ -182,7 +192,7 @@ static inline int16_t q15_dsp_sub_r(int32_t u, int16_t q)
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-static inline int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
 {
     q15_dsp_load_a_(s);
     q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, a, b, 0, 0, 0, 0, 0, 0, 0, 0);
@@ -190,7 +200,7 @@ static inline int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c
     return q15_dsp_read_a_();
 }
 
-static inline int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
+Q15_INLINE int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
 {
     q15_dsp_w32_ u;
     u.l = *y;
@@ -207,23 +217,23 @@ static inline int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
 
 #else
 
-static inline int32_t q15_dsp_mulss(int16_t a, int16_t b)
+Q15_INLINE int32_t q15_dsp_mulss(int16_t a, int16_t b)
 {
     return (int32_t)a * (int32_t)b;
 }
 
-static inline int16_t q15_dsp_divsd(int32_t num, int16_t den)
+Q15_INLINE int16_t q15_dsp_divsd(int32_t num, int16_t den)
 {
     /* C99 division truncates toward zero, as div.sd does. */
     return (int16_t)(num / (int32_t)den);
 }
 
-static inline uint16_t q15_dsp_divud(uint32_t num, uint16_t den)
+Q15_INLINE uint16_t q15_dsp_divud(uint32_t num, uint16_t den)
 {
     return (uint16_t)(num / (uint32_t)den);
 }
 
-static inline uint8_t q15_dsp_clz16(uint16_t v)
+Q15_INLINE uint8_t q15_dsp_clz16(uint16_t v)
 {
     uint8_t n = 0U;
     if (v < 0x0100U) {
@@ -244,41 +254,41 @@ static inline uint8_t q15_dsp_clz16(uint16_t v)
     return n;
 }
 
-static inline int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
+Q15_INLINE int16_t q15_dsp_mpy_r(int16_t a, int16_t b)
 {
     return q15_dsp_round_(q15_dsp_sat31_(q15_dsp_frac_(a, b)));
 }
 
-static inline int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int16_t q15_dsp_mac2_r(int16_t a, int16_t b, int16_t c, int16_t d)
 {
     int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
     return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d)));
 }
 
-static inline int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
 {
     int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
     return q15_dsp_round_(q15_dsp_sat31_(acc - q15_dsp_frac_(c, d)));
 }
 
-static inline int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
 {
     /* |2ab 2^n| <= 2^38: the product shifted in B without loss (n <= 7). */
     return q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b) * ((int64_t)1 << n));
 }
 
-static inline int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)
 {
     return q15_dsp_round_(q15_dsp_sat31_((int64_t)u - (int64_t)q * 65536));
 }
 
-static inline int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
+Q15_INLINE int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
 {
     int64_t acc = q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b));
     return q15_dsp_sat31_(acc - q15_dsp_frac_(c, d));
 }
 
-static inline int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
+Q15_INLINE int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
 {
     int32_t hi = *y >> 16; /* arithmetic (q15.h) */
     uint16_t lo = (uint16_t)((uint32_t)*y & 0xFFFFU);

@@ -25,12 +25,7 @@
  * int16_t), no division, no float.
  */
 
-#define SINCOS_INDEX_BITS 7U /* 128 intervals per quarter turn */
-#define SINCOS_FRAC_BITS  7U /* 14 bits of quadrant angle - 7 index bits */
-#define SINCOS_QUARTER    0x4000U
-#define SINCOS_FRAC_MASK  ((1U << SINCOS_FRAC_BITS) - 1U)
-
-static const q15_t sincos_table[(1U << SINCOS_INDEX_BITS) + 1U] = {
+const q15_t sincos_table[SINCOS_TABLE_SIZE] = {
     0,     402,   804,   1206,  1608,  2009,  2411,  2811,  3212,  3612,  4011,  4410,  4808,
     5205,  5602,  5998,  6393,  6787,  7180,  7571,  7962,  8351,  8740,  9127,  9512,  9896,
     10279, 10660, 11039, 11417, 11793, 12167, 12540, 12910, 13279, 13646, 14010, 14373, 14733,
@@ -42,39 +37,3 @@ static const q15_t sincos_table[(1U << SINCOS_INDEX_BITS) + 1U] = {
     31357, 31471, 31581, 31686, 31786, 31881, 31972, 32058, 32138, 32214, 32286, 32352, 32413,
     32470, 32522, 32568, 32610, 32647, 32679, 32706, 32729, 32746, 32758, 32766, 32767,
 };
-
-/* sin of a binary angle given as uint16_t (one turn = 2^16). */
-static q15_t sincos_sin_u16(uint16_t a)
-{
-    uint16_t quadrant = (uint16_t)(a >> 14);
-    uint16_t r = (uint16_t)(a & (SINCOS_QUARTER - 1U)); /* 0..2^14 - 1 */
-    uint16_t idx;
-    uint16_t frac;
-    int16_t mag;
-
-    if ((quadrant & 1U) != 0U) {
-        r = (uint16_t)(SINCOS_QUARTER - r); /* 1..2^14: mirror about pi/2 */
-    }
-    idx = (uint16_t)(r >> SINCOS_FRAC_BITS);
-    frac = (uint16_t)(r & SINCOS_FRAC_MASK);
-    mag = sincos_table[idx];
-    if (frac != 0U) {
-        /* idx <= 127 here (r = 2^14 has frac 0), so idx + 1 is in the table.
-         * step in 0..402, step * frac <= 51,054: positive, rounded ties up. */
-        int32_t step = (int32_t)sincos_table[idx + 1U] - (int32_t)mag;
-        int32_t add =
-            (step * (int32_t)frac + (int32_t)(1U << (SINCOS_FRAC_BITS - 1U))) >> SINCOS_FRAC_BITS;
-        mag = (int16_t)((int32_t)mag + add); /* between two entries: <= 32767 */
-    }
-    return ((quadrant & 2U) != 0U) ? (q15_t)(-mag) : mag;
-}
-
-sincos_q15_t sincos_compute(angle_q15_t theta)
-{
-    sincos_q15_t out;
-    uint16_t a = (uint16_t)theta;
-
-    out.sin = sincos_sin_u16(a);
-    out.cos = sincos_sin_u16((uint16_t)(a + SINCOS_QUARTER)); /* cos x = sin(x + pi/2) */
-    return out;
-}

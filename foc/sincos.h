@@ -21,6 +21,50 @@
  *   entries per turn) gives about 10 LSB.
  *   Cost: four table reads and two 16 x 16 multiplies, no division.
  */
-sincos_q15_t sincos_compute(angle_q15_t theta);
+#define SINCOS_INDEX_BITS 7U /* 128 intervals per quarter turn */
+#define SINCOS_FRAC_BITS  7U /* 14 bits of quadrant angle - 7 index bits */
+#define SINCOS_QUARTER    0x4000U
+#define SINCOS_FRAC_MASK  ((1U << SINCOS_FRAC_BITS) - 1U)
+#define SINCOS_TABLE_SIZE ((1U << SINCOS_INDEX_BITS) + 1U)
+
+/* round(32768 sin(i pi / 256)), i = 0..128 (sincos.c). */
+extern const q15_t sincos_table[SINCOS_TABLE_SIZE];
+
+/* sin of a binary angle given as uint16_t (one turn = 2^16). */
+Q15_INLINE q15_t sincos_sin_u16(uint16_t a)
+{
+    uint16_t quadrant = (uint16_t)(a >> 14);
+    uint16_t r = (uint16_t)(a & (SINCOS_QUARTER - 1U)); /* 0..2^14 - 1 */
+    uint16_t idx;
+    uint16_t frac;
+    int16_t mag;
+
+    if ((quadrant & 1U) != 0U) {
+        r = (uint16_t)(SINCOS_QUARTER - r); /* 1..2^14: mirror about pi/2 */
+    }
+    idx = (uint16_t)(r >> SINCOS_FRAC_BITS);
+    frac = (uint16_t)(r & SINCOS_FRAC_MASK);
+    mag = sincos_table[idx];
+    if (frac != 0U) {
+        /* idx <= 127 here (r = 2^14 has frac 0), so idx + 1 is in the table.
+         * step in 0..402, step * frac + 64 <= 51,118: an unsigned 16-bit
+         * product, rounded ties up. */
+        uint16_t step = (uint16_t)(sincos_table[idx + 1U] - mag);
+        uint16_t add = (uint16_t)((uint16_t)(step * frac + (1U << (SINCOS_FRAC_BITS - 1U))) >>
+                                  SINCOS_FRAC_BITS);
+        mag = (int16_t)(mag + (int16_t)add); /* between two entries: <= 32767 */
+    }
+    return ((quadrant & 2U) != 0U) ? (q15_t)(-mag) : mag;
+}
+
+Q15_INLINE sincos_q15_t sincos_compute(angle_q15_t theta)
+{
+    sincos_q15_t out;
+    uint16_t a = (uint16_t)theta;
+
+    out.sin = sincos_sin_u16(a);
+    out.cos = sincos_sin_u16((uint16_t)(a + SINCOS_QUARTER)); /* cos x = sin(x + pi/2) */
+    return out;
+}
 
 #endif /* SINCOS_H */

@@ -3,6 +3,7 @@
 #define VLIMIT_H
 
 #include "frames.h"
+#include "q15_sqrt.h"
 
 /*
  * AN1078 limits Vd first (to +-Vmax, e.g. 0.95 of the SVGen full scale) and
@@ -19,6 +20,16 @@
  * measured 0.5000 max, 0.12 mean over 136 Vmax x 21,846 Vd
  * (test/foc/test_vlimit.c).
  */
-q15_t vlimit_vq_max(q15_t vd, q15_t vmax);
+Q15_INLINE q15_t vlimit_vq_max(q15_t vd, q15_t vmax)
+{
+    if (vmax <= 0) {
+        return 0;
+    }
+    q15_t d = q15_clamp(vd, (q15_t)(-vmax), vmax);
+    /* Vmax^2 - Vd^2 in Q30, exact, 0..(2^15 - 1)^2; its integer square root
+     * is Q15 and <= vmax (vlimit.c note 1). */
+    int32_t n = q15_dsp_mulss(vmax, vmax) - q15_dsp_mulss(d, d);
+    return (q15_t)q15_isqrt_u32((uint32_t)n);
+}
 
 #endif /* VLIMIT_H */

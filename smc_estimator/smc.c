@@ -46,7 +46,7 @@ static int32_t smc_shl32(int32_t x, uint8_t n)
 }
 
 /* One axis of the digitised model: F i + G (v - e - z), rounded, saturated. */
-static q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15_t z)
+Q15_INLINE q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15_t z)
 {
     /* v is Q15 of V_FS, e and z Q15 of E_FS = 2 V_FS: v / 2 rounded. */
     q15_t u = q15_sat((((int32_t)v + 1) >> 1) - (int32_t)e - (int32_t)z);
@@ -56,7 +56,7 @@ static q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15_t z
 }
 
 /* The switching function: Kslide * sat(err / MaxSMCError). */
-static q15_t smc_switch(const smc_params_t *p, int32_t err)
+Q15_INLINE q15_t smc_switch(const smc_params_t *p, int32_t err)
 {
     int32_t z;
     uint8_t r;
@@ -287,7 +287,7 @@ void smc_preset_speed(smc_t *s, q15_t omega)
  * depend on K. Q15 of E_FS times c (> 0: the angle is what matters),
  * saturated. c is Q12 (smc_update forms it once for both axes).
  */
-static q15_t smc_emf_raw(const smc_params_t *p, q15_t c, q15_t z, q15_t z_prev, q15_t e_prev)
+Q15_INLINE q15_t smc_emf_raw(const smc_params_t *p, q15_t c, q15_t z, q15_t z_prev, q15_t e_prev)
 {
     int32_t w = (int32_t)z - ((q15_dsp_mulss(p->tf_b2, z_prev) + (int32_t)0x4000) >> 15) +
                 ((q15_dsp_mulss(c, e_prev) + (int32_t)0x800) >> 12);
