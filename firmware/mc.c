@@ -87,8 +87,9 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
  * executes stores in order. */
 #define MC_BARRIER() __asm__ __volatile__("" ::: "memory")
 
-/* sqrt(3) / 2 in Q15 (28378), for the phase currents from alpha/beta. */
-#define MC_SQRT3_2 Q15(0.86602540378443865)
+/* sqrt(3) / 2 and -1/2 in Q15, for the phase currents from alpha/beta. */
+#define MC_SQRT3_2    Q15(0.86602540378443865)
+#define MC_MINUS_HALF Q15(-0.5)
 
 /* ---- pure helpers (mc_internal.h) ------------------------------------------ */
 
@@ -436,12 +437,10 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     /* Phase currents predicted at the same angle: the signs the dead time
      * will see (measured d/q current, rotated). */
     ab_q15_t ip = park_inverse(mc->i_dq, scv);
-    int32_t half_a = -(int32_t)ip.alpha * (int32_t)16384;
-    int32_t b_s3 = (int32_t)ip.beta * MC_SQRT3_2; /* beta sqrt(3)/2, Q15 x Q15 */
     q15_t iph[3];
     iph[0] = ip.alpha;
-    iph[1] = q15_sat((half_a + b_s3 + (int32_t)0x4000) >> 15);
-    iph[2] = q15_sat((half_a - b_s3 + (int32_t)0x4000) >> 15);
+    iph[1] = q15_dsp_mac2_r(ip.alpha, MC_MINUS_HALF, ip.beta, MC_SQRT3_2); /* -a/2 + b sqrt3/2 */
+    iph[2] = q15_dsp_msc2_r(ip.alpha, MC_MINUS_HALF, ip.beta, MC_SQRT3_2); /* -a/2 - b sqrt3/2 */
 
     int16_t eff[3];
     for (uint8_t k = 0U; k < 3U; k++) {

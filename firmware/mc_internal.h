@@ -21,7 +21,7 @@ Q15_INLINE int16_t mc_deadtime_counts(q15_t i)
     if (i <= (q15_t)(-MC_DT_BAND_Q15)) {
         return (int16_t)(-MC_DT_COUNTS);
     }
-    return (int16_t)(((int32_t)i * MC_DT_SLOPE + (int32_t)0x4000) >> 15);
+    return q15_mul(i, MC_DT_SLOPE); /* round(i slope / 2^15), |.| < MC_DT_COUNTS + 1 */
 }
 
 /*

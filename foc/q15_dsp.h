@@ -58,6 +58,13 @@
  *   q15_dsp_msc2_r(a, b, c, d)   round(sat31(sat31(2ab) - 2cd))
  *   q15_dsp_add_shl(s, a, b, n)  sat31(s + 2ab 2^n), n in 0..7: the sum is
  *                                formed in 40 bits before it saturates
+ *   q15_dsp_mac_shl_r(a, b, c, d, n)
+ *                                round(sat31(sat31(2ab) + 2cd 2^n)): a Q15
+ *                                sum with a coefficient c 2^n >= 1 (n in
+ *                                0..15, and |2cd 2^n| < 2^39)
+ *   q15_dsp_lac_mac_shl_r(x, a, b, c, d, n)
+ *                                round(sat31(sat31(x 2^16 + 2ab) + 2cd 2^n)),
+ *                                the same with a Q15 term x
  *   q15_dsp_sub_r(u, q)          round(sat31(u - q 2^16))
  *   q15_dsp_mac_msc(s, a, b, c, d)  sat31(sat31(s + 2ab) - 2cd)
  *   q15_dsp_lpf(y, x, k)         *y = *y + k (x 2^16 - *y) / 2^15 on a Q31
@@ -184,6 +191,26 @@ Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
     return q15_dsp_read_a_();
 }
 
+Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)
+{
+    q15_dsp_accb_ = __builtin_mpy(c, d, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
+    q15_dsp_acca_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_t c, int16_t d,
+                                         uint8_t n)
+{
+    q15_dsp_accb_ = __builtin_mpy(c, d, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
+    q15_dsp_acca_ = __builtin_lac(x, 0);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, a, b, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
 Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)
 {
     q15_dsp_accb_ = __builtin_lac(q, 0);
@@ -275,6 +302,19 @@ Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
 {
     /* |2ab 2^n| <= 2^38: the product shifted in B without loss (n <= 7). */
     return q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b) * ((int64_t)1 << n));
+}
+
+Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)
+{
+    int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
+    return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d) * ((int64_t)1 << n)));
+}
+
+Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_t c, int16_t d,
+                                         uint8_t n)
+{
+    int64_t acc = q15_dsp_sat31_((int64_t)x * 65536 + q15_dsp_frac_(a, b));
+    return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d) * ((int64_t)1 << n)));
 }
 
 Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)

@@ -6,12 +6,13 @@
 /*
  * Arithmetic of the per-period path (smc_update), per axis:
  *
- *  model   u = sat16(v/2 - e - z) (E_FS = 2 V_FS); acc = (F i) >> g_shift + G_mant u, both
- *          16 x 16 products, scale 2^(30 - g_shift); |F i| < 2^30 and
- *          |G_mant u| <= 2^30, so the sum fits 32 bits; i_est = sat16 of
- *          acc rounded (ties up) to Q15. Saturating u at full scale only acts
- *          far outside the sliding band (|v - e - z| > E_FS = 2 V_FS),
- *          where the correction is at +-Kslide anyway.
+ *  model   u = sat16(v/2 - e - z) (E_FS = 2 V_FS); i_est = F i + G_mant u
+ *          2^g_shift in the accumulator (q15_dsp_mac_shl_r: the second
+ *          product shifted in the unsaturated B, |G_mant u 2^g_shift| <=
+ *          2^37), saturated at Q31, rounded once (ties up) to Q15.
+ *          Saturating u at full scale only acts far outside the sliding
+ *          band (|v - e - z| > E_FS = 2 V_FS), where the correction is at
+ *          +-Kslide anyway.
  *  switch  err = i_est - i_meas (32 bits); outside the band +-Kslide;
  *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
  *          +-Kslide (rounding could step one LSB past it).
@@ -50,29 +51,26 @@ Q15_INLINE q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15
 {
     /* v is Q15 of V_FS, e and z Q15 of E_FS = 2 V_FS: v / 2 rounded. */
     q15_t u = q15_sat((((int32_t)v + 1) >> 1) - (int32_t)e - (int32_t)z);
-    uint8_t r = (uint8_t)(15U - p->g_shift); /* 8..15 */
-    int32_t acc = (q15_dsp_mulss(p->f, i) >> p->g_shift) + q15_dsp_mulss(p->g, u);
-    return q15_sat((acc + (int32_t)(1L << (r - 1U))) >> r);
+    /* F i + G u with G = g 2^g_shift, one rounding (both products formed in
+     * the accumulator, the second shifted in B). */
+    return q15_dsp_mac_shl_r(p->f, i, p->g, u, p->g_shift);
 }
 
 /* The switching function: Kslide * sat(err / MaxSMCError). */
 Q15_INLINE q15_t smc_switch(const smc_params_t *p, int32_t err)
 {
-    int32_t z;
-    uint8_t r;
+    q15_t z;
     if (err >= (int32_t)p->max_err) {
         return p->kslide;
     }
     if (err <= -(int32_t)p->max_err) {
         return (q15_t)(-p->kslide);
     }
-    /* |err| < max_err <= 32767: fits int16. */
-    z = q15_dsp_mulss(p->kz, (int16_t)err);
-    r = (uint8_t)(15U - p->kz_shift);
-    if (r > 0U) {
-        z = (z + (int32_t)(1L << (r - 1U))) >> r;
-    }
-    return q15_clamp(q15_sat(z), (q15_t)(-p->kslide), p->kslide);
+    /* |err| < max_err <= 32767 fits int16; inside the band |Kz err| < Kslide,
+     * so Kz 2^kz_shift err stays below 2^31 in B. Rounding can step one LSB
+     * past Kslide: clamped. */
+    z = q15_dsp_mac_shl_r(0, 0, p->kz, (int16_t)err, p->kz_shift);
+    return q15_clamp(z, (q15_t)(-p->kslide), p->kslide);
 }
 
 /*
@@ -289,9 +287,9 @@ void smc_preset_speed(smc_t *s, q15_t omega)
  */
 Q15_INLINE q15_t smc_emf_raw(const smc_params_t *p, q15_t c, q15_t z, q15_t z_prev, q15_t e_prev)
 {
-    int32_t w = (int32_t)z - ((q15_dsp_mulss(p->tf_b2, z_prev) + (int32_t)0x4000) >> 15) +
-                ((q15_dsp_mulss(c, e_prev) + (int32_t)0x800) >> 12);
-    return q15_sat(w);
+    /* z - p z_prev + c e_prev (c Q12: the product shifted 3 more), one
+     * rounding, saturated. */
+    return q15_dsp_lac_mac_shl_r(z, q15_neg_sat(p->tf_b2), z_prev, c, e_prev, 3U);
 }
 
 void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
