@@ -40,7 +40,7 @@ void pi_preset(pi_t *pi, q15_t sum)
  *
  * 2. U. Kp Err 2^shift is formed in the dsPIC's B accumulator, which runs
  *    unsaturated (8 guard bits: |2 Kp Err 2^7| <= 2^38), and added to Sum in
- *    A, which saturates at the Q31 range only then (q15_dsp_add_shl). A
+ *    A, which saturates at the Q31 range only then (q15_dsp_pi). A
  *    separately saturated P term would be wrong: Sum = 0.6 plus a true P
  *    term of -1.5 must give -0.9, not -0.4.
  */

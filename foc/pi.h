@@ -84,16 +84,10 @@ Q15_INLINE q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
 {
     uint8_t shift = (pi->p.kp_shift > PI_KP_SHIFT_MAX) ? PI_KP_SHIFT_MAX : pi->p.kp_shift;
     q15_t err = q15_sub_sat(ref, meas);
-    /* U = Sum + Kp 2^shift Err (Q31), formed in 40 bits, then saturated (pi.c note 2). */
-    q31_t u = q15_dsp_add_shl(pi->sum, pi->p.kp, err, shift);
-    /* Out = clamp(round(U)). */
-    q15_t out = q15_clamp(q15_from_q31(u), pi->p.out_min, pi->p.out_max);
-    /* Exc = U - Out, rounded to Q15 for the multiplier: inside the
-     * limits |U - round(U)| <= 0.5 LSB rounds to 0, so Kc acts only while
-     * the output is limited (pi.c note 1). */
-    q15_t exc = q15_dsp_sub_r(u, out);
-    /* Sum += Ki Err - Kc Exc. */
-    pi->sum = q15_dsp_mac_msc(pi->sum, pi->p.ki, err, pi->p.kc, exc);
+    /* U in 40 bits, Out clamped, Exc rounded for the multiplier, the
+     * integral updated: q15_dsp_pi (pi.c notes 1 and 2). */
+    q15_t out = q15_dsp_pi(&pi->sum, err, pi->p.kp, shift, pi->p.ki, pi->p.kc, pi->p.out_min,
+                           pi->p.out_max);
     pi->out = out;
     return out;
 }

@@ -142,16 +142,17 @@ Q15_INLINE q15_t q15_clamp(q15_t x, q15_t lo, q15_t hi)
 
 /* ---- add, subtract, negate, absolute value (all saturating) ------------- */
 
-/* a + b, saturated to [-32768, 32767]. Exact inside the range. */
+/* a + b, saturated to [-32768, 32767]. Exact inside the range. (lac, lac,
+ * add, sac on the dsPIC.) */
 Q15_INLINE q15_t q15_add_sat(q15_t a, q15_t b)
 {
-    return q15_sat((int32_t)a + (int32_t)b);
+    return q15_dsp_add_sat(a, b);
 }
 
 /* a - b, saturated. */
 Q15_INLINE q15_t q15_sub_sat(q15_t a, q15_t b)
 {
-    return q15_sat((int32_t)a - (int32_t)b);
+    return q15_dsp_sub_sat(a, b);
 }
 
 /* -a, saturated: -(-32768) gives 32767. */

@@ -56,8 +56,9 @@
  *   q15_dsp_mpy_r(a, b)          round(sat31(2ab)): q15_mul, mpy + sac.r
  *   q15_dsp_mac2_r(a, b, c, d)   round(sat31(sat31(2ab) + 2cd))
  *   q15_dsp_msc2_r(a, b, c, d)   round(sat31(sat31(2ab) - 2cd))
- *   q15_dsp_add_shl(s, a, b, n)  sat31(s + 2ab 2^n), n in 0..7: the sum is
- *                                formed in 40 bits before it saturates
+ *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
+ *                                sat16(a + b), sat16(a - b): lac, lac, add or
+ *                                sub, sac
  *   q15_dsp_mac_shl_r(a, b, c, d, n)
  *                                round(sat31(sat31(2ab) + 2cd 2^n)): a Q15
  *                                sum with a coefficient c 2^n >= 1 (n in
@@ -65,8 +66,14 @@
  *   q15_dsp_lac_mac_shl_r(x, a, b, c, d, n)
  *                                round(sat31(sat31(x 2^16 + 2ab) + 2cd 2^n)),
  *                                the same with a Q15 term x
- *   q15_dsp_sub_r(u, q)          round(sat31(u - q 2^16))
- *   q15_dsp_mac_msc(s, a, b, c, d)  sat31(sat31(s + 2ab) - 2cd)
+ *   q15_dsp_pi(s, e, kp, n, ki, kc, lo, hi)
+ *                                AN1078's PI step on the Q31 integral *s
+ *                                (foc/pi.h has the equations): U = sat31(*s
+ *                                + 2 kp e 2^n) formed in 40 bits (n in
+ *                                0..7), Out = clamp(round(U), lo, hi),
+ *                                Exc = round(sat31(U - Out 2^16)),
+ *                                *s = sat31(sat31(*s + 2 ki e) - 2 kc Exc);
+ *                                returns Out
  *   q15_dsp_lpf(y, x, k)         *y = *y + k (x 2^16 - *y) / 2^15 on a Q31
  *                                state, k in 0..32767 (note 1); returns the
  *                                new state rounded to Q15
@@ -182,13 +189,20 @@ Q15_INLINE int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 {
-    q15_dsp_accb_ = __builtin_mpy(a, b, 0, 0, 0, 0, 0, 0);
-    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
-    q15_dsp_load_a_(s);
-    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_); /* A = A + B, saturating */
-    return q15_dsp_read_a_();
+    q15_dsp_accb_ = __builtin_lac(b, 0);
+    q15_dsp_acca_ = __builtin_lac(a, 0);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_);
+    return __builtin_sac(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
+{
+    q15_dsp_accb_ = __builtin_lac(b, 0);
+    q15_dsp_acca_ = __builtin_lac(a, 0);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
+    return __builtin_sac(q15_dsp_acca_, 0);
 }
 
 Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)
@@ -211,20 +225,25 @@ Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
-Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+Q15_INLINE int16_t q15_dsp_pi(int32_t *s, int16_t e, int16_t kp, uint8_t n, int16_t ki, int16_t kc,
+                              int16_t lo, int16_t hi)
 {
-    q15_dsp_accb_ = __builtin_lac(q, 0);
-    q15_dsp_load_a_(u);
-    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_); /* A = A - B, saturating */
-    return __builtin_sacr(q15_dsp_acca_, 0);
-}
-
-Q15_INLINE int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
-{
-    q15_dsp_load_a_(s);
-    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, a, b, 0, 0, 0, 0, 0, 0, 0, 0);
-    q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, c, d, 0, 0, 0, 0, 0, 0, 0, 0);
-    return q15_dsp_read_a_();
+    int16_t out;
+    int16_t exc;
+    q15_dsp_accb_ = __builtin_mpy(kp, e, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, -(int16_t)n); /* B unsaturated */
+    q15_dsp_load_a_(*s);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_); /* U, saturated */
+    out = __builtin_sacr(q15_dsp_acca_, 0);
+    out = (out > hi) ? hi : ((out < lo) ? lo : out);
+    q15_dsp_accb_ = __builtin_lac(out, 0);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_); /* U - Out */
+    exc = __builtin_sacr(q15_dsp_acca_, 0);
+    q15_dsp_load_a_(*s);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, ki, e, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_msc(q15_dsp_acca_, kc, exc, 0, 0, 0, 0, 0, 0, 0, 0);
+    *s = q15_dsp_read_a_();
+    return out;
 }
 
 Q15_INLINE int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
@@ -298,10 +317,14 @@ Q15_INLINE int16_t q15_dsp_msc2_r(int16_t a, int16_t b, int16_t c, int16_t d)
     return q15_dsp_round_(q15_dsp_sat31_(acc - q15_dsp_frac_(c, d)));
 }
 
-Q15_INLINE int32_t q15_dsp_add_shl(int32_t s, int16_t a, int16_t b, uint8_t n)
+Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 {
-    /* |2ab 2^n| <= 2^38: the product shifted in B without loss (n <= 7). */
-    return q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b) * ((int64_t)1 << n));
+    return q15_dsp_round_(((int64_t)a + (int64_t)b) * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
+{
+    return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
 }
 
 Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)
@@ -317,15 +340,19 @@ Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_
     return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d) * ((int64_t)1 << n)));
 }
 
-Q15_INLINE int16_t q15_dsp_sub_r(int32_t u, int16_t q)
+Q15_INLINE int16_t q15_dsp_pi(int32_t *s, int16_t e, int16_t kp, uint8_t n, int16_t ki, int16_t kc,
+                              int16_t lo, int16_t hi)
 {
-    return q15_dsp_round_(q15_dsp_sat31_((int64_t)u - (int64_t)q * 65536));
-}
-
-Q15_INLINE int32_t q15_dsp_mac_msc(int32_t s, int16_t a, int16_t b, int16_t c, int16_t d)
-{
-    int64_t acc = q15_dsp_sat31_((int64_t)s + q15_dsp_frac_(a, b));
-    return q15_dsp_sat31_(acc - q15_dsp_frac_(c, d));
+    /* |2 kp e 2^n| <= 2^38: the P term shifted in B without loss (n <= 7). */
+    int64_t u = q15_dsp_sat31_((int64_t)*s + q15_dsp_frac_(kp, e) * ((int64_t)1 << n));
+    int16_t out = q15_dsp_round_(u);
+    int16_t exc;
+    int64_t acc;
+    out = (out > hi) ? hi : ((out < lo) ? lo : out);
+    exc = q15_dsp_round_(q15_dsp_sat31_(u - (int64_t)out * 65536));
+    acc = q15_dsp_sat31_((int64_t)*s + q15_dsp_frac_(ki, e));
+    *s = q15_dsp_sat31_(acc - q15_dsp_frac_(kc, exc));
+    return out;
 }
 
 Q15_INLINE int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
