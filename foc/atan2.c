@@ -24,7 +24,7 @@ static const uint16_t atan2_table[129] = {
 #define ATAN2_HALF      32768U
 
 /* Angle of (den, num) for 0 <= num <= den, den > 0: 0..8192 LSB. */
-static uint16_t atan2_octant(uint16_t num, uint16_t den)
+Q15_INLINE uint16_t atan2_octant(uint16_t num, uint16_t den)
 {
     uint16_t r;
     uint16_t i;
@@ -45,25 +45,46 @@ static uint16_t atan2_octant(uint16_t num, uint16_t den)
     return (uint16_t)((q + 2U) >> 2); /* quarter LSB -> LSB, rounded */
 }
 
+/* v >> sh for sh in 1..15, from its two 16-bit halves (16-bit shifts only:
+ * the dsPIC has a 16-bit barrel shifter, and a 32-bit shift by a variable
+ * amount costs a loop). */
+Q15_INLINE uint16_t atan2_shr16(uint32_t v, uint8_t sh)
+{
+    uint16_t hi = (uint16_t)(v >> 16);
+    uint16_t lo = (uint16_t)v;
+    return (uint16_t)((uint16_t)(hi << (16U - sh)) | (uint16_t)(lo >> sh));
+}
+
 angle_q15_t atan2_q31(int32_t y, int32_t x)
 {
     uint32_t ux = (x < 0) ? ((uint32_t)0U - (uint32_t)x) : (uint32_t)x;
     uint32_t uy = (y < 0) ? ((uint32_t)0U - (uint32_t)y) : (uint32_t)y;
-    uint32_t m = ux | uy;
+    uint16_t mh = (uint16_t)((ux | uy) >> 16);
+    uint16_t nx;
+    uint16_t ny;
     uint16_t a;
-    if (m == 0U) {
-        return 0; /* (0, 0) */
-    }
-    if (m > 0xFFFFUL) {
-        /* Shift both so the larger fits 16 bits: sh = 1..16. */
-        uint8_t sh = (uint8_t)(16U - q15_dsp_clz16((uint16_t)(m >> 16)));
-        ux >>= sh;
-        uy >>= sh;
-    }
-    if (uy <= ux) {
-        a = atan2_octant((uint16_t)uy, (uint16_t)ux);
+    if (mh == 0U) {
+        if ((ux | uy) == 0U) {
+            return 0; /* (0, 0) */
+        }
+        nx = (uint16_t)ux; /* both fit 16 bits: every bit kept */
+        ny = (uint16_t)uy;
     } else {
-        a = (uint16_t)(ATAN2_QUARTER - atan2_octant((uint16_t)ux, (uint16_t)uy));
+        /* Shift both so the larger fits 16 bits: sh = 1..16 (16 only for a
+         * -2^31 component). */
+        uint8_t sh = (uint8_t)(16U - q15_dsp_clz16(mh));
+        if (sh < 16U) {
+            nx = atan2_shr16(ux, sh);
+            ny = atan2_shr16(uy, sh);
+        } else {
+            nx = (uint16_t)(ux >> 16);
+            ny = (uint16_t)(uy >> 16);
+        }
+    }
+    if (ny <= nx) {
+        a = atan2_octant(ny, nx);
+    } else {
+        a = (uint16_t)(ATAN2_QUARTER - atan2_octant(nx, ny));
     }
     if (x < 0) {
         a = (uint16_t)(ATAN2_HALF - a);

@@ -59,6 +59,8 @@
  *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
  *                                sat16(a + b), sat16(a - b): lac, lac, add or
  *                                sub, sac
+ *   q15_dsp_half_sub2_r(v, a, b) round(sat31(v 2^15 - a 2^16 - b 2^16)):
+ *                                v / 2 - a - b rounded (ties up), saturated
  *   q15_dsp_mac_shl_r(a, b, c, d, n)
  *                                round(sat31(sat31(2ab) + 2cd 2^n)): a Q15
  *                                sum with a coefficient c 2^n >= 1 (n in
@@ -205,6 +207,16 @@ Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
     return __builtin_sac(q15_dsp_acca_, 0);
 }
 
+Q15_INLINE int16_t q15_dsp_half_sub2_r(int16_t v, int16_t a, int16_t b)
+{
+    q15_dsp_acca_ = __builtin_lac(v, 1); /* v 2^16 >> 1: exact in 40 bits */
+    q15_dsp_accb_ = __builtin_lac(a, 0);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
+    q15_dsp_accb_ = __builtin_lac(b, 0);
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
 Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)
 {
     q15_dsp_accb_ = __builtin_mpy(c, d, 0, 0, 0, 0, 0, 0);
@@ -325,6 +337,13 @@ Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
 {
     return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_half_sub2_r(int16_t v, int16_t a, int16_t b)
+{
+    /* Each step fits 40 bits; A saturates after each subtraction. */
+    int64_t acc = q15_dsp_sat31_((int64_t)v * 32768 - (int64_t)a * 65536);
+    return q15_dsp_round_(q15_dsp_sat31_(acc - (int64_t)b * 65536));
 }
 
 Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d, uint8_t n)

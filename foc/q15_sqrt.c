@@ -21,17 +21,28 @@ uint32_t q15_isqrt_u32(uint32_t n)
     uint32_t m;
     uint16_t y;
     uint16_t j;
-    uint32_t r;
+    uint16_t r;
     if (n < 2UL) {
         return n;
     }
     if (n >= Q15_ISQRT_TOP) {
         return 65536UL;
     }
-    /* m = n 4^s (s in -1..14) in [2^28, 2^30), so sqrt(m) in [2^14, 2^15). */
+    /* m = n 4^s (s in -1..14) in [2^28, 2^30), so sqrt(m) in [2^14, 2^15):
+     * a left shift by an even count, built from 16-bit shifts (a 32-bit
+     * shift by a variable count is a loop on the dsPIC). */
     lz = (hi != 0U) ? q15_dsp_clz16(hi) : (uint8_t)(16U + q15_dsp_clz16((uint16_t)n));
     if (lz >= 2U) {
-        m = n << ((lz - 2U) & ~1U);
+        uint8_t sh = (uint8_t)((lz - 2U) & ~1U); /* 0..30, even */
+        uint16_t lo = (uint16_t)n;
+        if (sh == 0U) {
+            m = n;
+        } else if (sh < 16U) {
+            m = ((uint32_t)(uint16_t)((uint16_t)(hi << sh) | (uint16_t)(lo >> (16U - sh))) << 16) |
+                (uint16_t)(lo << sh);
+        } else {
+            m = (uint32_t)(uint16_t)(lo << (sh - 16U)) << 16;
+        }
     } else {
         m = n >> 2; /* n >= 2^30: the two bits dropped are restored below */
     }
@@ -42,18 +53,19 @@ uint32_t q15_isqrt_u32(uint32_t n)
                                (uint32_t)((m >> 16) & 0xFFUL)) >>
                               8));
     y = (uint16_t)(((uint32_t)y + (uint32_t)q15_dsp_divud(m, y)) >> 1);
-    /* Back to n's scale, then the exact rounding: round(sqrt(n)) = r iff
-     * r^2 - r < n <= r^2 + r (note 2). */
+    /* Back to n's scale (y < 2^15, so 16-bit arithmetic holds it), then the
+     * exact rounding: round(sqrt(n)) = r iff r^2 - r < n <= r^2 + r, with
+     * 16 x 16 products (note 2). */
     if (lz >= 2U) {
         uint8_t s = (uint8_t)((lz - 2U) >> 1);
-        r = (s > 0U) ? (((uint32_t)y + ((uint32_t)1U << (s - 1U))) >> s) : (uint32_t)y;
+        r = (s > 0U) ? (uint16_t)((uint16_t)(y + (uint16_t)(1U << (s - 1U))) >> s) : y;
     } else {
-        r = (uint32_t)y << 1;
+        r = (uint16_t)(y << 1);
     }
-    while (n > r * r + r) {
+    while (n > (uint32_t)r * r + r) {
         r++;
     }
-    while (r * r - r >= n) {
+    while ((uint32_t)r * r - r >= n) {
         r--;
     }
     return r;
@@ -79,7 +91,8 @@ q15_t q15_sqrt(q15_t x)
  *
  * 2. Scaled back, the estimate is within about 2 of round(sqrt(n)); the two
  *    loops step it onto the exact answer, one or two steps at most, with
- *    r <= 65535 so r^2 + r <= 2^32 - 2^16 fits 32 bits and r^2 - r never
- *    goes below 0 (r >= 1 for n >= 2). An exact tie cannot occur:
- *    sqrt(n) = k + 1/2 has no integer n.
+ *    r <= 65535 (n below 0xFFFF0001 stops the first loop there) so
+ *    r^2 + r <= 2^32 - 2^16 fits 32 bits and r^2 - r never goes below 0
+ *    (r >= 1 for n >= 2). An exact tie cannot occur: sqrt(n) = k + 1/2 has
+ *    no integer n.
  */

@@ -13,7 +13,7 @@
  *          Saturating u at full scale only acts far outside the sliding
  *          band (|v - e - z| > E_FS = 2 V_FS), where the correction is at
  *          +-Kslide anyway.
- *  switch  err = i_est - i_meas (32 bits); outside the band +-Kslide;
+ *  switch  err = i_est - i_meas (saturated to 16 bits); outside the band +-Kslide;
  *          inside, Kz_mant err 2^kz_shift rounded to Q15, clamped to
  *          +-Kslide (rounding could step one LSB past it).
  *  stages  foc/lpf.h (32-bit states).
@@ -49,27 +49,28 @@ static int32_t smc_shl32(int32_t x, uint8_t n)
 /* One axis of the digitised model: F i + G (v - e - z), rounded, saturated. */
 Q15_INLINE q15_t smc_model(const smc_params_t *p, q15_t i, q15_t v, q15_t e, q15_t z)
 {
-    /* v is Q15 of V_FS, e and z Q15 of E_FS = 2 V_FS: v / 2 rounded. */
-    q15_t u = q15_sat((((int32_t)v + 1) >> 1) - (int32_t)e - (int32_t)z);
+    /* v is Q15 of V_FS, e and z Q15 of E_FS = 2 V_FS: u = v / 2 - e - z,
+     * rounded (the half of an odd v rounds up), saturated. */
+    q15_t u = q15_dsp_half_sub2_r(v, e, z);
     /* F i + G u with G = g 2^g_shift, one rounding (both products formed in
      * the accumulator, the second shifted in B). */
     return q15_dsp_mac_shl_r(p->f, i, p->g, u, p->g_shift);
 }
 
-/* The switching function: Kslide * sat(err / MaxSMCError). */
-Q15_INLINE q15_t smc_switch(const smc_params_t *p, int32_t err)
+/* The switching function: Kslide * sat(err / MaxSMCError); err saturated to
+ * 16 bits (any |err| >= max_err <= 32767 is outside the band alike). */
+Q15_INLINE q15_t smc_switch(const smc_params_t *p, q15_t err)
 {
     q15_t z;
-    if (err >= (int32_t)p->max_err) {
+    if (err >= p->max_err) {
         return p->kslide;
     }
-    if (err <= -(int32_t)p->max_err) {
+    if (err <= (q15_t)(-p->max_err)) {
         return (q15_t)(-p->kslide);
     }
-    /* |err| < max_err <= 32767 fits int16; inside the band |Kz err| < Kslide,
-     * so Kz 2^kz_shift err stays below 2^31 in B. Rounding can step one LSB
-     * past Kslide: clamped. */
-    z = q15_dsp_mac_shl_r(0, 0, p->kz, (int16_t)err, p->kz_shift);
+    /* Inside the band |Kz err| < Kslide, so Kz 2^kz_shift err stays below
+     * 2^31 in B. Rounding can step one LSB past Kslide: clamped. */
+    z = q15_dsp_mac_shl_r(0, 0, p->kz, err, p->kz_shift);
     return q15_clamp(z, (q15_t)(-p->kslide), p->kslide);
 }
 
@@ -303,22 +304,23 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
      * model step that brings i_est to this sample). */
     s->i_est.alpha = smc_model(p, s->i_est.alpha, v_applied.alpha, s->e.alpha, s->z.alpha);
     s->i_est.beta = smc_model(p, s->i_est.beta, v_applied.beta, s->e.beta, s->z.beta);
-    s->z.alpha = smc_switch(p, (int32_t)s->i_est.alpha - (int32_t)i_meas.alpha);
-    s->z.beta = smc_switch(p, (int32_t)s->i_est.beta - (int32_t)i_meas.beta);
+    s->z.alpha = smc_switch(p, q15_sub_sat(s->i_est.alpha, i_meas.alpha));
+    s->z.beta = smc_switch(p, q15_sub_sat(s->i_est.beta, i_meas.beta));
 
-    /* The two stages. */
-    s->e.alpha = lpf_update(&s->e_alpha, s->z.alpha, s->k);
-    s->e.beta = lpf_update(&s->e_beta, s->z.beta, s->k);
-    (void)lpf_update(&s->ef_alpha, s->e.alpha, s->k);
-    (void)lpf_update(&s->ef_beta, s->e.beta, s->k);
+    /* The two stages (q15_dsp_lpf is lpf_update without its k <= 0 guard:
+     * k >= k_min >= 1 here). */
+    s->e.alpha = q15_dsp_lpf(&s->e_alpha.state, s->z.alpha, s->k);
+    s->e.beta = q15_dsp_lpf(&s->e_beta.state, s->z.beta, s->k);
+    (void)q15_dsp_lpf(&s->ef_alpha.state, s->e.alpha, s->k);
+    (void)q15_dsp_lpf(&s->ef_beta.state, s->e.beta, s->k);
 
     if (p->tf_xadv != 0) {
         /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
         q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
-        (void)lpf_update(&s->w_alpha, smc_emf_raw(p, c, s->z.alpha, z_prev.alpha, e_prev.alpha),
-                         s->k_w);
-        (void)lpf_update(&s->w_beta, smc_emf_raw(p, c, s->z.beta, z_prev.beta, e_prev.beta),
-                         s->k_w);
+        (void)q15_dsp_lpf(&s->w_alpha.state,
+                          smc_emf_raw(p, c, s->z.alpha, z_prev.alpha, e_prev.alpha), s->k_w);
+        (void)q15_dsp_lpf(&s->w_beta.state, smc_emf_raw(p, c, s->z.beta, z_prev.beta, e_prev.beta),
+                          s->k_w);
     }
 
     /* theta_raw = atan2(-ef_alpha, ef_beta): the back-EMF turned back by
