@@ -287,29 +287,16 @@ MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
 
 /* Applied voltage from duties (mc_internal.h): MC_VAPP_K = sqrt(3) / (3
  * PWM_DUTY_MAX) * VBUS_FS / VBUS_NOMINAL * 2^25, so that (2 da - db - dc) *
- * vbus * MC_VAPP_K / 2^25 is v_alpha in Q15 of V_FS. */
+ * vbus * MC_VAPP_K / 2^25 is v_alpha in Q15 of V_FS; MC_VAPP_KB is beta's,
+ * sqrt(3) larger, at 2^24 so that it fits 16 bits too. */
 #define MC_VAPP_K_                                                                                 \
     (1.7320508075688772 / (3.0 * (double)PWM_DUTY_MAX) * (double)BOARD_VBUS_FULLSCALE_V /          \
      (double)BOARD_VBUS_NOMINAL_V * 33554432.0)
 MC_CHECK(BOARD_VBUS_FULLSCALE_V, MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
          "VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
          "range of the applied-voltage scaling");
-#define MC_VAPP_K  ((int32_t)(MC_VAPP_K_ + 0.5))
-#define MC_VAPP_KB ((int32_t)(MC_VAPP_K_ * 1.7320508075688772 + 0.5)) /* beta: sqrt(3) larger */
-/* mc_duty_to_voltage forms |2 da - db - dc| <= 4 PWM_DUTY_MAX (duties in
- * -PWM_DUTY_MAX/2..3 PWM_DUTY_MAX/2) times ga <= (32767 MC_VAPP_K + 2^12) >> 13,
- * and |db - dc| <= 2 PWM_DUTY_MAX times gb (sqrt(3) ga): both below 2^31. The
- * product is about 3.1e8 VBUS_FS / VBUS_NOMINAL, so this holds up to a full
- * scale of about 6.9 times the nominal bus. */
-MC_CHECK(BOARD_VBUS_FULLSCALE_V,
-         4.0 * PWM_DUTY_MAX * ((32767.0 * (MC_VAPP_K_ + 0.5) + 4096.0) / 8192.0) + 2048.0 <
-                 2147483647.0 &&
-             2.0 * PWM_DUTY_MAX *
-                         ((32767.0 * (MC_VAPP_K_ * 1.7320508075688772 + 0.5) + 4096.0) / 8192.0) +
-                     2048.0 <
-                 2147483647.0,
-         "VBUS_FS / VBUS_NOMINAL too large: the applied-voltage "
-         "product of mc_duty_to_voltage overflows 31 bits");
+#define MC_VAPP_K  ((int16_t)(MC_VAPP_K_ + 0.5))
+#define MC_VAPP_KB ((int16_t)(MC_VAPP_K_ * 0.8660254037844386 + 0.5)) /* sqrt(3)/2, at 2^24 */
 
 /* ---- protections ------------------------------------------------------------------------ */
 

@@ -33,23 +33,21 @@ Q15_INLINE int16_t mc_deadtime_counts(q15_t i)
  * lie outside 0..PWM_DUTY_MAX by the predicted dead-time loss); vbus: Q15 of
  * BOARD_VBUS_FULLSCALE_V (negative counts as 0). Output Q15 of V_FS,
  * saturated (the hexagon corners exceed the circle by 2/sqrt(3)).
- * Scaling: ga = vbus MC_VAPP_K >> 13 and gb = vbus MC_VAPP_KB >> 13 (Q12
- * volts per count); v_alpha = (2 da - db - dc) ga >> 12, v_beta = (db - dc)
- * gb >> 12, every product < 2^31 in the stated ranges, rounded to nearest.
- * Error <= 1.1 LSB (test_mc.c).
+ * Scaling: v_alpha = (2 da - db - dc) vbus MC_VAPP_K / 2^25 and v_beta =
+ * (db - dc) vbus MC_VAPP_KB / 2^24, each one triple product on the
+ * accumulator (q15_dsp_mul3_r), rounded to nearest; the duty combinations
+ * are saturated to 16 bits first (beyond that the voltage saturates anyway
+ * at any bus above PWM_DUTY_MAX / 32767 of the nominal). Error <= 0.5 LSB
+ * plus the constants' rounding (test_mc.c).
  */
 Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
 {
     ab_q15_t v;
     q15_t vb = (vbus < 0) ? 0 : vbus;
-    /* Volts per duty count relative to V_FS, Q12: alpha's (2 da - db - dc)
-     * and beta's (db - dc) factors (the latter sqrt(3) larger). */
-    int32_t ga = ((int32_t)vb * MC_VAPP_K + (int32_t)0x1000) >> 13;          /* <= 85236 */
-    int32_t gb = ((int32_t)vb * MC_VAPP_KB + (int32_t)0x1000) >> 13;         /* <= 147639 */
-    int32_t na = (int32_t)2 * duty[0] - (int32_t)duty[1] - (int32_t)duty[2]; /* |na| <= 4 DMAX */
-    int32_t nb = (int32_t)duty[1] - (int32_t)duty[2];                        /* |nb| <= 2 DMAX */
-    v.alpha = q15_sat((na * ga + (int32_t)0x800) >> 12);
-    v.beta = q15_sat((nb * gb + (int32_t)0x800) >> 12);
+    q15_t na = q15_sat((int32_t)2 * duty[0] - (int32_t)duty[1] - (int32_t)duty[2]);
+    q15_t nb = q15_sat((int32_t)duty[1] - (int32_t)duty[2]);
+    v.alpha = q15_dsp_mul3_r(na, vb, MC_VAPP_K, (int8_t)(25 - 30));
+    v.beta = q15_dsp_mul3_r(nb, vb, MC_VAPP_KB, (int8_t)(24 - 30));
     return v;
 }
 

@@ -59,6 +59,10 @@
  *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
  *                                sat16(a + b), sat16(a - b): lac, lac, add or
  *                                sub, sac
+ *   q15_dsp_mul3_r(a, b, c, s)   round(a b c / 2^(30 + s)), saturated to 16
+ *                                bits, for b, c >= 0 and s in -7..0 (a
+ *                                triple product: b c in A, split, times a
+ *                                in A and B; within 2^-10 LSB of exact)
  *   q15_dsp_half_sub2_r(v, a, b) round(sat31(v 2^15 - a 2^16 - b 2^16)):
  *                                v / 2 - a - b rounded (ties up), saturated
  *   q15_dsp_mac_shl_r(a, b, c, d, n)
@@ -207,6 +211,37 @@ Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
     return __builtin_sac(q15_dsp_acca_, 0);
 }
 
+Q15_INLINE int16_t q15_dsp_mul3_r(int16_t a, int16_t b, int16_t c, int8_t s)
+{
+    int16_t ph;
+    int16_t pl;
+    q15_dsp_acca_ = __builtin_mpy(b, c, 0, 0, 0, 0, 0, 0);        /* P = 2bc < 2^31 */
+    ph = __builtin_ACCH(q15_dsp_acca_);                           /* P >> 16 */
+    pl = (int16_t)((uint16_t)__builtin_ACCL(q15_dsp_acca_) >> 1); /* (P mod 2^16) / 2 */
+    q15_dsp_accb_ = __builtin_mpy(a, pl, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, 15); /* pl is half the low word */
+    q15_dsp_acca_ = __builtin_mpy(a, ph, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_); /* 2 a P / 2^16 */
+    switch (s) { /* sac.r takes its shift as a literal; s is a constant */
+        case -7:
+            return __builtin_sacr(q15_dsp_acca_, -7);
+        case -6:
+            return __builtin_sacr(q15_dsp_acca_, -6);
+        case -5:
+            return __builtin_sacr(q15_dsp_acca_, -5);
+        case -4:
+            return __builtin_sacr(q15_dsp_acca_, -4);
+        case -3:
+            return __builtin_sacr(q15_dsp_acca_, -3);
+        case -2:
+            return __builtin_sacr(q15_dsp_acca_, -2);
+        case -1:
+            return __builtin_sacr(q15_dsp_acca_, -1);
+        default:
+            return __builtin_sacr(q15_dsp_acca_, 0);
+    }
+}
+
 Q15_INLINE int16_t q15_dsp_half_sub2_r(int16_t v, int16_t a, int16_t b)
 {
     q15_dsp_acca_ = __builtin_lac(v, 1); /* v 2^16 >> 1: exact in 40 bits */
@@ -337,6 +372,16 @@ Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
 {
     return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_mul3_r(int16_t a, int16_t b, int16_t c, int8_t s)
+{
+    int64_t p = q15_dsp_frac_(b, c); /* 2bc, b, c >= 0: below 2^31 */
+    int64_t ph = p >> 16;
+    int64_t pl = (p & 0xFFFF) >> 1;
+    int64_t acc = q15_dsp_sat31_(2 * (int64_t)a * ph + ((2 * (int64_t)a * pl) >> 15));
+    /* sac.r with a left shift of -s: bits 31..16 of acc 2^-s, rounded. */
+    return q15_dsp_round_(acc * ((int64_t)1 << (uint8_t)(-s)));
 }
 
 Q15_INLINE int16_t q15_dsp_half_sub2_r(int16_t v, int16_t a, int16_t b)
