@@ -87,6 +87,9 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
  * executes stores in order. */
 #define MC_BARRIER() __asm__ __volatile__("" ::: "memory")
 
+/* Vmax^2 on the Q30 scale of a Q15 x Q15 product (the voltage circle). */
+#define MC_VMAX_SQ ((int32_t)MC_VMAX_Q15 * (int32_t)MC_VMAX_Q15)
+
 /* sqrt(3) / 2 and -1/2 in Q15, for the phase currents from alpha/beta. */
 #define MC_SQRT3_2    Q15(0.86602540378443865)
 #define MC_MINUS_HALF Q15(-0.5)
@@ -416,12 +419,22 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
         ref = park_forward(r, sincos_compute(mc->theta_offset));
     }
 
-    /* d first, then q gets what is left of the voltage circle (AN1078). */
+    /* d first, then q gets what is left of the voltage circle (AN1078):
+     * |Vq| <= sqrt(Vmax^2 - Vd^2). The q PI runs first against +-Vmax; only
+     * if its output leaves the circle is the step redone against the circle
+     * limit (note 3: the same bits as always limiting to the circle, without
+     * a square root in the periods that stay inside). */
     dq_q15_t v;
     v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
-    q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
-    pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+    q31_t sum_q = mc->pi_q.sum;
+    pi_set_limits(&mc->pi_q, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15);
     v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+    if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
+        q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
+        mc->pi_q.sum = sum_q;
+        pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+        v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+    }
 #if defined(ENVOLTRIPPLE)
     v = ripple_compensate_dq(v, mc->vbus, MC_VBUS_NOMINAL_Q15);
 #endif
@@ -802,4 +815,15 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    weakened flux lowers it legitimately), below MC_STALL_BEMF_LOW_FRACTION
  *    (MC_STALL_TIME_S); the speed error above MC_STALL_SPEED_ERROR_RPM with
  *    the speed PI at its limit (MC_STALL_TRACK_TIME_S).
+ *
+ * 3. The circle limit. With lim = round(sqrt(Vmax^2 - Vd^2)), AN1078's q PI
+ *    gives Out = clamp(round(U), -lim, lim). A first run against +-Vmax gives
+ *    Out1 = clamp(round(U), -Vmax, Vmax). If Out1^2 + Vd^2 <= Vmax^2, then
+ *    |Out1| <= sqrt(Vmax^2 - Vd^2), so |Out1| <= lim (an integer below a
+ *    real is below its rounding), and either Out1 = round(U) (not clamped,
+ *    hence not clamped by lim either) or Out1 = +-Vmax with Vd = 0, lim =
+ *    Vmax: in both cases Out1 is AN1078's Out, with the same U, Exc and
+ *    integral. Otherwise the integral is restored and the step redone
+ *    against +-lim. The square root (and the second PI run) is paid only at
+ *    the voltage limit: field weakening's transients, not steady running.
  */

@@ -59,6 +59,9 @@
  *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
  *                                sat16(a + b), sat16(a - b): lac, lac, add or
  *                                sub, sac
+ *   q15_dsp_mulsu_r(a, g)        sat16(round(a g / 2^15)) for an unsigned
+ *                                Q15 g (0..65535 = 0..2): mul.su, the 32-bit
+ *                                product loaded into A, shifted, sac.r
  *   q15_dsp_mul3_r(a, b, c, s)   round(a b c / 2^(30 + s)), saturated to 16
  *                                bits, for b, c >= 0 and s in -7..0 (a
  *                                triple product: b c in A, split, times a
@@ -209,6 +212,13 @@ Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
     q15_dsp_acca_ = __builtin_lac(a, 0);
     q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
     return __builtin_sac(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_mulsu_r(int16_t a, uint16_t g)
+{
+    q15_dsp_load_a_(__builtin_mulsu(a, g));             /* |a g| < 2^31 */
+    q15_dsp_acca_ = __builtin_sftac(q15_dsp_acca_, -1); /* A saturates */
+    return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
 Q15_INLINE int16_t q15_dsp_mul3_r(int16_t a, int16_t b, int16_t c, int8_t s)
@@ -372,6 +382,11 @@ Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
 {
     return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_mulsu_r(int16_t a, uint16_t g)
+{
+    return q15_dsp_round_(q15_dsp_sat31_((int64_t)a * (int64_t)g * 2));
 }
 
 Q15_INLINE int16_t q15_dsp_mul3_r(int16_t a, int16_t b, int16_t c, int8_t s)

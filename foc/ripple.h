@@ -54,9 +54,9 @@ Q15_INLINE uint16_t ripple_gain(q15_t vbus, q15_t vbus_target)
 /* V = Vpi G, rounded, saturated. */
 Q15_INLINE q15_t ripple_apply(q15_t v_pi, uint16_t gain)
 {
-    /* |Vpi G| < 2^31: one signed x unsigned 16 x 16 product. */
-    int32_t p = (int32_t)v_pi * (int32_t)gain;
-    return q15_sat((p + (int32_t)0x4000) >> 15);
+    /* |Vpi G| < 2^31: one signed x unsigned 16 x 16 product, rounded and
+     * saturated in the accumulator. */
+    return q15_dsp_mulsu_r(v_pi, gain);
 }
 
 /* One component: ripple_apply(v_pi, ripple_gain(vbus, vbus_target)). */
