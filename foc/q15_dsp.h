@@ -59,6 +59,11 @@
  *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
  *                                sat16(a + b), sat16(a - b): lac, lac, add or
  *                                sub, sac
+ *   q15_dsp_q30_counts(x, p)     round((xh p + floor(xl p / 2^15)) / 2^15)
+ *                                with x = xh 2^15 + xl, for 0 <= x < 2^30
+ *                                and 0 <= p <= 32767: a Q30 fraction of p
+ *                                counts (SVGen's on-times), both partial
+ *                                products in the accumulator
  *   q15_dsp_mulsu_r(a, g)        sat16(round(a g / 2^15)) for an unsigned
  *                                Q15 g (0..65535 = 0..2): mul.su, the 32-bit
  *                                product loaded into A, shifted, sac.r
@@ -212,6 +217,15 @@ Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
     q15_dsp_acca_ = __builtin_lac(a, 0);
     q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
     return __builtin_sac(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE uint16_t q15_dsp_q30_counts(uint32_t x, uint16_t p)
+{
+    q15_dsp_accb_ = __builtin_mpy((int16_t)(uint16_t)(x & 0x7FFFUL), (int16_t)p, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_sftac(q15_dsp_accb_, 15);
+    q15_dsp_acca_ = __builtin_mpy((int16_t)(uint16_t)(x >> 15), (int16_t)p, 0, 0, 0, 0, 0, 0);
+    q15_dsp_acca_ = __builtin_addab(q15_dsp_acca_, q15_dsp_accb_);
+    return (uint16_t)__builtin_sacr(q15_dsp_acca_, 0);
 }
 
 Q15_INLINE int16_t q15_dsp_mulsu_r(int16_t a, uint16_t g)
@@ -382,6 +396,14 @@ Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
 {
     return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
+}
+
+Q15_INLINE uint16_t q15_dsp_q30_counts(uint32_t x, uint16_t p)
+{
+    int64_t xh = (int64_t)(x >> 15);
+    int64_t xl = (int64_t)(x & 0x7FFFUL);
+    int64_t acc = 2 * xh * (int64_t)p + ((2 * xl * (int64_t)p) >> 15);
+    return (uint16_t)q15_dsp_round_(acc);
 }
 
 Q15_INLINE int16_t q15_dsp_mulsu_r(int16_t a, uint16_t g)

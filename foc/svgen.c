@@ -10,17 +10,13 @@
 #define SVGEN_ONE_Q30 0x40000000UL
 
 /* round(x * p / 2^30) for x <= 2^30, p <= 32767, without a 64-bit product:
- * x = xh 2^15 + xl, so x p / 2^30 = (xh p + xl p / 2^15) / 2^15. Both
- * partial products fit 32 bits (xh <= 2^15, xl < 2^15); the inner floor
- * costs less than 2^-15 count. xh and xl are held in uint16_t so each
- * partial product is visibly 16 x 16 -> 32 (one mul.uu on the dsPIC, not a
- * 32 x 32 multiply). */
-static uint16_t svgen_counts(uint32_t x, uint16_t p)
+ * x = xh 2^15 + xl, so x p / 2^30 = (xh p + xl p / 2^15) / 2^15, both partial
+ * products in the accumulator (q15_dsp_q30_counts); the inner floor costs
+ * less than 2^-15 count. x = 2^30 (xh = 2^15, beyond a signed multiplier
+ * operand) is the whole period. */
+Q15_INLINE uint16_t svgen_counts(uint32_t x, uint16_t p)
 {
-    uint16_t xh = (uint16_t)(x >> 15);
-    uint16_t xl = (uint16_t)(x & 0x7FFFUL);
-    uint32_t acc = (uint32_t)xh * (uint32_t)p + (((uint32_t)xl * (uint32_t)p) >> 15);
-    return (uint16_t)((acc + 0x4000UL) >> 15);
+    return (x >= SVGEN_ONE_Q30) ? p : q15_dsp_q30_counts(x, p);
 }
 
 void svgen_update(ab_q15_t v, uint16_t period, svgen_out_t *out)
