@@ -147,6 +147,7 @@ void mc_request(mc_t *mc, mc_request_t r)
 {
     if ((unsigned)r < (unsigned)MC_REQUEST_COUNT) {
         mc->req_posted[r] = (uint8_t)(mc->req_posted[r] + 1U);
+        mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* after the request: mc.h note 1 */
     }
 }
 
@@ -599,12 +600,20 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     /* 1. Frame, requests and reference. */
     mc->vbus = in->vbus;
     mc->pot = in->pot;
-    bool req_toggle = mc_take(mc, MC_REQUEST_START_STOP);
-    bool req_hw = mc_take(mc, MC_REQUEST_HW_FAULT);
-    bool req_start = mc_take(mc, MC_REQUEST_START);
-    bool req_stop = mc_take(mc, MC_REQUEST_STOP);
-    if (mc_take(mc, MC_REQUEST_REF_POT)) {
-        mc->ref_from_remote = false;
+    bool req_toggle = false;
+    bool req_hw = false;
+    bool req_start = false;
+    bool req_stop = false;
+    uint8_t rseq = mc->req_seq;
+    if (rseq != mc->req_seen) { /* something was posted (mc.h note 1) */
+        mc->req_seen = rseq;
+        req_toggle = mc_take(mc, MC_REQUEST_START_STOP);
+        req_hw = mc_take(mc, MC_REQUEST_HW_FAULT);
+        req_start = mc_take(mc, MC_REQUEST_START);
+        req_stop = mc_take(mc, MC_REQUEST_STOP);
+        if (mc_take(mc, MC_REQUEST_REF_POT)) {
+            mc->ref_from_remote = false;
+        }
     }
     uint8_t gseq = mc->gain_seq;
     if (gseq != mc->gain_seen) {
@@ -619,7 +628,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     /* 2. Offsets off; ic from the other two. */
     mc->ia = q15_sub_sat(in->ia, mc->offset_a);
     mc->ib = q15_sub_sat(in->ib, mc->offset_b);
-    mc->ic = q15_sat(-(int32_t)mc->ia - (int32_t)mc->ib);
+    mc->ic = q15_sub_sat(q15_neg_sat(mc->ia), mc->ib); /* -ia - ib: exact unless it saturates */
 
     /* 3. Protections, before anything is driven. */
     bool running = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||

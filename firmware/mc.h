@@ -208,6 +208,8 @@ typedef struct {
     /* mailbox (note 1): posted[] written only by mc_request, taken[] only by mc_step */
     volatile uint8_t req_posted[MC_REQUEST_COUNT];
     uint8_t req_taken[MC_REQUEST_COUNT];
+    volatile uint8_t req_seq; /* incremented by mc_request after req_posted */
+    uint8_t req_seen;
     volatile int16_t ref_remote;     /* remote reference (speed or Iq), Q15 */
     volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference */
     uint8_t ref_remote_seen;
@@ -317,10 +319,13 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *
  * 1. The mailbox. A request r is pending while req_posted[r] != req_taken[r]
  *    (both uint8_t, compared modulo 256). mc_request() increments
- *    req_posted[r] and nothing else; mc_step() copies it into req_taken[r]
- *    once it has acted. Each byte has one writer and byte writes are atomic
- *    on the dsPIC, so no interrupt masking is needed; a request posted twice
- *    before the step sees it counts once.
+ *    req_posted[r], then req_seq; mc_step() looks at the requests only when
+ *    req_seq has moved (one compare in the usual period), and copies each
+ *    req_posted[r] into req_taken[r] once it has acted. A step that runs
+ *    between the two increments sees the request one period later. Each
+ *    byte has one writer and byte writes are atomic on the dsPIC, so no
+ *    interrupt masking is needed; a request posted twice before the step
+ *    sees it counts once.
  *
  * 2. The estimator is fed the voltage the inverter actually applied while
  *    the measured current evolved: the duties computed two steps ago (they
