@@ -225,6 +225,10 @@ void smc_init(smc_t *s, const smc_params_t *p)
 {
     smc_window_t w;
     s->p = p;
+    /* The raw back-EMF's coefficients (note 8): c = mdc - 1 + p in Q12 (mdc
+     * Q12, p Q15) and -p, saturated. */
+    s->raw_c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
+    s->raw_np = q15_neg_sat(p->tf_b2);
     /* The results at rest, once: smc_reset applies them without the cost
      * of a refresh (the slow side computes the same from a reset). */
     w.dtheta_sum = 0;
@@ -286,11 +290,11 @@ void smc_preset_speed(smc_t *s, q15_t omega)
  * depend on K. Q15 of E_FS times c (> 0: the angle is what matters),
  * saturated. c is Q12 (smc_update forms it once for both axes).
  */
-Q15_INLINE q15_t smc_emf_raw(const smc_params_t *p, q15_t c, q15_t z, q15_t z_prev, q15_t e_prev)
+Q15_INLINE q15_t smc_emf_raw(const smc_t *s, q15_t z, q15_t z_prev, q15_t e_prev)
 {
     /* z - p z_prev + c e_prev (c Q12: the product shifted 3 more), one
      * rounding, saturated. */
-    return q15_dsp_lac_mac_shl_r(z, q15_neg_sat(p->tf_b2), z_prev, c, e_prev, 3U);
+    return q15_dsp_lac_mac_shl_r(z, s->raw_np, z_prev, s->raw_c, e_prev, 3U);
 }
 
 void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
@@ -315,11 +319,9 @@ void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
     (void)q15_dsp_lpf(&s->ef_beta.state, s->e.beta, s->k);
 
     if (p->tf_xadv != 0) {
-        /* c = mdc - 1 + p, Q12 (mdc Q12, p Q15). */
-        q15_t c = (q15_t)(p->tf_mdc - 4096 + (p->tf_b2 >> 3));
-        (void)q15_dsp_lpf(&s->w_alpha.state,
-                          smc_emf_raw(p, c, s->z.alpha, z_prev.alpha, e_prev.alpha), s->k_w);
-        (void)q15_dsp_lpf(&s->w_beta.state, smc_emf_raw(p, c, s->z.beta, z_prev.beta, e_prev.beta),
+        (void)q15_dsp_lpf(&s->w_alpha.state, smc_emf_raw(s, s->z.alpha, z_prev.alpha, e_prev.alpha),
+                          s->k_w);
+        (void)q15_dsp_lpf(&s->w_beta.state, smc_emf_raw(s, s->z.beta, z_prev.beta, e_prev.beta),
                           s->k_w);
     }
 

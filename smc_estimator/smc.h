@@ -289,6 +289,8 @@ typedef struct {
 
 typedef struct {
     const smc_params_t *p;
+    q15_t raw_c;  /* the raw back-EMF's c = mdc - 1 + p, Q12 (note 8), from p */
+    q15_t raw_np; /* ... and -p, Q15 */
     /* fast side: smc_update, every period */
     ab_q15_t i_est; /* model current, Q15 of I_FS */
     ab_q15_t z;     /* sliding-mode correction, Q15 of E_FS */
