@@ -456,18 +456,20 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     iph[1] = q15_dsp_mac2_r(ip.alpha, MC_MINUS_HALF, ip.beta, MC_SQRT3_2); /* -a/2 + b sqrt3/2 */
     iph[2] = q15_dsp_msc2_r(ip.alpha, MC_MINUS_HALF, ip.beta, MC_SQRT3_2); /* -a/2 - b sqrt3/2 */
 
+    /* 16-bit arithmetic: PWM_DUTY_MAX plus the dead-time counts fits int16
+     * (mc_derived.h checks it). */
     int16_t eff[3];
     for (uint8_t k = 0U; k < 3U; k++) {
         int16_t dt = mc_deadtime_counts(iph[k]);
-        int32_t d = (int32_t)sv.duty[k];
+        int16_t d = (int16_t)sv.duty[k];
 #if MC_DEADTIME_COMP
-        d += dt;
+        d = (int16_t)(d + dt);
 #endif
         if (d <= 0) {
             d = 0;
             dt = 0; /* a phase that does not switch loses nothing */
-        } else if (d >= (int32_t)PWM_DUTY_MAX) {
-            d = (int32_t)PWM_DUTY_MAX;
+        } else if (d >= (int16_t)PWM_DUTY_MAX) {
+            d = (int16_t)PWM_DUTY_MAX;
             dt = 0;
         }
         mc->duty[k] = (uint16_t)d;

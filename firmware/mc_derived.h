@@ -275,6 +275,9 @@ MC_CHECK(PWM_DEADTIME_NS,
          MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
          "must be below 10 % of the PWM period");
 #define MC_DT_COUNTS ((int16_t)(MC_DT_COUNTS_ + 0.5))
+MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_ + 1.0 <= 32767.0,
+         "duty full scale plus the dead-time counts must fit 16 bits (the "
+         "compensated duty is formed in int16)");
 MC_CHECK(MC_DEADTIME_BAND_A,
          MC_DEADTIME_BAND_A > 0.0 && MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
          "must be in (0, BOARD_I_FULLSCALE_A / 4)");
