@@ -4,7 +4,7 @@
 /* round(4 atan(i / 128) 32768 / pi), i = 0..128: the first-octant angle in
  * quarter LSB of the binary angle (32768 at 45 degrees); const, so the
  * dsPIC linker places it in flash (258 bytes). */
-static const uint16_t atan2_table[129] = {
+const uint16_t atan2_table[ATAN2_TABLE_SIZE] = {
     0U,     326U,   652U,   978U,   1303U,  1629U,  1954U,  2279U,  2604U,  2929U,  3253U,  3577U,
     3900U,  4223U,  4545U,  4867U,  5188U,  5509U,  5829U,  6148U,  6467U,  6784U,  7101U,  7418U,
     7733U,  8047U,  8361U,  8673U,  8985U,  9296U,  9605U,  9914U,  10221U, 10527U, 10832U, 11136U,
@@ -17,88 +17,6 @@ static const uint16_t atan2_table[129] = {
     29241U, 29430U, 29619U, 29805U, 29991U, 30175U, 30357U, 30538U, 30718U, 30896U, 31073U, 31248U,
     31423U, 31595U, 31767U, 31937U, 32106U, 32273U, 32439U, 32604U, 32768U,
 };
-
-#define ATAN2_FRAC_BITS 9U /* 16-bit ratio = 7 index bits + 9 fraction bits */
-#define ATAN2_EIGHTH    8192U
-#define ATAN2_QUARTER   16384U
-#define ATAN2_HALF      32768U
-
-/* Angle of (den, num) for 0 <= num <= den, den > 0: 0..8192 LSB. */
-Q15_INLINE uint16_t atan2_octant(uint16_t num, uint16_t den)
-{
-    uint16_t r;
-    uint16_t i;
-    uint16_t f;
-    uint16_t q;
-    if (num == den) {
-        return ATAN2_EIGHTH; /* the 16-bit ratio below would be 65536 */
-    }
-    /* num < den: num 2^16 / den < 2^16, in range for div.ud (note 1). */
-    r = q15_dsp_divud((uint32_t)num << 16, den);
-    i = (uint16_t)(r >> ATAN2_FRAC_BITS); /* 0..127 */
-    f = (uint16_t)(r & ((1U << ATAN2_FRAC_BITS) - 1U));
-    /* step <= 326 quarter LSB, step f <= 166,586: a 16 x 16 -> 32 product. */
-    q = (uint16_t)(atan2_table[i] +
-                   (uint16_t)(((uint32_t)(uint16_t)(atan2_table[i + 1U] - atan2_table[i]) * f +
-                               (1UL << (ATAN2_FRAC_BITS - 1U))) >>
-                              ATAN2_FRAC_BITS));
-    return (uint16_t)((q + 2U) >> 2); /* quarter LSB -> LSB, rounded */
-}
-
-/* v >> sh for sh in 1..15, from its two 16-bit halves (16-bit shifts only:
- * the dsPIC has a 16-bit barrel shifter, and a 32-bit shift by a variable
- * amount costs a loop). */
-Q15_INLINE uint16_t atan2_shr16(uint32_t v, uint8_t sh)
-{
-    uint16_t hi = (uint16_t)(v >> 16);
-    uint16_t lo = (uint16_t)v;
-    return (uint16_t)((uint16_t)(hi << (16U - sh)) | (uint16_t)(lo >> sh));
-}
-
-angle_q15_t atan2_q31(int32_t y, int32_t x)
-{
-    uint32_t ux = (x < 0) ? ((uint32_t)0U - (uint32_t)x) : (uint32_t)x;
-    uint32_t uy = (y < 0) ? ((uint32_t)0U - (uint32_t)y) : (uint32_t)y;
-    uint16_t mh = (uint16_t)((ux | uy) >> 16);
-    uint16_t nx;
-    uint16_t ny;
-    uint16_t a;
-    if (mh == 0U) {
-        if ((ux | uy) == 0U) {
-            return 0; /* (0, 0) */
-        }
-        nx = (uint16_t)ux; /* both fit 16 bits: every bit kept */
-        ny = (uint16_t)uy;
-    } else {
-        /* Shift both so the larger fits 16 bits: sh = 1..16 (16 only for a
-         * -2^31 component). */
-        uint8_t sh = (uint8_t)(16U - q15_dsp_clz16(mh));
-        if (sh < 16U) {
-            nx = atan2_shr16(ux, sh);
-            ny = atan2_shr16(uy, sh);
-        } else {
-            nx = (uint16_t)(ux >> 16);
-            ny = (uint16_t)(uy >> 16);
-        }
-    }
-    if (ny <= nx) {
-        a = atan2_octant(ny, nx);
-    } else {
-        a = (uint16_t)(ATAN2_QUARTER - atan2_octant(nx, ny));
-    }
-    if (x < 0) {
-        a = (uint16_t)(ATAN2_HALF - a);
-    }
-    if (y < 0) {
-        a = (uint16_t)(0U - a);
-    }
-    return (angle_q15_t)(int16_t)a; /* q15.h note 2 */
-}
-
-angle_q15_t atan2_q15(int16_t y, int16_t x)
-{
-    return atan2_q31((int32_t)y, (int32_t)x);
-}
 
 /*
  * Notes
