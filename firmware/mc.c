@@ -62,6 +62,11 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "slow for the speed range)");
 #define MC_ADV_K Q15(MC_ADV_K_)
 
+/* mc_current_control's advance argument: none, or the closed loop's
+ * (mc->adv_sc); anything else is an open-loop advance in angle counts. */
+#define MC_ADV_NONE   0L
+#define MC_ADV_CLOSED 0x10000L
+
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
  * for |speed_ref| < MC_KP_FULL_Q15, so the product stays below 2^30. */
@@ -187,6 +192,23 @@ static void mc_apply_gains(mc_t *mc)
     mc->spd_ki_base = mc->gain_posted[MC_GAIN_SPD_KI];
 }
 
+/* sin/cos of theta + the closed-loop advance: sc turned by mc->adv_sc. */
+Q15_INLINE sincos_q15_t mc_advance(sincos_q15_t sc, sincos_q15_t a)
+{
+    sincos_q15_t r;
+    r.sin = q15_dsp_mac2_r(sc.sin, a.cos, sc.cos, a.sin);
+    r.cos = q15_dsp_msc2_r(sc.cos, a.cos, sc.sin, a.sin);
+    return r;
+}
+
+/* The advance of the voltage in CLOSED_LOOP and its sin/cos, from the
+ * estimator's speed: recomputed whenever that speed changes (the slow
+ * step's results, a preset, a reset), so the period only turns sc. */
+static void mc_set_advance(mc_t *mc)
+{
+    mc->adv_sc = sincos_compute(q15_mul(smc_omega(&mc->smc), MC_ADV_K));
+}
+
 /* ---- state changes --------------------------------------------------------------- */
 
 static void mc_enter(mc_t *mc, mc_state_t s)
@@ -262,6 +284,7 @@ static void mc_enter_lock(mc_t *mc)
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
     smc_reset(&mc->smc);
+    mc_set_advance(mc);
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
     mc->ol_step = 0U;
@@ -297,6 +320,7 @@ static void mc_enter_closed_loop(mc_t *mc)
     /* The rotor turns at the forced speed on average; the estimator's
      * window speed is noisier than that, so both start from it. */
     smc_preset_speed(&mc->smc, MC_RAMP_END_Q15);
+    mc_set_advance(mc);
     mc->speed_ref =
         (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
     /* Bumpless: the speed PI starts from the torque-producing part of the
@@ -402,7 +426,9 @@ static void mc_estimate(mc_t *mc)
 
 /* Current loops and modulation, for one period with the outputs on.
  * mc->theta: angle of this sample; adv: advance for the voltage. */
-static void mc_current_control(mc_t *mc, angle_q15_t adv)
+/* adv: MC_ADV_NONE (LOCK), MC_ADV_CLOSED (mc->adv_sc) or an open-loop
+ * advance in angle counts. */
+static void mc_current_control(mc_t *mc, int32_t adv)
 {
     sincos_q15_t sc = sincos_compute(mc->theta);
     mc->i_dq = park_forward(mc->i_ab, sc);
@@ -442,8 +468,14 @@ static void mc_current_control(mc_t *mc, angle_q15_t adv)
     mc->v_dq = v;
 
     /* Voltage at the angle it will be applied at (no second sin/cos when
-     * there is no advance: LOCK and the first OPEN_LOOP period). */
-    sincos_q15_t scv = (adv == 0) ? sc : sincos_compute(angle_add(mc->theta, adv));
+     * there is no advance: LOCK and the first OPEN_LOOP period; in
+     * CLOSED_LOOP a rotation by the advance's sin/cos, set once per window). */
+    sincos_q15_t scv = sc;
+    if (adv == MC_ADV_CLOSED) {
+        scv = mc_advance(sc, mc->adv_sc);
+    } else if (adv != 0) {
+        scv = sincos_compute(angle_add(mc->theta, (angle_q15_t)adv));
+    }
     ab_q15_t v_ab = park_inverse(v, scv);
     svgen_out_t sv;
     svgen_update(v_ab, PWM_DUTY_MAX, &sv);
@@ -520,6 +552,7 @@ static void mc_slow_apply(mc_t *mc)
         return; /* no window posted since mc_init */
     }
     smc_apply(&mc->smc);
+    mc_set_advance(mc);
     mc->speed_target = so->speed_target;
     mc->torque_target = so->torque_target;
     if (so->loop && so->epoch == mc->epoch && mc->state == MC_STATE_CLOSED_LOOP) {
@@ -697,7 +730,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                     mc->ic = 0;
                     mc_enter_lock(mc);
                     mc_estimate(mc);
-                    mc_current_control(mc, 0);
+                    mc_current_control(mc, MC_ADV_NONE);
                     break;
                 }
             }
@@ -708,7 +741,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                 mc_enter(mc, MC_STATE_OPEN_LOOP);
             }
             mc_estimate(mc);
-            mc_current_control(mc, 0);
+            mc_current_control(mc, MC_ADV_NONE);
             break;
         case MC_STATE_OPEN_LOOP:
             mc->ol_step += MC_RAMP_STEP_INC;
@@ -747,8 +780,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->theta_offset = off;
             mc_estimate(mc);
             mc->theta = angle_add(smc_theta(&mc->smc), off);
-            adv = q15_mul(smc_omega(&mc->smc), MC_ADV_K);
-            mc_current_control(mc, adv);
+            mc_current_control(mc, MC_ADV_CLOSED);
             break;
         }
         default: /* STOPPED, FAULT: outputs stay off */
