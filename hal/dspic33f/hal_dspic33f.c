@@ -3,6 +3,7 @@
 #include <xc.h>
 
 #include "hal_dspic33f.h"
+#include "hal_regs.h"
 
 /* ---- init ------------------------------------------------------------------ */
 
@@ -211,57 +212,21 @@ void hal_init(void)
 
 /* ---- ADC --------------------------------------------------------------------- */
 
-/* A signed fractional result (sddd dddd dd00 0000) as the int16_t it encodes,
- * without relying on an implementation-defined unsigned-to-signed cast. */
-static int16_t adc_signed(uint16_t raw)
-{
-    return (int16_t)((int32_t)raw - ((raw & 0x8000u) ? 65536L : 0L));
-}
-
-/* A unipolar input (0 V .. AVDD) as 0..32767: the signed fractional result
- * offset by half scale, halved. 10-bit code n gives 32 n = Q15 of n / 1024. */
-static int16_t adc_unipolar(uint16_t raw)
-{
-    return (int16_t)((uint16_t)(raw ^ 0x8000u) >> 1);
-}
-
-/* The board's amplifier sign; -32768 negates to 32767 (saturating). */
-static int16_t adc_current(uint16_t raw)
-{
-    int16_t x = adc_signed(raw);
-#if HAL_BOARD_I_SIGN < 0
-    return q15_neg_sat(x);
-#else
-    return x;
-#endif
-}
-
 void hal_adc_read(mc_adc_frame_t *frame)
 {
-    frame->pot = adc_unipolar(ADC1BUF0);  /* CH0 = AN8 */
-    frame->ia = adc_current(ADC1BUF1);    /* CH1 = AN0 */
-    frame->ib = adc_current(ADC1BUF2);    /* CH2 = AN1 */
-    frame->vbus = adc_unipolar(ADC1BUF3); /* CH3 = AN2 */
+    hal_regs_adc_read(frame);
 }
 
 int16_t hal_pot_read(void)
 {
-    return adc_unipolar(ADC1BUF0);
+    return hal_regs_unipolar(ADC1BUF0);
 }
 
 /* ---- PWM --------------------------------------------------------------------- */
 
-static uint16_t duty_clamp(uint16_t d)
-{
-    return d > PWM_DUTY_MAX ? (uint16_t)PWM_DUTY_MAX : d;
-}
-
 void hal_pwm_write(const mc_pwm_out_t *out)
 {
-    P1DC1 = duty_clamp(out->duty[0]);
-    P1DC2 = duty_clamp(out->duty[1]);
-    P1DC3 = duty_clamp(out->duty[2]);
-    P1OVDCON = out->outputs_on ? HAL_P1OVDCON_PWM : HAL_P1OVDCON_OFF;
+    hal_regs_pwm_write(out);
 }
 
 /* ---- fault --------------------------------------------------------------------- */

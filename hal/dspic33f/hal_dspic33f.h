@@ -40,16 +40,22 @@
 #error "BOARD_FCY_HZ missing: the board profile (firmware/boards/board_<BOARD>.h) must define it"
 #endif
 
-/* ---- interrupt attribute -------------------------------------------------- *
- * auto_psv: the ISR runs mc_step(), which reads const tables (the sine
+/* ---- interrupt attributes ------------------------------------------------- *
+ * auto_psv: the ISRs run the core, which reads const tables (the sine
  * table, gains) that XC16 places in program memory and reads through PSV;
- * auto_psv makes the ISR set PSVPAG for them (a few cycles), instead of
- * trusting that nothing ever changed it (hardware.md 4.7). On the PC and
- * with avr-gcc the vector is an ordinary function the tests call. */
+ * auto_psv makes each ISR set PSVPAG for them (a few cycles), instead of
+ * trusting that nothing ever changed it (docs/board.md). shadow, on the ADC
+ * interrupt alone: W0-W3 and SR go to the one set of shadow registers
+ * (push.s / pop.s) instead of the stack; no other code may use them, which
+ * is why the slow step's interrupt, which the ADC interrupt pre-empts, does
+ * not. On the PC and with avr-gcc the vectors are ordinary functions the
+ * tests call. */
 #if defined(__XC16__)
-#define HAL_ISR __attribute__((interrupt, auto_psv))
+#define HAL_ISR      __attribute__((interrupt, auto_psv))
+#define HAL_ISR_FAST __attribute__((interrupt, auto_psv, shadow))
 #else
 #define HAL_ISR
+#define HAL_ISR_FAST
 #endif
 
 /* ---- clock (hardware.md 1.2) ---------------------------------------------- *
@@ -190,7 +196,7 @@ Q15_STATIC_ASSERT(BOARD_FCY_HZ / 8L / 1000L - 1L <= 0xFFFFL, "PR1 is 16 bits");
 
 /* The ADC interrupt vector and the slow step's (hal_isr.c); the tests call
  * them as functions. */
-void HAL_ISR _ADC1Interrupt(void);
+void HAL_ISR_FAST _ADC1Interrupt(void);
 void HAL_ISR _T2Interrupt(void);
 
 #endif /* HAL_DSPIC33F_H */

@@ -4,6 +4,7 @@
 #include <xc.h>
 
 #include "hal_dspic33f.h"
+#include "hal_regs.h"
 
 /*
  * The one mc_t of the running motor. It belongs to the ADC interrupt, which
@@ -30,15 +31,15 @@ static uint16_t slow_div;
  * overrun (a step longer than a period) re-enters at once instead of
  * silently skipping a period. The observer, if any, comes after the
  * duties, so it can never delay them. */
-void HAL_ISR _ADC1Interrupt(void)
+void HAL_ISR_FAST _ADC1Interrupt(void)
 {
     mc_adc_frame_t frame;
     mc_pwm_out_t out;
 
     IFS0bits.AD1IF = 0;
-    hal_adc_read(&frame);
+    hal_regs_adc_read(&frame);
     mc_step(&motor, &frame, &out);
-    hal_pwm_write(&out);
+    hal_regs_pwm_write(&out);
     if (++slow_div >= MC_SLOW_STEP_PERIODS) {
         slow_div = 0U;
         IFS0bits.T2IF = 1; /* the window's slow step, as soon as this interrupt returns */
