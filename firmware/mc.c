@@ -514,6 +514,56 @@ static void mc_current_control(mc_t *mc, int32_t adv)
     mc->v_hist[0] = mc_duty_to_voltage(eff, mc->vbus);
 }
 
+/* CALIBRATE: after calib_wait periods of coasting, average the two current
+ * readings over MC_CALIB_PERIODS; then the offsets, or FAULT OFFSET.
+ * Returns true when it has entered LOCK (this period runs the loops). */
+static bool mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
+{
+    if (mc->timer < mc->calib_wait) {
+        return false;
+    }
+    mc->offset_acc_a += in->ia;
+    mc->offset_acc_b += in->ib;
+    if (mc->timer - mc->calib_wait < (uint32_t)(MC_CALIB_PERIODS - 1U)) {
+        return false;
+    }
+    /* Two divisions per start, not per period: the mean of
+     * MC_CALIB_PERIODS <= 32767 int16 samples fits div.sd. */
+    mc->offset_a = q15_dsp_divsd(mc->offset_acc_a, (int16_t)MC_CALIB_PERIODS);
+    mc->offset_b = q15_dsp_divsd(mc->offset_acc_b, (int16_t)MC_CALIB_PERIODS);
+    if (q15_abs_sat(mc->offset_a) > MC_OFFSET_MAX_Q15 ||
+        q15_abs_sat(mc->offset_b) > MC_OFFSET_MAX_Q15) {
+        mc->offset_a = 0;
+        mc->offset_b = 0;
+        mc_fault(mc, MC_FAULT_OFFSET);
+        return false;
+    }
+    /* This sample still carried the old offsets: zero the currents the
+     * lock's first period sees. */
+    mc->ia = 0;
+    mc->ib = 0;
+    mc->ic = 0;
+    mc_enter_lock(mc);
+    return true;
+}
+
+/* OPEN_LOOP at the end speed: hold it until the estimate is valid, for at
+ * most MC_HANDOFF_WAIT_PERIODS (note 1), then retry or fault. */
+static void mc_ramp_end(mc_t *mc)
+{
+    mc->ol_step = MC_RAMP_STEP_END;
+    if (smc_valid(&mc->smc)) {
+        mc_enter_closed_loop(mc);
+    } else if (mc->timer < MC_RAMP_PERIODS + MC_HANDOFF_WAIT_PERIODS) {
+        /* keep turning at the end speed */
+    } else if ((int)mc->retries < (int)MC_START_RETRIES) {
+        mc->retries++;
+        mc_begin_calibration(mc, MC_COAST_PERIODS);
+    } else {
+        mc_fault(mc, MC_FAULT_START_FAILED);
+    }
+}
+
 /* ---- the seam ------------------------------------------------------------------------------ */
 
 void mc_init(mc_t *mc)
@@ -705,67 +755,30 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             break;
     }
 
-    angle_q15_t adv = 0;
+    /* The state's own work, then the loops once for every running state (a
+     * single call site, so the compiler inlines the estimator step and the
+     * current control into this function). */
+    int32_t adv = MC_ADV_NONE;
+    bool control = false;
+    bool estimated_angle = false;
     switch (mc->state) {
         case MC_STATE_CALIBRATE:
-            if (mc->timer >= mc->calib_wait) {
-                mc->offset_acc_a += in->ia;
-                mc->offset_acc_b += in->ib;
-                if (mc->timer - mc->calib_wait >= (uint32_t)(MC_CALIB_PERIODS - 1U)) {
-                    /* Two divisions per start, not per period: the mean of
-                     * MC_CALIB_PERIODS <= 32767 int16 samples fits div.sd. */
-                    mc->offset_a = q15_dsp_divsd(mc->offset_acc_a, (int16_t)MC_CALIB_PERIODS);
-                    mc->offset_b = q15_dsp_divsd(mc->offset_acc_b, (int16_t)MC_CALIB_PERIODS);
-                    if (q15_abs_sat(mc->offset_a) > MC_OFFSET_MAX_Q15 ||
-                        q15_abs_sat(mc->offset_b) > MC_OFFSET_MAX_Q15) {
-                        mc->offset_a = 0;
-                        mc->offset_b = 0;
-                        mc_fault(mc, MC_FAULT_OFFSET);
-                        break;
-                    }
-                    /* This sample still carried the old offsets: zero the
-                     * currents the lock's first period sees. */
-                    mc->ia = 0;
-                    mc->ib = 0;
-                    mc->ic = 0;
-                    mc_enter_lock(mc);
-                    mc_estimate(mc);
-                    mc_current_control(mc, MC_ADV_NONE);
-                    break;
-                }
-            }
+            control = mc_calibrate(mc, in); /* true once it has entered LOCK */
             break;
         case MC_STATE_LOCK:
             if (mc->timer >= MC_LOCK_PERIODS) {
                 mc->i_ref.q = MC_RAMP_CURRENT_Q15;
                 mc_enter(mc, MC_STATE_OPEN_LOOP);
             }
-            mc_estimate(mc);
-            mc_current_control(mc, MC_ADV_NONE);
+            control = true;
             break;
         case MC_STATE_OPEN_LOOP:
             mc->ol_step += MC_RAMP_STEP_INC;
             mc->ol_angle += mc->ol_step;
             mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
             /* 1.5 periods of the forced speed. */
-            adv = (angle_q15_t)(int16_t)(uint16_t)((mc->ol_step >> 16) * 3U / 2U);
-            mc_estimate(mc);
-            mc_current_control(mc, adv);
-            if (mc->ol_step >= MC_RAMP_STEP_END) {
-                /* At the end speed: hold it until the estimate is valid,
-                 * for at most MC_HANDOFF_WAIT_PERIODS (note 1). */
-                mc->ol_step = MC_RAMP_STEP_END;
-                if (smc_valid(&mc->smc)) {
-                    mc_enter_closed_loop(mc);
-                } else if (mc->timer < MC_RAMP_PERIODS + MC_HANDOFF_WAIT_PERIODS) {
-                    /* keep turning at the end speed */
-                } else if ((int)mc->retries < (int)MC_START_RETRIES) {
-                    mc->retries++;
-                    mc_begin_calibration(mc, MC_COAST_PERIODS);
-                } else {
-                    mc_fault(mc, MC_FAULT_START_FAILED);
-                }
-            }
+            adv = (int32_t)(int16_t)(uint16_t)((mc->ol_step >> 16) * 3U / 2U);
+            control = true;
             break;
         case MC_STATE_CLOSED_LOOP: {
             /* Bleed the hand-off difference towards 0. */
@@ -778,13 +791,23 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                 off = 0;
             }
             mc->theta_offset = off;
-            mc_estimate(mc);
-            mc->theta = angle_add(smc_theta(&mc->smc), off);
-            mc_current_control(mc, MC_ADV_CLOSED);
+            adv = MC_ADV_CLOSED;
+            control = true;
+            estimated_angle = true;
             break;
         }
         default: /* STOPPED, FAULT: outputs stay off */
             break;
+    }
+    if (control) {
+        mc_estimate(mc);
+        if (estimated_angle) {
+            mc->theta = angle_add(smc_theta(&mc->smc), mc->theta_offset);
+        }
+        mc_current_control(mc, adv);
+        if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
+            mc_ramp_end(mc);
+        }
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
 
