@@ -160,6 +160,7 @@ void mc_set_reference(mc_t *mc, int16_t ref)
 {
     mc->ref_remote = ref;
     mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
+    mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
 }
 
 bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)
@@ -169,6 +170,7 @@ bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)
     }
     mc->gain_posted[g] = value;
     mc->gain_seq = (uint8_t)(mc->gain_seq + 1U);
+    mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
     return true;
 }
 
@@ -680,6 +682,13 @@ void mc_slow_step(mc_t *mc)
     mc->slow_busy = false;
 }
 
+/* |i| >= MC_OVERCURRENT_Q15, with |-32768| counted as 32767 (q15_abs_sat),
+ * as two compares. */
+Q15_INLINE bool mc_overcurrent(q15_t i)
+{
+    return i >= MC_OVERCURRENT_Q15 || i <= (q15_t)(-MC_OVERCURRENT_Q15);
+}
+
 void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 {
     /* 1. Frame, requests and reference. */
@@ -699,21 +708,21 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         if (mc_take(mc, MC_REQUEST_REF_POT)) {
             mc->ref_from_remote = false;
         }
-    }
-    uint8_t gseq = mc->gain_seq;
-    if (gseq != mc->gain_seen) {
-        mc->gain_seen = gseq;
-        mc_apply_gains(mc);
-    }
-    uint8_t seq = mc->ref_remote_seq;
-    if (seq != mc->ref_remote_seen) {
-        mc->ref_remote_seen = seq;
-        mc->ref_from_remote = true;
+        uint8_t gseq = mc->gain_seq;
+        if (gseq != mc->gain_seen) {
+            mc->gain_seen = gseq;
+            mc_apply_gains(mc);
+        }
+        uint8_t seq = mc->ref_remote_seq;
+        if (seq != mc->ref_remote_seen) {
+            mc->ref_remote_seen = seq;
+            mc->ref_from_remote = true;
+        }
     }
     /* 2. Offsets off; ic from the other two. */
     mc->ia = q15_sub_sat(in->ia, mc->offset_a);
     mc->ib = q15_sub_sat(in->ib, mc->offset_b);
-    mc->ic = q15_sub_sat(q15_neg_sat(mc->ia), mc->ib); /* -ia - ib: exact unless it saturates */
+    mc->ic = q15_dsp_dbl_sub2_sat(0, mc->ia, mc->ib); /* -ia - ib, saturated once */
 
     /* 3. Protections, before anything is driven. */
     bool running = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
@@ -722,9 +731,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         mc_fault(mc, MC_FAULT_HARDWARE);
     }
     if (running) {
-        if (q15_abs_sat(mc->ia) >= MC_OVERCURRENT_Q15 ||
-            q15_abs_sat(mc->ib) >= MC_OVERCURRENT_Q15 ||
-            q15_abs_sat(mc->ic) >= MC_OVERCURRENT_Q15) {
+        if (mc_overcurrent(mc->ia) || mc_overcurrent(mc->ib) || mc_overcurrent(mc->ic)) {
             mc_fault(mc, MC_FAULT_OVERCURRENT);
         } else if (mc->vbus <= MC_VBUS_UV_Q15) {
             mc_fault(mc, MC_FAULT_UNDERVOLTAGE);

@@ -27,11 +27,11 @@
  * the start of the next period (the dsPIC loads PDCx at the period boundary).
  *
  * Concurrency: mc_step() runs in the ADC interrupt, mc_slow_step() in a
- * context the interrupt pre-empts (note 4). mc_request() and
- * mc_set_reference() may be called from the main loop (or any other
- * context) while mc_step() runs: they only post into a mailbox that
- * mc_step() reads at its next call, each field of which has exactly one
- * writer (see note 1). mc_status() takes a snapshot; called outside the
+ * context the interrupt pre-empts (note 4). mc_request(),
+ * mc_set_reference() and mc_set_gain() may be called from the main loop
+ * (or any other one context) while mc_step() runs: they only post into a
+ * mailbox that mc_step() reads at its next call, each field of which has
+ * exactly one writing context (see note 1). mc_status() takes a snapshot; called outside the
  * interrupt it may mix fields of two consecutive periods.
  *
  * Extensions beyond DESIGN.md's minimum (added, nothing renamed):
@@ -208,7 +208,7 @@ typedef struct {
     /* mailbox (note 1): posted[] written only by mc_request, taken[] only by mc_step */
     volatile uint8_t req_posted[MC_REQUEST_COUNT];
     uint8_t req_taken[MC_REQUEST_COUNT];
-    volatile uint8_t req_seq; /* incremented by mc_request after req_posted */
+    volatile uint8_t req_seq; /* incremented last by mc_request, mc_set_reference, mc_set_gain */
     uint8_t req_seen;
     volatile int16_t ref_remote;     /* remote reference (speed or Iq), Q15 */
     volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference */
@@ -320,13 +320,15 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *
  * 1. The mailbox. A request r is pending while req_posted[r] != req_taken[r]
  *    (both uint8_t, compared modulo 256). mc_request() increments
- *    req_posted[r], then req_seq; mc_step() looks at the requests only when
- *    req_seq has moved (one compare in the usual period), and copies each
- *    req_posted[r] into req_taken[r] once it has acted. A step that runs
- *    between the two increments sees the request one period later. Each
- *    byte has one writer and byte writes are atomic on the dsPIC, so no
- *    interrupt masking is needed; a request posted twice before the step
- *    sees it counts once.
+ *    req_posted[r], then req_seq; mc_step() looks at the requests (and at
+ *    the reference and gain counters, whose setters also increment req_seq
+ *    last) only when req_seq has moved (one compare in the usual period),
+ *    and copies each req_posted[r] into req_taken[r] once it has acted. A
+ *    step that runs between the two increments sees the request one period
+ *    later. Each byte has one writing context (mc_request, mc_set_reference
+ *    and mc_set_gain are called from one context, never from mc_step's) and
+ *    byte writes are atomic on the dsPIC, so no interrupt masking is
+ *    needed; a request posted twice before the step sees it counts once.
  *
  * 2. The estimator is fed the voltage the inverter actually applied while
  *    the measured current evolved: the duties computed two steps ago (they

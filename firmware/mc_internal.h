@@ -44,8 +44,8 @@ Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
 {
     ab_q15_t v;
     q15_t vb = (vbus < 0) ? 0 : vbus;
-    q15_t na = q15_sat((int32_t)2 * duty[0] - (int32_t)duty[1] - (int32_t)duty[2]);
-    q15_t nb = q15_sat((int32_t)duty[1] - (int32_t)duty[2]);
+    q15_t na = q15_dsp_dbl_sub2_sat(duty[0], duty[1], duty[2]);
+    q15_t nb = q15_dsp_sub_sat(duty[1], duty[2]);
     v.alpha = q15_dsp_mul3_r(na, vb, MC_VAPP_K, (int8_t)(25 - 30));
     v.beta = q15_dsp_mul3_r(nb, vb, MC_VAPP_KB, (int8_t)(24 - 30));
     return v;

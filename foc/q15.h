@@ -158,7 +158,7 @@ Q15_INLINE q15_t q15_sub_sat(q15_t a, q15_t b)
 /* -a, saturated: -(-32768) gives 32767. */
 Q15_INLINE q15_t q15_neg_sat(q15_t a)
 {
-    return q15_sat(-(int32_t)a);
+    return q15_dsp_neg_sat(a);
 }
 
 /* |a|, saturated: |-32768| gives 32767. */

@@ -59,6 +59,11 @@
  *   q15_dsp_add_sat(a, b), q15_dsp_sub_sat(a, b)
  *                                sat16(a + b), sat16(a - b): lac, lac, add or
  *                                sub, sac
+ *   q15_dsp_neg_sat(a)           sat16(-a): lac, clr, sub, sac
+ *   q15_dsp_dbl_sub2_sat(a, b, c)
+ *                                sat16(2a - b - c), exact before the one
+ *                                clamp (formed in the unsaturated B: lac,
+ *                                two mac by -1.0, sac)
  *   q15_dsp_q30_counts(x, p)     round((xh p + floor(xl p / 2^15)) / 2^15)
  *                                with x = xh 2^15 + xl, for 0 <= x < 2^30
  *                                and 0 <= p <= 32767: a Q30 fraction of p
@@ -217,6 +222,25 @@ Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
     q15_dsp_acca_ = __builtin_lac(a, 0);
     q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_);
     return __builtin_sac(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_neg_sat(int16_t a)
+{
+    q15_dsp_accb_ = __builtin_lac(a, 0);
+    q15_dsp_acca_ = __builtin_clr();
+    q15_dsp_acca_ = __builtin_subab(q15_dsp_acca_, q15_dsp_accb_); /* 2^31 saturates */
+    return __builtin_sac(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_dbl_sub2_sat(int16_t a, int16_t b, int16_t c)
+{
+    /* b and c subtracted as products with -1.0 (2 x (-2^15) x b = -b 2^16,
+     * exact): no lac of b or c that gcc could share with another
+     * primitive's, which XC16 cannot copy between accumulators. */
+    q15_dsp_accb_ = __builtin_lac(a, -1); /* 2a 2^16: up to 2^32, B has 8 guard bits */
+    q15_dsp_accb_ = __builtin_mac(q15_dsp_accb_, b, (int16_t)-32768, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_mac(q15_dsp_accb_, c, (int16_t)-32768, 0, 0, 0, 0, 0, 0, 0, 0);
+    return __builtin_sac(q15_dsp_accb_, 0);
 }
 
 Q15_INLINE uint16_t q15_dsp_q30_counts(uint32_t x, uint16_t p)
@@ -396,6 +420,16 @@ Q15_INLINE int16_t q15_dsp_add_sat(int16_t a, int16_t b)
 Q15_INLINE int16_t q15_dsp_sub_sat(int16_t a, int16_t b)
 {
     return q15_dsp_round_(((int64_t)a - (int64_t)b) * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_neg_sat(int16_t a)
+{
+    return q15_dsp_round_(-(int64_t)a * 65536);
+}
+
+Q15_INLINE int16_t q15_dsp_dbl_sub2_sat(int16_t a, int16_t b, int16_t c)
+{
+    return q15_dsp_round_((2 * (int64_t)a - (int64_t)b - (int64_t)c) * 65536);
 }
 
 Q15_INLINE uint16_t q15_dsp_q30_counts(uint32_t x, uint16_t p)
