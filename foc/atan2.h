@@ -50,11 +50,14 @@ Q15_INLINE uint16_t atan2_octant(uint16_t num, uint16_t den)
     r = q15_dsp_divud((uint32_t)num << 16, den);
     i = (uint16_t)(r >> ATAN2_FRAC_BITS); /* 0..127 */
     f = (uint16_t)(r & ((1U << ATAN2_FRAC_BITS) - 1U));
-    /* step <= 326 quarter LSB, step f <= 166,586: a 16 x 16 -> 32 product. */
-    q = (uint16_t)(atan2_table[i] +
-                   (uint16_t)(((uint32_t)(uint16_t)(atan2_table[i + 1U] - atan2_table[i]) * f +
-                               (1UL << (ATAN2_FRAC_BITS - 1U))) >>
-                              ATAN2_FRAC_BITS));
+    /* q = t + round(step f / 2^9) as t 2^16 + 2 step (f 2^6) on the
+     * accumulator, rounded: t <= table[127] = 32604, step <= 326 and f 2^6
+     * <= 32704 are signed 16-bit operands. The store saturates q at 32767
+     * only where the exact q is 32768 (i = 127, f = 511), and both give
+     * 8192 below. */
+    q = (uint16_t)q15_dsp_lac_mac_r((int16_t)atan2_table[i],
+                                    (int16_t)(uint16_t)(atan2_table[i + 1U] - atan2_table[i]),
+                                    (int16_t)(f << (16U - ATAN2_FRAC_BITS - 1U)));
     return (uint16_t)((q + 2U) >> 2); /* quarter LSB -> LSB, rounded */
 }
 

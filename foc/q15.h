@@ -288,6 +288,12 @@ Q15_INLINE angle_q15_t angle_sub(angle_q15_t a, angle_q15_t b)
     return (angle_q15_t)(int16_t)(uint16_t)((uint16_t)a - (uint16_t)b);
 }
 
+/* -a modulo one turn (-pi stays -pi). */
+Q15_INLINE angle_q15_t angle_neg(angle_q15_t a)
+{
+    return (angle_q15_t)(int16_t)(uint16_t)(0U - (uint16_t)a);
+}
+
 /*
  * Notes
  *

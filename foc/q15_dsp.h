@@ -82,6 +82,12 @@
  *                                round(sat31(sat31(2ab) + 2cd 2^n)): a Q15
  *                                sum with a coefficient c 2^n >= 1 (n in
  *                                0..15, and |2cd 2^n| < 2^39)
+ *   q15_dsp_lac_mac_r(x, a, b)   round(sat31(x 2^16 + 2ab)): x plus a Q15
+ *                                product, rounded once
+ *   q15_dsp_x2y_gain_r(x, y, c)  sat16(round((x + 2y)(2^15 + c) / 2^16)):
+ *                                x + 2y times a Q16 gain 1 + c / 2^15 in
+ *                                [1, 1.5) (0 <= c < 2^14), exact before the
+ *                                rounding, formed in the unsaturated B
  *   q15_dsp_lac_mac_shl_r(x, a, b, c, d, n)
  *                                round(sat31(sat31(x 2^16 + 2ab) + 2cd 2^n)),
  *                                the same with a Q15 term x
@@ -309,6 +315,24 @@ Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d,
     return __builtin_sacr(q15_dsp_acca_, 0);
 }
 
+Q15_INLINE int16_t q15_dsp_lac_mac_r(int16_t x, int16_t a, int16_t b)
+{
+    q15_dsp_acca_ = __builtin_lac(x, 0);
+    q15_dsp_acca_ = __builtin_mac(q15_dsp_acca_, a, b, 0, 0, 0, 0, 0, 0, 0, 0);
+    return __builtin_sacr(q15_dsp_acca_, 0);
+}
+
+Q15_INLINE int16_t q15_dsp_x2y_gain_r(int16_t x, int16_t y, int16_t c)
+{
+    /* B = 2 (x + 2y)(2^15 + c) = x 2^16 + y 2^17 + 2cx + 2(2c)y < 2^35. */
+    q15_dsp_accb_ = __builtin_lac(y, -1); /* up to 2^32: B, unsaturated */
+    q15_dsp_acca_ = __builtin_lac(x, 0);
+    q15_dsp_accb_ = __builtin_addab(q15_dsp_accb_, q15_dsp_acca_);
+    q15_dsp_accb_ = __builtin_mac(q15_dsp_accb_, x, c, 0, 0, 0, 0, 0, 0, 0, 0);
+    q15_dsp_accb_ = __builtin_mac(q15_dsp_accb_, y, (int16_t)(2 * c), 0, 0, 0, 0, 0, 0, 0, 0);
+    return __builtin_sacr(q15_dsp_accb_, 1);
+}
+
 Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_t c, int16_t d,
                                          uint8_t n)
 {
@@ -466,6 +490,18 @@ Q15_INLINE int16_t q15_dsp_mac_shl_r(int16_t a, int16_t b, int16_t c, int16_t d,
 {
     int64_t acc = q15_dsp_sat31_(q15_dsp_frac_(a, b));
     return q15_dsp_round_(q15_dsp_sat31_(acc + q15_dsp_frac_(c, d) * ((int64_t)1 << n)));
+}
+
+Q15_INLINE int16_t q15_dsp_lac_mac_r(int16_t x, int16_t a, int16_t b)
+{
+    return q15_dsp_round_(q15_dsp_sat31_((int64_t)x * 65536 + q15_dsp_frac_(a, b)));
+}
+
+Q15_INLINE int16_t q15_dsp_x2y_gain_r(int16_t x, int16_t y, int16_t c)
+{
+    /* sac.r with a right shift of 1: bits 32..17 of B, rounded. */
+    int64_t b = 2 * ((int64_t)x + 2 * (int64_t)y) * (32768 + (int64_t)c);
+    return q15_dsp_round_(b >> 1);
 }
 
 Q15_INLINE int16_t q15_dsp_lac_mac_shl_r(int16_t x, int16_t a, int16_t b, int16_t c, int16_t d,

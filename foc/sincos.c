@@ -3,8 +3,10 @@
 
 /*
  * Table: SINCOS_TABLE_INTERVALS + 1 = 129 entries of round(32768 sin(i pi / 256)),
- * i = 0..128, covering 0..pi/2 (the last entry, 32768, saturated to 32767).
- * const, so the dsPIC linker places it in flash (258 bytes).
+ * i = 0..128, covering 0..pi/2 (the last entry, 32768, saturated to 32767),
+ * and a pad, sin(129 pi / 256) = entry 127, which only r = 2^14 (fraction
+ * 0) reads: the interpolation needs no test. const, so the dsPIC linker
+ * places it in flash (260 bytes).
  *
  * Angle decomposition (theta as uint16_t, one turn = 2^16):
  *   bits 15..14  quadrant (0..3)
@@ -21,8 +23,8 @@
  * |output| <= 32767 always, so negating it never saturates.
  *
  * Cost: per output two table reads and one 16 x 16 multiply (difference x
- * fraction, <= 402 x 127 = 51,054, formed in 32 bits because it exceeds
- * int16_t), no division, no float.
+ * fraction, <= 402 x 127 = 51,054: unsigned 16-bit arithmetic), no branch
+ * on the fraction, no division, no float.
  */
 
 const q15_t sincos_table[SINCOS_TABLE_SIZE] = {
@@ -36,4 +38,5 @@ const q15_t sincos_table[SINCOS_TABLE_SIZE] = {
     29448, 29622, 29792, 29957, 30118, 30274, 30425, 30572, 30715, 30853, 30986, 31114, 31238,
     31357, 31471, 31581, 31686, 31786, 31881, 31972, 32058, 32138, 32214, 32286, 32352, 32413,
     32470, 32522, 32568, 32610, 32647, 32679, 32706, 32729, 32746, 32758, 32766, 32767,
+    32766, /* pad: sin(129 pi / 256), read only with fraction 0 */
 };

@@ -9,8 +9,8 @@
  *   theta: angle_q15_t, one turn = 2^16 (any value is valid; it wraps).
  *   Output: Q15 in [-32767, 32767]; sin(pi/2) is 0x7FFF, never +1.0, so
  *   either output can be negated without saturating.
- *   Method: a const quarter-wave table of 129 entries (258 bytes of flash,
- *   128 steps per quarter turn) indexed by bits 13..7 of theta, linear
+ *   Method: a const quarter-wave table of 129 entries plus one pad (260
+ *   bytes of flash, 128 steps per quarter turn) indexed by bits 13..7 of theta, linear
  *   interpolation on bits 6..0, rounded to nearest (ties up); quadrant
  *   symmetry gives the rest, and cos(x) = sin(x + pi/2) uses the same path.
  *   Odd/even symmetry is exact: sin(-x) = -sin(x), cos(-x) = cos(x).
@@ -25,9 +25,9 @@
 #define SINCOS_FRAC_BITS  7U /* 14 bits of quadrant angle - 7 index bits */
 #define SINCOS_QUARTER    0x4000U
 #define SINCOS_FRAC_MASK  ((1U << SINCOS_FRAC_BITS) - 1U)
-#define SINCOS_TABLE_SIZE ((1U << SINCOS_INDEX_BITS) + 1U)
+#define SINCOS_TABLE_SIZE ((1U << SINCOS_INDEX_BITS) + 2U)
 
-/* round(32768 sin(i pi / 256)), i = 0..128 (sincos.c). */
+/* round(32768 sin(i pi / 256)), i = 0..128, and a pad entry (sincos.c). */
 extern const q15_t sincos_table[SINCOS_TABLE_SIZE];
 
 /* sin of a binary angle given as uint16_t (one turn = 2^16). */
@@ -45,15 +45,13 @@ Q15_INLINE q15_t sincos_sin_u16(uint16_t a)
     idx = (uint16_t)(r >> SINCOS_FRAC_BITS);
     frac = (uint16_t)(r & SINCOS_FRAC_MASK);
     mag = sincos_table[idx];
-    if (frac != 0U) {
-        /* idx <= 127 here (r = 2^14 has frac 0), so idx + 1 is in the table.
-         * step in 0..402, step * frac + 64 <= 51,118: an unsigned 16-bit
-         * product, rounded ties up. */
-        uint16_t step = (uint16_t)(sincos_table[idx + 1U] - mag);
-        uint16_t add = (uint16_t)((uint16_t)(step * frac + (1U << (SINCOS_FRAC_BITS - 1U))) >>
-                                  SINCOS_FRAC_BITS);
-        mag = (int16_t)(mag + (int16_t)add); /* between two entries: <= 32767 */
-    }
+    /* idx + 1 <= 129: r = 2^14 reads the pad with frac 0. step in -1..402
+     * (the pad's -1 only ever times 0), step * frac + 64 <= 51,118: an
+     * unsigned 16-bit product, rounded ties up. No branch on frac. */
+    uint16_t step = (uint16_t)(sincos_table[idx + 1U] - mag);
+    uint16_t add = (uint16_t)((uint16_t)(step * frac + (1U << (SINCOS_FRAC_BITS - 1U))) >>
+                              SINCOS_FRAC_BITS);
+    mag = (int16_t)(mag + (int16_t)add); /* between two entries: <= 32767 */
     return ((quadrant & 2U) != 0U) ? (q15_t)(-mag) : mag;
 }
 

@@ -362,8 +362,8 @@ void smc_preset_speed(smc_t *s, q15_t omega);
  * saturated (|v - e - z| saturates at full scale before the multiply by G);
  * filters with 32-bit states (foc/lpf.h); the angle-step sum is 32 bits, so
  * no speed below the Nyquist limit (|delta theta| < pi per period) wraps.
- * One division (atan2), no float. */
-void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
+ * One division (atan2), no float. Defined inline in smc_update.h. */
+Q15_INLINE void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
 
 /* Fast side, every irp_percalc periods, after smc_update: snapshots this
  * window for the slow side (note 10). */
@@ -566,5 +566,8 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *    dropped. A window a reset or preset cut short measures no speed (its
  *    angle sum spans fewer periods than the scaling assumes).
  */
+
+/* The per-period step's definition (inline; smc_update above). */
+#include "smc_update.h"
 
 #endif /* SMC_H */
