@@ -420,7 +420,7 @@ static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t 
  * period with the outputs on, so the angle it gives is the one of this
  * sample (smc.h timing contract): fed the voltage applied while this
  * sample's current evolved, computed two steps ago (mc.h note 2). */
-static void mc_estimate(mc_t *mc)
+Q15_INLINE void mc_estimate(mc_t *mc)
 {
     mc->i_ab = clarke_forward(mc->ia, mc->ib);
     smc_update(&mc->smc, mc->i_ab, mc->v_hist[1]);
@@ -430,7 +430,7 @@ static void mc_estimate(mc_t *mc)
  * mc->theta: angle of this sample; adv: advance for the voltage. */
 /* adv: MC_ADV_NONE (LOCK), MC_ADV_CLOSED (mc->adv_sc) or an open-loop
  * advance in angle counts. */
-static void mc_current_control(mc_t *mc, int32_t adv)
+Q15_INLINE void mc_current_control(mc_t *mc, int32_t adv)
 {
     sincos_q15_t sc = sincos_compute(mc->theta);
     mc->i_dq = park_forward(mc->i_ab, sc);

@@ -116,5 +116,4 @@ Q15_INLINE angle_q15_t atan2_q15(int16_t y, int16_t x)
     return atan2_q31((int32_t)y, (int32_t)x);
 }
 
-
 #endif /* ATAN2_H */

@@ -21,7 +21,7 @@
  *   amplitude, beta is within 1.49 LSB of A sin(theta) (bound 1.57 LSB).
  *   Cost: two accumulator loads and two multiply-accumulates, no division.
  */
-#define CLARKE_INV_SQRT3_Q16 ((int32_t)37837)  /* round(65536 / sqrt(3)) */
+#define CLARKE_INV_SQRT3_Q16 ((int32_t)37837) /* round(65536 / sqrt(3)) */
 
 Q15_INLINE ab_q15_t clarke_forward(q15_t ia, q15_t ib)
 {

@@ -49,8 +49,8 @@ Q15_INLINE q15_t sincos_sin_u16(uint16_t a)
      * (the pad's -1 only ever times 0), step * frac + 64 <= 51,118: an
      * unsigned 16-bit product, rounded ties up. No branch on frac. */
     uint16_t step = (uint16_t)(sincos_table[idx + 1U] - mag);
-    uint16_t add = (uint16_t)((uint16_t)(step * frac + (1U << (SINCOS_FRAC_BITS - 1U))) >>
-                              SINCOS_FRAC_BITS);
+    uint16_t add =
+        (uint16_t)((uint16_t)(step * frac + (1U << (SINCOS_FRAC_BITS - 1U))) >> SINCOS_FRAC_BITS);
     mag = (int16_t)(mag + (int16_t)add); /* between two entries: <= 32767 */
     return ((quadrant & 2U) != 0U) ? (q15_t)(-mag) : mag;
 }

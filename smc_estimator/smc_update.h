@@ -1,4 +1,5 @@
-/* smc_update.h - the observer's per-period step, inline: it runs once per PWM period inside mc_step. */
+/* smc_update.h - the observer's per-period step, inline: it runs once per PWM period inside
+ * mc_step. */
 #ifndef SMC_UPDATE_H
 #define SMC_UPDATE_H
 
