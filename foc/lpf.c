@@ -5,7 +5,7 @@
  * The step is q15_dsp_lpf (q15_dsp.h note 1): with the Q31 state
  * y = hi 2^16 + lo, y + K (x 2^16 - y) = y - 2k hi + 2k x - k lo / 2^15,
  * three exact fractional products and the last one truncated, at most
- * 2 Q31 LSB short, so the state runs at most 1 / k Q15 LSB above the exact
+ * 2 Q31 LSB too little subtracted, so the state runs at most 1 / k Q15 LSB above the exact
  * recurrence and never below it. A negative K (outside the contract) is
  * treated as 0.
  *

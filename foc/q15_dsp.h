@@ -64,7 +64,7 @@
  *                                sat16(2a - b - c), exact before the one
  *                                clamp (formed in the unsaturated B: lac,
  *                                two mac by -1.0, sac)
- *   q15_dsp_q30_counts(x, p)     round((xh p + floor(xl p / 2^15)) / 2^15)
+ *   q15_dsp_q30_counts(x, p)     round((2 xh p + floor(xl p / 2^14)) / 2^16)
  *                                with x = xh 2^15 + xl, for 0 <= x < 2^30
  *                                and 0 <= p <= 32767: a Q30 fraction of p
  *                                counts (SVGen's on-times), both partial
@@ -548,8 +548,9 @@ Q15_INLINE int16_t q15_dsp_lpf(int32_t *y, int16_t x, int16_t k)
  *    2k x - k lo / 2^15. The first three terms are exact accumulator
  *    operations (lac/ACCAL, msc, mac); the last is formed in B from lo / 2
  *    (a signed multiplier operand must be below 2^15) and shifted right by
- *    15, which truncates: the step is short of exact by e in [0, 2) Q31 LSB
- *    (k 1 / 2^15 for the dropped bit plus the truncation). In steady state
+ *    15, which truncates: what it subtracts is short, so the new state is
+ *    above the exact step by e in [0, 2) Q31 LSB (k / 2^15 for the
+ *    dropped bit plus the truncation). In steady state
  *    that leaves the state e 2^15 / k Q31 LSB = e / (2k) Q15 LSB above its
  *    input: below 0.003 LSB at the observer's smallest gain (k = 429) and
  *    one LSB at k = 1. Range: for 0 <= k < 2^15 every partial sum lies

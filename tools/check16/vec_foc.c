@@ -211,6 +211,204 @@ static void vec_divsd(void)
     }
 }
 
+/* ---- q15_dsp.h accumulator primitives ---------------------------------------- */
+/* Each primitive inside its contract (q15_dsp.h); through XC16 these run the
+ * built-in bodies on the simulated dsPIC, on the AVR and the PC the twins. */
+
+/* Edge triple k (k < VEC_N_EDGES^3), else three random values. */
+static void vec_edge_triple(uint32_t k, int16_t *a, int16_t *b, int16_t *c)
+{
+    if (k < VEC_N_EDGES * VEC_N_EDGES * VEC_N_EDGES) {
+        *a = vec_edges[k / (VEC_N_EDGES * VEC_N_EDGES)];
+        *b = vec_edges[(k / VEC_N_EDGES) % VEC_N_EDGES];
+        *c = vec_edges[k % VEC_N_EDGES];
+        return;
+    }
+    *a = vec_rand_i16();
+    *b = vec_rand_i16();
+    *c = vec_rand_i16();
+}
+
+static void vec_dsp_sat16(void)
+{
+    uint32_t k;
+    emit_section("dsp_add_sub_neg_dbl_sub2");
+    vec_seed(0x58U);
+    for (k = 0U; k < 3000U; k++) {
+        int16_t a;
+        int16_t b;
+        int16_t c;
+        vec_edge_triple(k, &a, &b, &c);
+        emit_i16(a);
+        emit_i16(b);
+        emit_i16(c);
+        emit_sep();
+        emit_i16(q15_dsp_add_sat(a, b));
+        emit_i16(q15_dsp_sub_sat(a, b));
+        emit_i16(q15_dsp_neg_sat(a));
+        emit_i16(q15_dsp_dbl_sub2_sat(a, b, c));
+        emit_i16(angle_neg(a));
+        emit_end();
+    }
+}
+
+static void vec_dsp_products(void)
+{
+    uint32_t k;
+    emit_section("dsp_mpy_mac_msc_lac");
+    vec_seed(0x59U);
+    for (k = 0U; k < 3000U; k++) {
+        int16_t a;
+        int16_t b;
+        int16_t c;
+        int16_t d = vec_edge_or_rand(k % 16U);
+        vec_edge_triple(k, &a, &b, &c);
+        emit_i16(a);
+        emit_i16(b);
+        emit_i16(c);
+        emit_i16(d);
+        emit_sep();
+        emit_i16(q15_dsp_mpy_r(a, b));
+        emit_i16(q15_dsp_mac2_r(a, b, c, d));
+        emit_i16(q15_dsp_msc2_r(a, b, c, d));
+        emit_i16(q15_dsp_mulsu_r(a, (uint16_t)b));
+        emit_i16(q15_dsp_lac_mac_r(a, c, d));
+        emit_i16(q15_dsp_half_sub2_r(a, b, c));
+        emit_i16(q15_dsp_x2y_gain_r(a, b, (int16_t)((uint16_t)c & 0x3FFFU)));
+        emit_end();
+    }
+}
+
+static void vec_dsp_shifted(void)
+{
+    uint32_t k;
+    emit_section("dsp_mac_shl");
+    vec_seed(0x5AU);
+    for (k = 0U; k < 3200U; k++) {
+        uint8_t n = (uint8_t)(k % 16U);
+        int16_t x = vec_edge_or_rand((k / 16U) % 24U);
+        int16_t a = vec_rand_i16();
+        int16_t b = vec_edge_or_rand(k % 13U);
+        int16_t c = vec_edge_or_rand(k % 17U);
+        int16_t d = vec_rand_i16();
+        /* |2 c d 2^n| < 2^39: |d| below 2^(23 - n) for n > 8. */
+        if (n > 8U) {
+            d = (int16_t)(d >> (n - 8U));
+        }
+        emit_i16(x);
+        emit_i16(a);
+        emit_i16(b);
+        emit_i16(c);
+        emit_i16(d);
+        emit_u8(n);
+        emit_sep();
+        emit_i16(q15_dsp_mac_shl_r(a, b, c, d, n));
+        emit_i16(q15_dsp_lac_mac_shl_r(x, a, b, c, d, n));
+        emit_end();
+    }
+}
+
+static void vec_dsp_mul3_counts(void)
+{
+    uint32_t k;
+    emit_section("dsp_mul3_q30_counts");
+    vec_seed(0x5BU);
+    for (k = 0U; k < 3000U; k++) {
+        int16_t a;
+        int16_t b;
+        int16_t c;
+        int8_t s = (int8_t) - (int8_t)(k % 8U);
+        uint32_t x = vec_rand_u32() & 0x3FFFFFFFUL;
+        uint16_t p = (uint16_t)(vec_rand_u16() & 0x7FFFU);
+        vec_edge_triple(k, &a, &b, &c);
+        b = (int16_t)((uint16_t)b & 0x7FFFU); /* b, c >= 0 */
+        c = (int16_t)((uint16_t)c & 0x7FFFU);
+        if (k < 64U) {
+            x = (k < 32U) ? 0x3FFFFFFFUL : 0UL;
+            p = (uint16_t)((k & 1U) != 0U ? 32767U : (k & 31U));
+        }
+        emit_i16(a);
+        emit_i16(b);
+        emit_i16(c);
+        emit_u8((uint8_t)s);
+        emit_u32(x);
+        emit_u16(p);
+        emit_sep();
+        emit_i16(q15_dsp_mul3_r(a, b, c, s));
+        emit_u16(q15_dsp_q30_counts(x, p));
+        emit_end();
+    }
+}
+
+static void vec_dsp_pi_lpf(void)
+{
+    uint32_t k;
+    emit_section("dsp_pi_lpf");
+    vec_seed(0x5CU);
+    for (k = 0U; k < 3000U; k++) {
+        int16_t e;
+        int16_t kp;
+        int16_t ki;
+        int16_t kc = vec_rand_i16();
+        int16_t l1 = vec_rand_i16();
+        int16_t l2 = vec_rand_i16();
+        int16_t lo = (l1 < l2) ? l1 : l2;
+        int16_t hi = (l1 < l2) ? l2 : l1;
+        uint8_t n = (uint8_t)(k % 8U);
+        int32_t s = edge32_or_rand(k % 40U);
+        int32_t y = edge32_or_rand((k / 3U) % 40U);
+        int16_t kf = (int16_t)(vec_rand_u16() & 0x7FFFU);
+        int16_t out;
+        int16_t yf;
+        vec_edge_triple(k, &e, &kp, &ki);
+        if ((k & 7U) == 0U) {
+            kf = (int16_t)((k & 8U) != 0U ? 32767 : (k & 16U) != 0U ? 1 : 0);
+        }
+        emit_i16(e);
+        emit_i16(kp);
+        emit_i16(ki);
+        emit_i16(kc);
+        emit_i16(lo);
+        emit_i16(hi);
+        emit_u8(n);
+        emit_i32(s);
+        emit_i32(y);
+        emit_i16(kf);
+        emit_sep();
+        out = q15_dsp_pi(&s, e, kp, n, ki, kc, lo, hi);
+        yf = q15_dsp_lpf(&y, e, kf);
+        emit_i16(out);
+        emit_i32(s);
+        emit_i16(yf);
+        emit_i32(y);
+        emit_end();
+    }
+}
+
+static void vec_dsp_divud_clz(void)
+{
+    uint32_t k;
+    emit_section("dsp_divud_clz16");
+    vec_seed(0x5DU);
+    for (k = 0U; k < 1000U; k++) {
+        /* Inside the contract: den != 0, quotient < 2^16. */
+        uint16_t den = (uint16_t)(vec_rand_u16() | 1U);
+        uint32_t q = vec_rand_u16();
+        uint32_t num = q * den + (uint32_t)(vec_rand_u16() % den);
+        uint16_t v = (k < 16U) ? (uint16_t)(1U << k) : (uint16_t)(vec_rand_u16() >> (k % 16U));
+        if (v == 0U) {
+            v = 1U;
+        }
+        emit_u32(num);
+        emit_u16(den);
+        emit_u16(v);
+        emit_sep();
+        emit_u16(q15_dsp_divud(num, den));
+        emit_u8(q15_dsp_clz16(v));
+        emit_end();
+    }
+}
+
 /* Compile-time constants: the avr-gcc build folds these with a 32-bit
  * double (q15.h note 3); a difference here names the constant's index. */
 static const int16_t q15_constants[] = {
@@ -766,6 +964,12 @@ void vec_foc(void)
     vec_q31();
     vec_angle();
     vec_divsd();
+    vec_dsp_sat16();
+    vec_dsp_products();
+    vec_dsp_shifted();
+    vec_dsp_mul3_counts();
+    vec_dsp_pi_lpf();
+    vec_dsp_divud_clz();
     vec_constants();
 #if defined(CHECK16_HAVE_SINCOS)
     vec_sincos();
