@@ -103,6 +103,13 @@
  *                                state, k in 0..32767 (note 1); returns the
  *                                new state rounded to Q15
  *
+ * XC16 cannot copy one accumulator to the other: where gcc's common
+ * subexpression elimination finds the same __builtin_lac (same operand, same
+ * shift) in two primitives inlined into one function, it shares the result
+ * and XC16 stops with "Automatic generation of DSP instructions not yet
+ * supported". The bodies avoid loading an operand another primitive of
+ * the same path loads (dbl_sub2_sat subtracts b and c as products by -1.0).
+ *
  * The portable bodies widen before multiplying, which is what makes them
  * correct where int is 16 bits (avr-gcc, XC16): `a * b` of two int16_t is a
  * 16-bit product there. They model the 40-bit accumulator in int64_t.
