@@ -13,16 +13,17 @@ HOST_DIR := $(BUILD)/host
 ASAN_DIR := $(BUILD)/asan
 COV_DIR  := $(BUILD)/cov
 
-.PHONY: help bootstrap build unit asan coverage check-16bit lint format bench sim firmware test clean
+.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim firmware test clean
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
 	@echo "make sim PTY=1    the same motor behind the monitor protocol on a pty, for tools/scope"
-	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, coverage, sanitized and plain tests"
+	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, coverage, sanitized and plain tests"
 	@echo "make unit         build and run the host tests (plain build)"
 	@echo "make asan         build and run the host tests under ASan + UBSan"
 	@echo "make coverage     gcovr HTML report in $(COV_DIR)/coverage/, fails below the gates"
 	@echo "make check-16bit  core built with avr-gcc (16-bit int), run in simavr, compared bit for bit with the PC"
+	@echo "make cycles       cycle guard: AVR cycles of mc_step per state (simavr) against committed ceilings"
 	@echo "make lint         cppcheck + clang-format check"
 	@echo "make format       clang-format the sources in place"
 	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
@@ -59,6 +60,9 @@ coverage:
 check-16bit:
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/check16/run $(BUILD)/check16
 
+cycles:
+	@BOARD=mclv MOTOR=hurst tools/check16/cycles $(BUILD)/cycles  # the ceilings are for this profile
+
 lint:
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint
 
@@ -79,6 +83,7 @@ firmware:
 test: bootstrap
 	@$(MAKE) --no-print-directory lint
 	@$(MAKE) --no-print-directory check-16bit
+	@$(MAKE) --no-print-directory cycles
 	@$(MAKE) --no-print-directory coverage
 	@$(MAKE) --no-print-directory asan
 	@$(MAKE) --no-print-directory unit

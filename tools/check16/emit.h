@@ -73,7 +73,10 @@ bool vec_edge_pair(uint32_t k, int16_t *a, int16_t *b);
 #endif
 int16_t vec_rom_i16(const int16_t *p);
 
-/* Provided by main.c: one output character (UART on the AVR, stdout on the PC). */
+/* platform.c: start the output, one output character (UART on the AVR,
+ * stdout on the PC), and end the program once the output has left. */
+void platform_init(void);
 void emit_putc(char c);
+void platform_exit(void);
 
 #endif /* EMIT_H */

@@ -4,13 +4,20 @@
  * Build and run from the repository root (the same check16 flags as vec_mc.c):
  *   gcc -O2 -std=c99 -DMC_BOARD_MCLV -DMC_MOTOR_HURST $(MC_CHECK16_FLAGS) \
  *       -Ifirmware -Ifoc -Ismc_estimator -Itools/sim -Itest/firmware \
- *       tools/check16/gen_mc_frames.c test/firmware/mc_bench.c tools/sim/sim_*.c \
- *       foc/*.c smc_estimator/*.c firmware/mc.c -lm -o /tmp/gen_mc_frames
+ *       -Itools/check16 tools/check16/gen_mc_frames.c test/firmware/mc_bench.c \
+ *       tools/sim/sim_adc.c tools/sim/sim_core.c tools/sim/sim_inverter.c \
+ *       tools/sim/sim_plant.c tools/sim/sim_profiles.c tools/sim/sim_rig.c \
+ *       tools/sim/sim_scenario.c foc/*.c smc_estimator/*.c firmware/mc.c \
+ *       -lm -o /tmp/gen_mc_frames
  *   /tmp/gen_mc_frames > tools/check16/mc_frames.h
  * with MC_CHECK16_FLAGS the check16-cflags line of vec_mc.c. The core is
  * driven exactly as vec_mc.c replays it (START at frame MC_FRAMES_START,
  * bus and pot from the formulas in mc_frames_bus/pot), so the replay takes
  * the recorded path: calibration, lock, ramp, hand-off, closed loop.
+ * Re-record after any change to mc_step's arithmetic: replayed against
+ * currents of another controller, the core drifts off the recorded path
+ * (a stall fault ends the closed loop early), and the cycle guard
+ * (tools/check16/cycles) then measures the wrong states.
  */
 #include <stdio.h>
 

@@ -17,66 +17,6 @@
 #define CHECK16_MODULES /* only for tools that read this file without the runner */
 #endif
 
-#if defined(__AVR__)
-
-#include <avr/interrupt.h>
-#include <avr/io.h>
-#include <avr/sleep.h>
-
-_Static_assert(sizeof(int) == 2, "the point of this build is a 16-bit int");
-
-static void platform_init(void)
-{
-    /* USART0 at 2 Mbaud (U2X, UBRR = 0 at 16 MHz); simavr logs every line
-     * written to UDR0 on its stderr. */
-    UCSR0A = (uint8_t)(1U << U2X0);
-    UBRR0 = 0U;
-    UCSR0B = (uint8_t)(1U << TXEN0);
-}
-
-void emit_putc(char c)
-{
-    while ((UCSR0A & (1U << UDRE0)) == 0U) {
-    }
-    UDR0 = (uint8_t)c;
-}
-
-static void platform_exit(void)
-{
-    /* Let the last character leave the shift register, then sleep with
-     * interrupts off: simavr ends the simulation cleanly on that. */
-    while ((UCSR0A & (1U << UDRE0)) == 0U) {
-    }
-    cli();
-    /* Power-down, sleep enable (set_sleep_mode() trips -Wconversion). */
-    SMCR = (uint8_t)((1U << SM1) | (1U << SE));
-    sleep_cpu();
-    for (;;) {
-    }
-}
-
-#else
-
-#include <stdio.h>
-#include <stdlib.h>
-
-static void platform_init(void)
-{
-}
-
-void emit_putc(char c)
-{
-    (void)putchar(c);
-}
-
-static void platform_exit(void)
-{
-    (void)fflush(stdout);
-    exit(0);
-}
-
-#endif
-
 #define CHECK16_MODULE(name) void vec_##name(void);
 CHECK16_MODULES
 #undef CHECK16_MODULE
