@@ -41,48 +41,56 @@ const monitor_var_t monitor_vars[MONITOR_NUM_VARS] = {
     {"est_valid", "", MONITOR_KIND_INT, 1000},
 };
 
-int16_t monitor_var_read(const mc_status_t *st, uint8_t idx)
+/* Each case reads what mc_status() copies into the field of the same name
+ * (test_monitor pins the two together), without the copy of the whole
+ * status: this runs in the ADC interrupt for every recorded channel. */
+static inline int16_t var_read(const mc_t *mc, uint8_t idx)
 {
     switch (idx) {
         case 0:
-            return (int16_t)st->state;
+            return (int16_t)mc->state;
         case 1:
-            return (int16_t)(st->fault & 0x7FFFU);
+            return (int16_t)(mc->fault & 0x7FFFU);
         case 2:
-            return st->speed_est;
+            return smc_omega(&mc->smc);
         case 3:
-            return st->speed_ref;
+            return mc->speed_ref;
         case 4:
-            return st->speed_target;
+            return mc->speed_target;
         case 5:
-            return st->theta_est;
+            return mc->theta;
         case 6:
-            return st->theta_forced;
+            return (int16_t)(uint16_t)(mc->ol_angle >> 16);
         case 7:
-            return st->id;
+            return mc->i_dq.d;
         case 8:
-            return st->iq;
+            return mc->i_dq.q;
         case 9:
-            return st->id_ref;
+            return mc->i_ref.d;
         case 10:
-            return st->iq_ref;
+            return mc->i_ref.q;
         case 11:
-            return st->ia;
+            return mc->ia;
         case 12:
-            return st->ib;
+            return mc->ib;
         case 13:
-            return st->vd;
+            return mc->v_dq.d;
         case 14:
-            return st->vq;
+            return mc->v_dq.q;
         case 15:
-            return st->bemf;
+            return smc_emf_amplitude(&mc->smc);
         case 16:
-            return st->vbus;
+            return mc->vbus;
         case 17:
-            return st->estimator_valid ? 1 : 0;
+            return smc_valid(&mc->smc) ? 1 : 0;
         default:
             return 0;
     }
+}
+
+int16_t monitor_var_read(const mc_t *mc, uint8_t idx)
+{
+    return var_read(mc, idx);
 }
 
 /* ---- the tuning whitelist ------------------------------------------------------ *
@@ -273,12 +281,11 @@ void monitor_init(monitor_t *m, mc_t *mc)
 
 /* ---- the ISR side ------------------------------------------------------------------------ *
  * Cost per period: one test when stopped; when running a counter and a
- * compare, and on the sampled periods (every decim-th) one mc_status() copy,
- * nch table reads and stores. No loop depends on anything but nch <= 4. */
+ * compare, and on the sampled periods (every decim-th) nch reads of the
+ * core (monitor_var_read) and stores. No loop depends on anything but nch <= 4. */
 
 bool monitor_sample(monitor_t *m, const mc_t *mc)
 {
-    mc_status_t st;
     uint16_t used;
     uint8_t k;
     int16_t *slot;
@@ -291,13 +298,12 @@ bool monitor_sample(monitor_t *m, const mc_t *mc)
         return false;
     }
     m->div = 0;
-    mc_status(mc, &st);
     if (m->isr_started == 0U) {
         /* armed snapshot: wait for the trigger */
         bool fire = (m->trig == MONITOR_TRIG_NOW) ||
                     (m->trig == MONITOR_TRIG_CMD && m->trig_req != 0U) ||
-                    (m->trig == MONITOR_TRIG_STATE && (uint8_t)st.state != m->last_state);
-        m->last_state = (uint8_t)st.state;
+                    (m->trig == MONITOR_TRIG_STATE && (uint8_t)mc->state != m->last_state);
+        m->last_state = (uint8_t)mc->state;
         if (!fire) {
             return false;
         }
@@ -311,7 +317,7 @@ bool monitor_sample(monitor_t *m, const mc_t *mc)
     }
     slot = &m->buf[(uint16_t)(m->wi * m->nch)];
     for (k = 0; k < m->nch; k++) {
-        slot[k] = monitor_var_read(&st, m->ch[k]);
+        slot[k] = var_read(mc, m->ch[k]);
     }
     m->wi = (uint16_t)(m->wi + 1U);
     if (m->wi >= m->cap) {

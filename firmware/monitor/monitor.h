@@ -130,8 +130,9 @@ typedef struct {
 extern const monitor_var_t monitor_vars[MONITOR_NUM_VARS];
 extern const monitor_param_t monitor_params[MONITOR_NUM_PARAMS];
 
-/* Value of variable idx in a status snapshot (0 for idx out of range). */
-int16_t monitor_var_read(const mc_status_t *st, uint8_t idx);
+/* Value of variable idx in mc, as mc_status() reports it in the field of
+ * that name (0 for idx out of range). */
+int16_t monitor_var_read(const mc_t *mc, uint8_t idx);
 
 /* Current value of parameter idx in mc (0 for idx out of range). */
 int16_t monitor_param_get(const mc_t *mc, uint8_t idx);

@@ -278,53 +278,76 @@ static void test_var_info_should_name_every_variable_with_its_unit_and_full_scal
     expect_error(transact(MONITOR_CMD_VAR_INFO, &i, 1), MONITOR_CMD_VAR_INFO, MONITOR_ERR_RANGE);
 }
 
-static void test_var_read_should_return_each_status_field(void **state)
+static void test_var_read_should_return_what_mc_status_reports(void **state)
 {
+    static mc_t core; /* static: its size is the firmware's concern, not the test stack's */
     mc_status_t st;
+    uint8_t i;
     (void)state;
-    memset(&st, 0, sizeof st);
-    st.state = MC_STATE_CLOSED_LOOP;
-    st.fault = 7;
-    st.speed_est = 1001;
-    st.speed_ref = 1002;
-    st.speed_target = 1003;
-    st.theta_est = -1004;
-    st.theta_forced = 1005;
-    st.id = -1006;
-    st.iq = 1007;
-    st.id_ref = 1008;
-    st.iq_ref = 1009;
-    st.ia = -1010;
-    st.ib = 1011;
-    st.vd = 1012;
-    st.vq = -1013;
-    st.bemf = 1014;
-    st.vbus = 1015;
-    st.estimator_valid = true;
+    mc_init(&core);
+    /* A distinct value in every field the variables come from. */
+    core.state = MC_STATE_CLOSED_LOOP;
+    core.fault = 0x8007U; /* the top bit is not part of the variable */
+    core.smc.omega = 1001;
+    core.speed_ref = 1002;
+    core.speed_target = 1003;
+    core.theta = -1004;
+    core.ol_angle = (int32_t)((uint32_t)1005U << 16) + 0x1234;
+    core.i_dq.d = -1006;
+    core.i_dq.q = 1007;
+    core.i_ref.d = 1008;
+    core.i_ref.q = 1009;
+    core.ia = -1010;
+    core.ib = 1011;
+    core.v_dq.d = 1012;
+    core.v_dq.q = -1013;
+    core.smc.emf_mag = 1014;
+    core.vbus = 1015;
+    core.smc.valid = true;
+    mc_status(&core, &st);
     {
-        const int16_t want[MONITOR_NUM_VARS] = {MC_STATE_CLOSED_LOOP,
-                                                7,
-                                                1001,
-                                                1002,
-                                                1003,
-                                                -1004,
-                                                1005,
-                                                -1006,
-                                                1007,
-                                                1008,
-                                                1009,
-                                                -1010,
-                                                1011,
-                                                1012,
-                                                -1013,
-                                                1014,
-                                                1015,
-                                                1};
-        uint8_t i;
+        /* The variables in their index order, as mc_status() gives them. */
+        const int16_t want[MONITOR_NUM_VARS] = {(int16_t)st.state,
+                                                (int16_t)(st.fault & 0x7FFFU),
+                                                st.speed_est,
+                                                st.speed_ref,
+                                                st.speed_target,
+                                                st.theta_est,
+                                                st.theta_forced,
+                                                st.id,
+                                                st.iq,
+                                                st.id_ref,
+                                                st.iq_ref,
+                                                st.ia,
+                                                st.ib,
+                                                st.vd,
+                                                st.vq,
+                                                st.bemf,
+                                                st.vbus,
+                                                st.estimator_valid ? 1 : 0};
+        const int16_t literal[MONITOR_NUM_VARS] = {MC_STATE_CLOSED_LOOP,
+                                                   7,
+                                                   1001,
+                                                   1002,
+                                                   1003,
+                                                   -1004,
+                                                   1005,
+                                                   -1006,
+                                                   1007,
+                                                   1008,
+                                                   1009,
+                                                   -1010,
+                                                   1011,
+                                                   1012,
+                                                   -1013,
+                                                   1014,
+                                                   1015,
+                                                   1};
         for (i = 0; i < MONITOR_NUM_VARS; i++) {
-            assert_int_equal(monitor_var_read(&st, i), want[i]);
+            assert_int_equal(monitor_var_read(&core, i), want[i]);
+            assert_int_equal(want[i], literal[i]);
         }
-        assert_int_equal(monitor_var_read(&st, MONITOR_NUM_VARS), 0);
+        assert_int_equal(monitor_var_read(&core, MONITOR_NUM_VARS), 0);
     }
 }
 
@@ -778,7 +801,7 @@ int main(void)
             test_a_frame_completed_without_tx_room_should_be_dropped_and_change_nothing, setup),
         cmocka_unit_test_setup(
             test_var_info_should_name_every_variable_with_its_unit_and_full_scale, setup),
-        cmocka_unit_test_setup(test_var_read_should_return_each_status_field, setup),
+        cmocka_unit_test_setup(test_var_read_should_return_what_mc_status_reports, setup),
         cmocka_unit_test_setup(
             test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond, setup),
         cmocka_unit_test_setup(test_motor_command_should_post_start_stop_and_pot_requests, setup),

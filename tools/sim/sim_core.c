@@ -61,8 +61,8 @@ const char *simcore_state_name(int state)
 const char *simcore_fault_name(unsigned fault)
 {
     static const char *const names[] = {
-        "none",         "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE",
-        "START_FAILED", "STALL_SPEED", "STALL_BEMF",   "STALL_TRACK", "OFFSET"};
+        "none",        "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE", "START_FAILED",
+        "STALL_SPEED", "STALL_BEMF",  "STALL_TRACK",  "OFFSET",      "OVERRUN"};
     return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
 }
 
