@@ -47,7 +47,12 @@
  *   MC_FAULT_* codes                        below, readable in mc_status_t;
  *   mc_status_t fields after vq             Vbus, start-up retry count,
  *                                           references, estimator validity,
- *                                           back-EMF, duties.
+ *                                           back-EMF, duties;
+ *   mc_set_gain()                           live PI gains (note 3);
+ *   mc_slow_step(), MC_SLOW_STEP_PERIODS    DESIGN.md's optional slow step,
+ *                                           taken (note 4), with
+ *                                           MC_SLOW_APPLY_PERIODS and
+ *                                           MC_FAULT_OVERRUN.
  */
 
 #include <stdbool.h>
