@@ -58,7 +58,10 @@ uint32_t q15_isqrt_u32(uint32_t n)
      * 16 x 16 products (note 2). */
     if (lz >= 2U) {
         uint8_t s = (uint8_t)((lz - 2U) >> 1);
-        r = (s > 0U) ? (uint16_t)((uint16_t)(y + (uint16_t)(1U << (s - 1U))) >> s) : y;
+        r = y;
+        if (s > 0U) {
+            r = (uint16_t)((uint16_t)(y + (uint16_t)(1U << (s - 1U))) >> s);
+        }
     } else {
         r = (uint16_t)(y << 1);
     }
