@@ -64,32 +64,6 @@ static void check_done(const char *name, const check_t *c)
     assert_int_equal(c->bad, 0);
 }
 
-static int64_t clamp64(int64_t v, int64_t lo, int64_t hi)
-{
-    return (v < lo) ? lo : ((v > hi) ? hi : v);
-}
-
-static int64_t sat16(int64_t v)
-{
-    return clamp64(v, -32768, 32767);
-}
-
-static int64_t sat32(int64_t v)
-{
-    return clamp64(v, -2147483647LL - 1LL, 2147483647LL);
-}
-
-/* floor(n / 2^s) for any sign, without relying on >> of negative values. */
-static int64_t floor_div_pow2(int64_t n, int s)
-{
-    int64_t d = (int64_t)1 << s;
-    int64_t q = n / d;
-    if ((n % d) != 0 && n < 0) {
-        q -= 1;
-    }
-    return q;
-}
-
 /* Visit a dense grid of (a, b): every a, b stepping by `step` from -32768,
  * plus every edge as b, plus every edge as a against every b. */
 typedef void (*pair_fn)(check_t *c, int32_t a, int32_t b);
@@ -115,8 +89,8 @@ static void sweep_pairs(check_t *c, pair_fn f, int32_t step)
 
 static void pair_add_sub(check_t *c, int32_t a, int32_t b)
 {
-    check_eq(c, q15_add_sat((q15_t)a, (q15_t)b), sat16((int64_t)a + b), a, b);
-    check_eq(c, q15_sub_sat((q15_t)a, (q15_t)b), sat16((int64_t)a - b), a, b);
+    check_eq(c, q15_add_sat((q15_t)a, (q15_t)b), test_sat16((int64_t)a + b), a, b);
+    check_eq(c, q15_sub_sat((q15_t)a, (q15_t)b), test_sat16((int64_t)a - b), a, b);
 }
 
 static void test_q15_add_sub_sat_should_match_the_saturated_exact_sum(void **state)
@@ -144,8 +118,8 @@ static void test_q15_neg_abs_sat_should_saturate_minus_32768(void **state)
 
     check_init(&c);
     for (a = -32768; a <= 32767; a++) {
-        check_eq(&c, q15_neg_sat((q15_t)a), sat16(-(int64_t)a), a, 0);
-        check_eq(&c, q15_abs_sat((q15_t)a), sat16(a < 0 ? -(int64_t)a : a), a, 0);
+        check_eq(&c, q15_neg_sat((q15_t)a), test_sat16(-(int64_t)a), a, 0);
+        check_eq(&c, q15_abs_sat((q15_t)a), test_sat16(a < 0 ? -(int64_t)a : a), a, 0);
     }
     check_done("q15_neg_sat / q15_abs_sat, all 65536 values", &c);
     assert_int_equal(q15_neg_sat(-32768), 32767);
@@ -177,10 +151,10 @@ static void test_q15_sat_and_clamp_should_bound_their_inputs(void **state)
 
     check_init(&c);
     for (i = 0U; i < sizeof wide / sizeof wide[0]; i++) {
-        check_eq(&c, q15_sat(wide[i]), sat16(wide[i]), wide[i], 0);
+        check_eq(&c, q15_sat(wide[i]), test_sat16(wide[i]), wide[i], 0);
     }
     for (a = -32768; a <= 32767; a++) {
-        check_eq(&c, q15_clamp((q15_t)a, -1000, 2000), clamp64(a, -1000, 2000), a, 0);
+        check_eq(&c, q15_clamp((q15_t)a, -1000, 2000), test_clamp64(a, -1000, 2000), a, 0);
         check_eq(&c, q15_clamp((q15_t)a, -32768, 32767), a, a, 1);
         check_eq(&c, q15_clamp((q15_t)a, 5, 5), 5, a, 2);
     }
@@ -193,8 +167,10 @@ static void pair_mul(check_t *c, int32_t a, int32_t b)
 {
     int64_t p = (int64_t)a * b;
     /* rounded: floor((p + 2^14) / 2^15), ties toward +infinity; truncated: floor */
-    check_eq(c, q15_mul((q15_t)a, (q15_t)b), sat16(floor_div_pow2(p + 16384, 15)), a, b);
-    check_eq(c, q15_mul_trunc((q15_t)a, (q15_t)b), sat16(floor_div_pow2(p, 15)), a, b);
+    check_eq(c, q15_mul((q15_t)a, (q15_t)b),
+             test_sat16(test_floor_div(p + 16384, (int64_t)1 << 15)), a, b);
+    check_eq(c, q15_mul_trunc((q15_t)a, (q15_t)b), test_sat16(test_floor_div(p, (int64_t)1 << 15)),
+             a, b);
     check_eq(c, q15_dsp_mulss((int16_t)a, (int16_t)b), p, a, b);
 }
 
@@ -281,11 +257,12 @@ static void test_q15_shifts_should_saturate_and_round_as_documented(void **state
     check_init(&c);
     for (a = -32768; a <= 32767; a++) {
         for (n = 0; n <= 15; n++) {
-            check_eq(&c, q15_shl_sat((q15_t)a, (uint8_t)n), sat16((int64_t)a * (1LL << n)), a, n);
-            check_eq(&c, q15_shr((q15_t)a, (uint8_t)n), floor_div_pow2(a, n), a, n);
+            check_eq(&c, q15_shl_sat((q15_t)a, (uint8_t)n), test_sat16((int64_t)a * (1LL << n)), a,
+                     n);
+            check_eq(&c, q15_shr((q15_t)a, (uint8_t)n), test_floor_div(a, (int64_t)1 << n), a, n);
             if (n >= 1) {
                 check_eq(&c, q15_shr_round((q15_t)a, (uint8_t)n),
-                         floor_div_pow2((int64_t)a + (1LL << (n - 1)), n), a, n);
+                         test_floor_div((int64_t)a + (1LL << (n - 1)), (int64_t)1 << n), a, n);
             }
         }
     }
@@ -342,8 +319,8 @@ static void test_q31_add_sub_sat_should_saturate_at_both_ends(void **state)
         for (j = 0; j < N_Q31_EDGES; j++) {
             int32_t a = q31_edges[i];
             int32_t b = q31_edges[j];
-            check_eq(&c, q31_add_sat(a, b), sat32((int64_t)a + b), a, b);
-            check_eq(&c, q31_sub_sat(a, b), sat32((int64_t)a - b), a, b);
+            check_eq(&c, q31_add_sat(a, b), test_sat32((int64_t)a + b), a, b);
+            check_eq(&c, q31_sub_sat(a, b), test_sat32((int64_t)a - b), a, b);
         }
     }
     for (k = 0; k < 5000000L; k++) {
@@ -353,8 +330,8 @@ static void test_q31_add_sub_sat_should_saturate_at_both_ends(void **state)
         if ((k & 3L) == 0L) {
             b = (int32_t)((uint32_t)b >> 2) ^ (a < 0 ? (int32_t)-1 : 0);
         }
-        check_eq(&c, q31_add_sat(a, b), sat32((int64_t)a + b), a, b);
-        check_eq(&c, q31_sub_sat(a, b), sat32((int64_t)a - b), a, b);
+        check_eq(&c, q31_add_sat(a, b), test_sat32((int64_t)a + b), a, b);
+        check_eq(&c, q31_sub_sat(a, b), test_sat32((int64_t)a - b), a, b);
     }
     check_done("q31_add_sat / q31_sub_sat, edges x edges + 5e6 random", &c);
     assert_true(q31_add_sat(Q31_MAX, 1) == Q31_MAX);
@@ -367,7 +344,7 @@ static void test_q31_add_sub_sat_should_saturate_at_both_ends(void **state)
 
 static void pair_q31_mul(check_t *c, int32_t a, int32_t b)
 {
-    check_eq(c, q31_mul_q15((q15_t)a, (q15_t)b), sat32(2LL * a * b), a, b);
+    check_eq(c, q31_mul_q15((q15_t)a, (q15_t)b), test_sat32(2LL * a * b), a, b);
 }
 
 static void test_q31_mul_q15_should_be_exact_except_minus_one_squared(void **state)
@@ -403,9 +380,10 @@ static void test_q31_mac_sat_should_saturate_the_accumulator(void **state)
         for (j = 0; j < N_EDGES; j++) {
             for (k = 0; k < N_EDGES; k++) {
                 int32_t acc = q31_edges[i];
-                int64_t prod = sat32(2LL * edges[j] * edges[k]);
+                int64_t prod = test_sat32(2LL * edges[j] * edges[k]);
                 check_eq(&c, q31_mac_sat(acc, (q15_t)edges[j], (q15_t)edges[k]),
-                         sat32((int64_t)acc + prod), acc, (int64_t)edges[j] * 65536 + edges[k]);
+                         test_sat32((int64_t)acc + prod), acc,
+                         (int64_t)edges[j] * 65536 + edges[k]);
             }
         }
     }
@@ -413,8 +391,8 @@ static void test_q31_mac_sat_should_saturate_the_accumulator(void **state)
         int32_t acc = rand_q31(&seed);
         q15_t a = test_rand_i16(&seed);
         q15_t b = test_rand_i16(&seed);
-        int64_t prod = sat32(2LL * a * b);
-        check_eq(&c, q31_mac_sat(acc, a, b), sat32((int64_t)acc + prod), acc,
+        int64_t prod = test_sat32(2LL * a * b);
+        check_eq(&c, q31_mac_sat(acc, a, b), test_sat32((int64_t)acc + prod), acc,
                  (int64_t)a * 65536 + b);
     }
     check_done("q31_mac_sat, edges^3 + 5e6 random", &c);
@@ -436,13 +414,15 @@ static void test_q15_from_q31_should_round_ties_up_and_saturate(void **state)
     check_init(&c);
     for (i = 0; i < N_Q31_EDGES; i++) {
         int32_t x = q31_edges[i];
-        check_eq(&c, q15_from_q31(x), sat16(floor_div_pow2((int64_t)x + 32768, 16)), x, 0);
-        check_eq(&c, q15_from_q31_trunc(x), floor_div_pow2(x, 16), x, 1);
+        check_eq(&c, q15_from_q31(x),
+                 test_sat16(test_floor_div((int64_t)x + 32768, (int64_t)1 << 16)), x, 0);
+        check_eq(&c, q15_from_q31_trunc(x), test_floor_div(x, (int64_t)1 << 16), x, 1);
     }
     for (n = 0; n < 10000000L; n++) {
         int32_t x = rand_q31(&seed);
-        check_eq(&c, q15_from_q31(x), sat16(floor_div_pow2((int64_t)x + 32768, 16)), x, 0);
-        check_eq(&c, q15_from_q31_trunc(x), floor_div_pow2(x, 16), x, 1);
+        check_eq(&c, q15_from_q31(x),
+                 test_sat16(test_floor_div((int64_t)x + 32768, (int64_t)1 << 16)), x, 0);
+        check_eq(&c, q15_from_q31_trunc(x), test_floor_div(x, (int64_t)1 << 16), x, 1);
     }
     /* every Q15 value, at the tie and one either side of it */
     for (a = -32768; a <= 32767; a++) {
@@ -452,7 +432,8 @@ static void test_q15_from_q31_should_round_ties_up_and_saturate(void **state)
             int64_t x64 = (int64_t)base + 32768 + d;
             if (x64 <= 2147483647LL) {
                 int32_t x = (int32_t)x64;
-                check_eq(&c, q15_from_q31(x), sat16(floor_div_pow2(x64 + 32768, 16)), x, 2);
+                check_eq(&c, q15_from_q31(x),
+                         test_sat16(test_floor_div(x64 + 32768, (int64_t)1 << 16)), x, 2);
             }
         }
     }

@@ -27,34 +27,10 @@ static const int16_t edges[] = {-32768, -32767, -16385, -16384, -16383, -2,    -
 
 /* ---- exact references ----------------------------------------------------- */
 
-static int64_t floor_div(int64_t n, int64_t d) /* d > 0 */
-{
-    int64_t q = n / d;
-    if ((n % d) != 0 && n < 0) {
-        q -= 1;
-    }
-    return q;
-}
-
-static int64_t clamp64(int64_t v, int64_t lo, int64_t hi)
-{
-    return (v < lo) ? lo : ((v > hi) ? hi : v);
-}
-
-static int64_t sat16(int64_t v)
-{
-    return clamp64(v, -32768, 32767);
-}
-
-static int64_t sat31(int64_t v)
-{
-    return clamp64(v, -2147483647LL - 1LL, 2147483647LL);
-}
-
 /* sac.r: bits 31..16 rounded to nearest, ties up, then the 16-bit clamp. */
 static int64_t rnd(int64_t v)
 {
-    return sat16(floor_div(v + 32768, 65536));
+    return test_sat16(test_floor_div(v + 32768, 65536));
 }
 
 /* Fractional product as the multiplier gives it: 2ab on the Q31 scale. */
@@ -117,8 +93,8 @@ static int16_t rand_operand(uint32_t *seed)
     if ((r & 1U) != 0U) {
         return test_rand_i16(seed);
     }
-    return (int16_t)sat16((int64_t)edges[(r >> 1) % (uint32_t)N_EDGES] + (int64_t)((r >> 8) % 7U) -
-                          3);
+    return (int16_t)test_sat16((int64_t)edges[(r >> 1) % (uint32_t)N_EDGES] +
+                               (int64_t)((r >> 8) % 7U) - 3);
 }
 
 /* Operand k of case i: the edge grid for the first N_EDGES^m cases. */
@@ -164,15 +140,15 @@ static void test_add_sub_neg_dbl_sub2_should_saturate_the_exact_result_once(void
         int16_t x = operand(i, 3, 0, &seed);
         int16_t y = operand(i, 3, 1, &seed);
         int16_t z = operand(i, 3, 2, &seed);
-        check_eq(&c, q15_dsp_add_sat(x, y), sat16((int64_t)x + y), x, y, 0, 0);
-        check_eq(&c, q15_dsp_sub_sat(x, y), sat16((int64_t)x - y), x, y, 1, 0);
-        check_eq(&c, q15_dsp_dbl_sub2_sat(x, y, z), sat16(2 * (int64_t)x - y - z), x, y, z, 2);
+        check_eq(&c, q15_dsp_add_sat(x, y), test_sat16((int64_t)x + y), x, y, 0, 0);
+        check_eq(&c, q15_dsp_sub_sat(x, y), test_sat16((int64_t)x - y), x, y, 1, 0);
+        check_eq(&c, q15_dsp_dbl_sub2_sat(x, y, z), test_sat16(2 * (int64_t)x - y - z), x, y, z, 2);
     }
     check_done(&c);
 
     check_init(&c, "q15_dsp_neg_sat, all 65536 values");
     for (a = -32768; a <= 32767; a++) {
-        check_eq(&c, q15_dsp_neg_sat((int16_t)a), sat16(-(int64_t)a), a, 0, 0, 0);
+        check_eq(&c, q15_dsp_neg_sat((int16_t)a), test_sat16(-(int64_t)a), a, 0, 0, 0);
     }
     check_done(&c);
 
@@ -200,12 +176,13 @@ static void test_mpy_mac_msc_should_saturate_each_step_and_round_once(void **sta
         int16_t x = operand(i, 4, 2, &seed);
         int16_t y = operand(i, 4, 3, &seed);
         uint16_t g = (uint16_t)y;
-        check_eq(&c, q15_dsp_mpy_r(a, b), rnd(sat31(frac(a, b))), a, b, 0, 0);
-        check_eq(&c, q15_dsp_mac2_r(a, b, x, y), rnd(sat31(sat31(frac(a, b)) + frac(x, y))), a, b,
-                 x, y);
-        check_eq(&c, q15_dsp_msc2_r(a, b, x, y), rnd(sat31(sat31(frac(a, b)) - frac(x, y))), a, b,
-                 x, y);
-        check_eq(&c, q15_dsp_mulsu_r(a, g), rnd(sat31(2 * (int64_t)a * (int64_t)g)), a, g, 0, 1);
+        check_eq(&c, q15_dsp_mpy_r(a, b), rnd(test_sat32(frac(a, b))), a, b, 0, 0);
+        check_eq(&c, q15_dsp_mac2_r(a, b, x, y),
+                 rnd(test_sat32(test_sat32(frac(a, b)) + frac(x, y))), a, b, x, y);
+        check_eq(&c, q15_dsp_msc2_r(a, b, x, y),
+                 rnd(test_sat32(test_sat32(frac(a, b)) - frac(x, y))), a, b, x, y);
+        check_eq(&c, q15_dsp_mulsu_r(a, g), rnd(test_sat32(2 * (int64_t)a * (int64_t)g)), a, g, 0,
+                 1);
     }
     check_done(&c);
 
@@ -229,11 +206,12 @@ static void test_lac_mac_and_shifted_sums_should_match_their_formulas(void **sta
         int16_t a = operand(i, 3, 1, &seed);
         int16_t b = operand(i, 3, 2, &seed);
         int16_t gc = (int16_t)((uint16_t)b & 0x3FFFU); /* gain fraction 0 .. 2^14 - 1 */
-        check_eq(&c, q15_dsp_lac_mac_r(x, a, b), rnd(sat31((int64_t)x * 65536 + frac(a, b))), x, a,
-                 b, 0);
+        check_eq(&c, q15_dsp_lac_mac_r(x, a, b), rnd(test_sat32((int64_t)x * 65536 + frac(a, b))),
+                 x, a, b, 0);
         check_eq(&c, q15_dsp_half_sub2_r(x, a, b),
-                 rnd(sat31(sat31((int64_t)x * 32768 - (int64_t)a * 65536) - (int64_t)b * 65536)), x,
-                 a, b, 1);
+                 rnd(test_sat32(test_sat32((int64_t)x * 32768 - (int64_t)a * 65536) -
+                                (int64_t)b * 65536)),
+                 x, a, b, 1);
         check_eq(&c, q15_dsp_x2y_gain_r(x, a, gc),
                  rnd(((int64_t)x + 2 * (int64_t)a) * (32768 + (int64_t)gc)), x, a, gc, 2);
     }
@@ -260,10 +238,11 @@ static void test_lac_mac_and_shifted_sums_should_match_their_formulas(void **sta
             d = (int16_t)(d / 2);
         }
         cd = frac(cc, d) * ((int64_t)1 << n);
-        check_eq(&c, q15_dsp_mac_shl_r(a, b, cc, d, n), rnd(sat31(sat31(frac(a, b)) + cd)), a, b,
-                 cc, d);
+        check_eq(&c, q15_dsp_mac_shl_r(a, b, cc, d, n),
+                 rnd(test_sat32(test_sat32(frac(a, b)) + cd)), a, b, cc, d);
         check_eq(&c, q15_dsp_lac_mac_shl_r(x, a, b, cc, d, n),
-                 rnd(sat31(sat31((int64_t)x * 65536 + frac(a, b)) + cd)), x, a, cc, (int64_t)n);
+                 rnd(test_sat32(test_sat32((int64_t)x * 65536 + frac(a, b)) + cd)), x, a, cc,
+                 (int64_t)n);
     }
     check_done(&c);
 
@@ -295,7 +274,7 @@ static void test_mul3_r_should_be_within_its_stated_bound_of_the_exact_product(v
         double exact = (double)num / (double)((int64_t)1 << (30 + s));
         double err;
         if (exact >= 32767.0 || exact <= -32768.0) {
-            check_eq(&c, got, sat16(exact > 0.0 ? 32767 : -32768), a, b, cc, s);
+            check_eq(&c, got, test_sat16(exact > 0.0 ? 32767 : -32768), a, b, cc, s);
             continue;
         }
         err = (double)got - exact;
@@ -340,7 +319,7 @@ static void test_q30_counts_should_round_its_two_partial_products(void **state)
         xl = (int64_t)(x & 0x7FFFUL);
         got = q15_dsp_q30_counts(x, p);
         /* A = 2 xh p + floor(2 xl p / 2^15), rounded at bit 16. */
-        check_eq(&c, got, rnd(2 * xh * p + floor_div(2 * xl * p, 32768)), (int64_t)x, p, 0, 0);
+        check_eq(&c, got, rnd(2 * xh * p + test_floor_div(2 * xl * p, 32768)), (int64_t)x, p, 0, 0);
         err = (double)got - (double)x * (double)p / 1073741824.0;
         if (err < 0.0) {
             err = -err;
@@ -385,10 +364,10 @@ static void test_pi_should_follow_an1078s_equations_on_the_q31_integral(void **s
             s0 = (int32_t)((i & 4) != 0 ? 2147483647L : (-2147483647L - 1L));
             s = s0;
         }
-        u = sat31((int64_t)s0 + frac(kp, e) * ((int64_t)1 << n));
-        out = clamp64(rnd(u), lo, hi);
-        exc = rnd(sat31(u - out * 65536));
-        s_want = sat31(sat31((int64_t)s0 + frac(ki, e)) - frac(kc, exc));
+        u = test_sat32((int64_t)s0 + frac(kp, e) * ((int64_t)1 << n));
+        out = test_clamp64(rnd(u), lo, hi);
+        exc = rnd(test_sat32(u - out * 65536));
+        s_want = test_sat32(test_sat32((int64_t)s0 + frac(ki, e)) - frac(kc, exc));
         got = q15_dsp_pi(&s, e, kp, n, ki, kc, lo, hi);
         check_eq(&c, got, out, e, kp, s0, n);
         check_eq(&c, s, s_want, e, ki, kc, s0);
@@ -420,11 +399,12 @@ static void test_lpf_should_stay_within_two_q31_lsb_above_the_exact_step(void **
             y0 = (int32_t)((i & 32) != 0 ? 2147483647L : (-2147483647L - 1L));
             y = y0;
         }
-        hi = floor_div(y0, 65536);
+        hi = test_floor_div(y0, 65536);
         lo = (int64_t)y0 - hi * 65536;
         got = q15_dsp_lpf(&y, x, k);
         /* Documented model: y - 2k hi + 2k x - floor(2k floor(lo / 2) / 2^15). */
-        check_eq(&c, y, (int64_t)y0 - frac(k, hi) + frac(k, x) - floor_div(frac(k, lo / 2), 32768),
+        check_eq(&c, y,
+                 (int64_t)y0 - frac(k, hi) + frac(k, x) - test_floor_div(frac(k, lo / 2), 32768),
                  y0, x, k, 0);
         check_eq(&c, got, rnd(y), y0, x, k, 1);
         /* 2^15 (y' - exact) = 2^15 y' - 2^15 y0 - k (x 2^16 - y0) in [0, 2^16):

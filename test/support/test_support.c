@@ -67,6 +67,30 @@ double angle_diff_deg(double a_rad, double b_rad)
     return d;
 }
 
+int64_t test_clamp64(int64_t v, int64_t lo, int64_t hi)
+{
+    return (v < lo) ? lo : ((v > hi) ? hi : v);
+}
+
+int64_t test_sat16(int64_t v)
+{
+    return test_clamp64(v, -32768, 32767);
+}
+
+int64_t test_sat32(int64_t v)
+{
+    return test_clamp64(v, -2147483647LL - 1LL, 2147483647LL);
+}
+
+int64_t test_floor_div(int64_t n, int64_t d)
+{
+    int64_t q = n / d;
+    if ((n % d) != 0 && n < 0) {
+        q -= 1;
+    }
+    return q;
+}
+
 uint32_t test_rand_u32(uint32_t *state)
 {
     uint32_t x = *state;

@@ -40,6 +40,13 @@ double angle_to_rad(angle_q15_t a);
 /* Radians -> degrees of the shortest difference a - b, in [-180, 180). */
 double angle_diff_deg(double a_rad, double b_rad);
 
+/* Exact integer references: clamp, the int16 and int32 saturations, and
+ * floor(n / d) for d > 0 and any sign of n (no >> of a negative value). */
+int64_t test_clamp64(int64_t v, int64_t lo, int64_t hi);
+int64_t test_sat16(int64_t v);
+int64_t test_sat32(int64_t v);
+int64_t test_floor_div(int64_t n, int64_t d);
+
 /* Deterministic xorshift32; state must be non-zero. */
 uint32_t test_rand_u32(uint32_t *state);
 /* Uniform int16 over the whole range. */

@@ -80,13 +80,7 @@ int main(void)
         mc_status_t st;
         uint32_t t_step;
         uint32_t t_slow;
-        if (n == MC_FRAMES_START) {
-            mc_request(&mc, MC_REQUEST_START);
-        }
-        in.ia = vec_rom_i16(&mc_frames[2U * n]);
-        in.ib = vec_rom_i16(&mc_frames[2U * n + 1U]);
-        in.vbus = mc_frames_bus(n);
-        in.pot = mc_frames_pot(n);
+        mc_frames_input(&mc, n, &in);
         mc_status(&mc, &st); /* the state the step starts in */
         t0 = cycles_now();
         mc_step(&mc, &in, &out);

@@ -155,13 +155,7 @@ static void replay(void)
     for (n = 0U; n < MC_FRAMES_N && n < MC_FRAMES_RECORDED_N; n++) {
         mc_adc_frame_t in;
         mc_pwm_out_t out;
-        if (n == MC_FRAMES_START) {
-            mc_request(&mc, MC_REQUEST_START);
-        }
-        in.ia = vec_rom_i16(&mc_frames[2U * n]);
-        in.ib = vec_rom_i16(&mc_frames[2U * n + 1U]);
-        in.vbus = mc_frames_bus(n);
-        in.pot = mc_frames_pot(n);
+        mc_frames_input(&mc, n, &in);
         mc_step(&mc, &in, &out);
         mc_slow_step(&mc);
         emit_i16(in.ia);

@@ -27,4 +27,21 @@ static inline int16_t mc_frames_pot(uint32_t n)
     return (n < 5000U) ? (int16_t)9830 : (int16_t)32767;
 }
 
+/* Frame n of the recording as the core takes it, with START requested at
+ * MC_FRAMES_START: what vec_mc.c and cycles.c replay (both include
+ * emit.h and mc_frames.h first; gen_mc_frames.c, which writes the
+ * recording, does not use it). */
+#if defined(MC_FRAMES_RECORDED_N)
+static inline void mc_frames_input(mc_t *mc, uint32_t n, mc_adc_frame_t *in)
+{
+    if (n == MC_FRAMES_START) {
+        mc_request(mc, MC_REQUEST_START);
+    }
+    in->ia = vec_rom_i16(&mc_frames[2U * n]);
+    in->ib = vec_rom_i16(&mc_frames[2U * n + 1U]);
+    in->vbus = mc_frames_bus(n);
+    in->pot = mc_frames_pot(n);
+}
+#endif
+
 #endif /* VEC_MC_FRAMES_H */
