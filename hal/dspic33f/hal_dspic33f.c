@@ -324,5 +324,5 @@ hal_irq_state_t hal_critical_enter(void)
 
 void hal_critical_exit(hal_irq_state_t saved)
 {
-    SRbits.IPL = (unsigned)(saved & 7u);
+    SRbits.IPL = (uint16_t)(saved & 7u);
 }
