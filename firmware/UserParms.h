@@ -67,6 +67,10 @@
 #ifndef PWM_FREQUENCY_HZ
 #define PWM_FREQUENCY_HZ 20000L /* PWM and current-loop rate */
 #endif
+#ifndef PWM_ADC_TRIGGER_TCY
+#define PWM_ADC_TRIGGER_TCY                                                                        \
+    80L /* ADC start after the PWM period's midpoint, Tcy (AN1078: 80, 2 us) */
+#endif
 #ifndef PWM_DEADTIME_NS
 #define PWM_DEADTIME_NS BOARD_DEADTIME_NS /* what the HAL programs and the core compensates */
 #endif

@@ -53,14 +53,27 @@ static const fieldweak_params_t mc_fw_params = {
     MC_FW_TABLE_Q15,
 };
 
-/* Inverse-Park advance: a voltage computed from the sample at t_n is
- * applied over [t_n+1, t_n+2], so it is rotated by 1.5 omega Ts. In binary
- * angle counts: speed_q15 * 3 omega_fs Ts (omega_fs in Hz). */
-#define MC_ADV_K_ (3.0 * MC_OMEGA_FS_HZ * MC_TS_S)
+/* Inverse-Park advance (mc.h note 2): the sample is taken at MC_SAMPLE_AT
+ * of period n, the voltage computed from it acts over the whole period n+1,
+ * centred (1.5 - MC_SAMPLE_AT) Ts after the sample (0.96 Ts on the MCLV),
+ * so it is rotated by that much. In binary angle counts: speed_q15 *
+ * 2 (1.5 - a) omega_fs Ts (omega_fs in Hz); open loop: the forced step per
+ * period times (1.5 - a). */
+#define MC_ADV_PERIODS_ (1.5 - MC_SAMPLE_AT)
+#define MC_ADV_K_       (2.0 * MC_ADV_PERIODS_ * MC_OMEGA_FS_HZ * MC_TS_S)
 MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
-         "3 omega_fs Ts must be < 1 (PWM too "
-         "slow for the speed range)");
-#define MC_ADV_K Q15(MC_ADV_K_)
+         "the advance at full speed must be < pi (PWM too slow for the speed range)");
+#define MC_ADV_K       Q15(MC_ADV_K_)
+#define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
+
+/* The voltage the current evolved under between the previous sample and
+ * this one (mc.h note 2): the duty of period n-1 (computed two steps ago,
+ * v_hist[1]) for the part of the interval before the boundary, 1 - a, and
+ * the one of period n (computed one step ago, v_hist[0]) for the part
+ * after it, a. Weights sum to exactly 1.0, so a steady voltage passes
+ * unchanged. */
+#define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
+#define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
 
 /* mc_current_control's advance argument: none, or the closed loop's
  * (mc->adv_sc); anything else is an open-loop advance in angle counts. */
@@ -419,11 +432,16 @@ static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t 
 /* Clarke of this sample and the estimator update, first thing in every
  * period with the outputs on, so the angle it gives is the one of this
  * sample (smc.h timing contract): fed the voltage applied while this
- * sample's current evolved, computed two steps ago (mc.h note 2). */
+ * sample's current evolved, the two last commands weighted by the time
+ * each acted between the samples (MC_VEST_W_*, mc.h note 2). */
 Q15_INLINE void mc_estimate(mc_t *mc)
 {
+    ab_q15_t v;
+    v.alpha =
+        q15_dsp_mac2_r(mc->v_hist[0].alpha, MC_VEST_W_NEW, mc->v_hist[1].alpha, MC_VEST_W_OLD);
+    v.beta = q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
     mc->i_ab = clarke_forward(mc->ia, mc->ib);
-    smc_update(&mc->smc, mc->i_ab, mc->v_hist[1]);
+    smc_update(&mc->smc, mc->i_ab, v);
 }
 
 /* Current loops and modulation, for one period with the outputs on.
@@ -783,8 +801,9 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->ol_step += MC_RAMP_STEP_INC;
             mc->ol_angle += mc->ol_step;
             mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
-            /* 1.5 periods of the forced speed. */
-            adv = (int32_t)(int16_t)(uint16_t)((mc->ol_step >> 16) * 3U / 2U);
+            /* 1.5 - MC_SAMPLE_AT periods of the forced speed (the step
+             * is below 2^15 counts: MC_ADV_K_ < 1 bounds the speed). */
+            adv = (int32_t)q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
             control = true;
             break;
         case MC_STATE_CLOSED_LOOP: {

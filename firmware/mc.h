@@ -22,9 +22,12 @@
  *     so the caller allocates it (normally one static instance owned by the
  *     ADC interrupt).
  *
- * Timing contract: mc_step() is called once per PWM period with the frame
- * sampled at the start of that period; the duties it returns take effect at
- * the start of the next period (the dsPIC loads PDCx at the period boundary).
+ * Timing contract (note 2): mc_step() is called once per PWM period n with
+ * the frame sampled at MC_SAMPLE_AT of the period (its midpoint, where
+ * every low-side switch conducts, plus the ADC trigger offset
+ * PWM_ADC_TRIGGER_TCY); the duties it returns are loaded at the next period
+ * boundary, half a period after the sample (the dsPIC loads PDCx there),
+ * and act for the whole period n+1.
  *
  * Concurrency: mc_step() runs in the ADC interrupt, mc_slow_step() in a
  * context the interrupt pre-empts (note 4). mc_request(),
@@ -335,9 +338,21 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    byte writes are atomic on the dsPIC, so no interrupt masking is
  *    needed; a request posted twice before the step sees it counts once.
  *
- * 2. The estimator is fed the voltage the inverter actually applied while
- *    the measured current evolved: the duties computed two steps ago (they
- *    were applied during the period that ends at this sample), less the
+ * 2. Timing and the voltage fed to the estimator. Period n runs from t_n
+ *    to t_(n+1); the frame is sampled at t_n + a Ts, a = MC_SAMPLE_AT (the
+ *    midpoint plus the ADC trigger offset: 0.5 + 80 / 2000 = 0.54 on the
+ *    MCLV); the duties mc_step returns for it are loaded at t_(n+1) and act
+ *    over period n+1. So:
+ *    - the voltage computed now acts centred at t_(n+1) + Ts/2, which is
+ *      (1.5 - a) Ts after the sample: the inverse Park turns it by
+ *      (1.5 - a) omega Ts (0.96 omega Ts; a sample at the period start
+ *      with a whole period of delay would be 1.5);
+ *    - between the previous sample and this one the current evolved under
+ *      the command of period n-1 (computed two steps ago) for (1 - a) Ts and
+ *      under the one of period n (computed one step ago) for a Ts; the
+ *      estimator gets their weighted mean (its model holds one voltage
+ *      over the interval; the mean is right to first order in Ts R/L).
+ *    Each command is the applied voltage: the duties less the
  *    dead-time loss predicted from each phase current, times the bus
  *    voltage sampled then; a duty at 0 or PWM_DUTY_MAX does not switch and
  *    loses nothing. So duty clamping, bus ripple and the dead time itself

@@ -59,6 +59,15 @@ MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
 #define PWM_DUTY_MAX ((uint16_t)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ))
 #define MC_TS_S      (1.0 / (double)PWM_FREQUENCY_HZ)
 
+/* The sample instant as a fraction of the period after its start (mc.h
+ * timing contract): the midpoint of the center-aligned PWM, where every
+ * low-side switch conducts, plus the trigger offset. 0.54 on the MCLV. */
+#define MC_SAMPLE_AT                                                                               \
+    (0.5 + (double)PWM_ADC_TRIGGER_TCY * (double)PWM_FREQUENCY_HZ / (double)BOARD_FCY_HZ)
+MC_CHECK(PWM_ADC_TRIGGER_TCY,
+         PWM_ADC_TRIGGER_TCY >= 0L && PWM_ADC_TRIGGER_TCY * 2L * PWM_FREQUENCY_HZ < BOARD_FCY_HZ,
+         "the trigger must fall in the second half of the period");
+
 MC_CHECK(MC_SPEED_LOOP_HZ, MC_SPEED_LOOP_HZ > 0 && PWM_FREQUENCY_HZ % MC_SPEED_LOOP_HZ == 0,
          "must divide PWM_FREQUENCY_HZ");
 MC_CHECK(MC_SPEED_LOOP_HZ,

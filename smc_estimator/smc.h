@@ -44,19 +44,21 @@
  *
  * Timing contract (note 1): smc_update(s, i_meas, v_applied) is called once
  * per PWM period n with
- *   i_meas     the alpha/beta currents sampled at the start of period n
- *              (instant t_n), offset removed;
- *   v_applied  the alpha/beta voltage the inverter applied during the
- *              previous period [t_(n-1), t_n], i.e. the one the current
- *              evolved under between the previous sample and this one. The
- *              core passes the command it computed in period n-2 (applied in
- *              period n-1), after dead-time compensation, scaled to the bus
- *              actually present: the estimator must be fed the voltage that
- *              was applied, not the one being computed now.
- *   theta      estimates the rotor electrical angle at t_n, the instant
- *              i_meas was sampled (use it for Park of i_meas). A voltage
- *              computed now is applied over [t_(n+1), t_(n+2)]; the core may
- *              advance theta by 1.5 omega Ts for the inverse Park (note 6).
+ *   i_meas     the alpha/beta currents sampled once per period at the
+ *              instant s_n (offset removed), one period after s_(n-1);
+ *   v_applied  the mean alpha/beta voltage the inverter applied over
+ *              [s_(n-1), s_n], the one the current evolved under between
+ *              the previous sample and this one: on the dsPIC (sample at
+ *              0.54 of the period, duties loaded at the boundary) the core
+ *              passes the commands of the two last periods weighted by the
+ *              time each acted (firmware/mc.h note 2), each after dead-time
+ *              compensation and scaled to the bus actually present: the
+ *              estimator must be fed the voltage that was applied, not the
+ *              one being computed now.
+ *   theta      estimates the rotor electrical angle at s_n, the instant
+ *              i_meas was sampled (use it for Park of i_meas). The core
+ *              advances it to the middle of the period its voltage will act
+ *              in for the inverse Park (note 6; 0.96 omega Ts on the dsPIC).
  *
  * Two sides (note 10). The fast side runs in the PWM interrupt:
  * smc_update every period (2 model steps, 2 switches, 6 first-order updates
@@ -427,13 +429,12 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
 /*
  * Notes
  *
- * 1. Timing and indices. Period n runs from t_n to t_(n+1). The ADC samples
- *    i(t_n) at its start; the voltage applied over [t_(n-1), t_n] is the one
- *    the core computed in period n-2 (PWM update at the period boundary),
- *    and it is what carried the current from i(t_(n-1)) to i(t_n). The model
- *    step in smc_update(n) therefore uses v_applied with e and z from call
- *    n-1, and compares the result with i_meas(n). The outputs of call n
- *    refer to t_n.
+ * 1. Timing and indices. Samples are one period apart, at s_n. The mean
+ *    voltage over [s_(n-1), s_n] is what carried the current from
+ *    i(s_(n-1)) to i(s_n) (which commands make it up is the core's
+ *    business, firmware/mc.h note 2). The model step in smc_update(n)
+ *    therefore uses v_applied with e and z from call n-1, and compares the
+ *    result with i_meas(n). The outputs of call n refer to s_n.
  *
  * 2. Discretisation and scales. With the voltage constant over a period the
  *    exact (zero-order-hold) solution of L di/dt = v - R i - e is
@@ -508,9 +509,9 @@ static inline ab_q15_t smc_e_final(const smc_t *s)
  *
  * 6. Angles. theta_raw = atan2(-ef_alpha, ef_beta) (the back-EMF leads the
  *    rotor flux by 90 degrees); for omega < 0 the back-EMF is reversed, so pi
- *    is added. theta estimates the rotor angle at t_n; for the inverse Park
- *    of a voltage applied over [t_(n+1), t_(n+2)] the core may add
- *    1.5 omega Ts (the loop delay on the output side is the core's).
+ *    is added. theta estimates the rotor angle at s_n, the sample; for the
+ *    inverse Park the core adds the delay to the middle of the period its
+ *    voltage acts in (firmware/mc.h note 2; the output side is the core's).
  *
  * 7. Speed. The angle steps (angle_sub, each in [-pi, pi)) are summed in an
  *    int32 over IRP_PERCALC <= 256 periods, so the sum (at most 2^23) cannot

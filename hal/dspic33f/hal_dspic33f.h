@@ -119,8 +119,9 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 /* Special event: ADC start 80 Tcy after the period's midpoint (PTMR =
  * PTPER, all low switches on), counting down: "80 offset ... to avoid
  * ripple on the current measurement" [SRC: AN1078]. */
-#define HAL_ADC_TRIGGER_OFFSET_TCY 80u
-#define HAL_P1SECMP                ((uint16_t)(0x8000u | (unsigned)(HAL_PTPER - HAL_ADC_TRIGGER_OFFSET_TCY)))
+#define HAL_ADC_TRIGGER_OFFSET_TCY                                                                 \
+    ((unsigned)PWM_ADC_TRIGGER_TCY) /* UserParms.h: the core knows it */
+#define HAL_P1SECMP ((uint16_t)(0x8000u | (unsigned)(HAL_PTPER - HAL_ADC_TRIGGER_OFFSET_TCY)))
 
 /* Fault A: FAEN1..3 = 1, FLTAM = 0 (latched), FAOVxx = 0 (inactive) [SRC]. */
 #define HAL_P1FLTACON_LATCHED 0x0007u

@@ -38,6 +38,7 @@ void mc_bench_init(mc_bench_t *b, const mc_bench_cfg_t *c)
     rp.adc.noise_codes = (c->noise_codes >= 0.0) ? c->noise_codes : bp->noise_codes;
     rp.adc.seed = 12345u;
     rp.substeps = 2;
+    rp.sample_at = MC_SAMPLE_AT; /* the chip's timing (mc.h) */
     rp.theta_e0 = c->theta0_rad;
     rp.fan_rated_rpm = mp->rated_rpm;
     sim_rig_init(&b->rig, &rp);

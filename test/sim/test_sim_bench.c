@@ -165,6 +165,7 @@ static sim_rig_params_t hurst_rig(void)
     r.inv.i_band_a = 0.0;
     r.adc = mclv_adc(0.0);
     r.substeps = 4;
+    r.sample_at = 0.0; /* the period-level expectations below: sample at the start */
     r.theta_e0 = 0.0;
     r.omega0_m = 0.0;
     r.fan_rated_rpm = 2700.0;
@@ -193,6 +194,45 @@ static void test_rig_should_apply_the_duties_from_the_next_period(void **state)
     assert_true(f.ia > 0 && f.ib < 0);
     assert_true(fabs(rig.t - 2.0 * 50e-6) < 1e-15);
     assert_int_equal(rig.period, 2);
+}
+
+/* The chip's timing: sample at a = 0.54 of the period, duties from the next
+ * boundary. A voltage step commanded after sample 1 starts at the boundary,
+ * a (1 - a) Ts later, so sample 2 sees it for a Ts and sample 3 for
+ * (1 + a) Ts: with the rotor still (no back-EMF) and no dead time, phase A's
+ * current is i_inf (1 - e^(-t / tau)), tau = L / R, at those two times. */
+static void test_rig_should_sample_mid_period_and_apply_duties_from_the_boundary(void **state)
+{
+    sim_rig_params_t prm = hurst_rig();
+    sim_rig_t rig;
+    sim_adc_frame_t f;
+    uint16_t off[3] = {1000, 1000, 1000};
+    uint16_t d[3] = {1100, 950, 950};
+    double i1, i2, i3, tau, want;
+    (void)state;
+    prm.motor.coulomb_nm = 1.0; /* keep the rotor still */
+    prm.sample_at = 0.54;
+    prm.inv.deadtime_s = 0.0;
+    sim_rig_init(&rig, &prm);
+    sim_rig_sample(&rig, &f);
+    sim_rig_advance(&rig, off, true); /* balanced: no current */
+    sim_rig_sample(&rig, &f);
+    i1 = rig.i_abc[0];
+    sim_rig_advance(&rig, d, true); /* d from the boundary after this sample */
+    sim_rig_sample(&rig, &f);
+    i2 = rig.i_abc[0];
+    sim_rig_advance(&rig, d, true);
+    sim_rig_sample(&rig, &f);
+    i3 = rig.i_abc[0];
+    tau = prm.motor.ld_h / prm.motor.rs_ohm;
+    want = (1.0 - exp(-0.54 * 50e-6 / tau)) / (1.0 - exp(-1.54 * 50e-6 / tau));
+    printf("measured: phase A after a Ts and (1 + a) Ts of the step: %.5f A, %.5f A, "
+           "ratio %.4f (%.4f for a = 0.54; a sample at the period start would give 0)\n",
+           i2, i3, i2 / i3, want);
+    assert_true(fabs(i1) < 1e-12);
+    assert_true(i3 > 0.01);
+    assert_true(fabs(i2 / i3 - want) < 0.002);
+    assert_int_equal(rig.period, 3);
 }
 
 static void
@@ -296,6 +336,7 @@ int main(void)
         cmocka_unit_test(test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale),
         cmocka_unit_test(test_adc_noise_should_have_the_requested_sigma_and_zero_mean),
         cmocka_unit_test(test_rig_should_apply_the_duties_from_the_next_period),
+        cmocka_unit_test(test_rig_should_sample_mid_period_and_apply_duties_from_the_boundary),
         cmocka_unit_test(
             test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off),
         cmocka_unit_test(test_rig_should_apply_plant_events_and_leave_controller_events),

@@ -57,6 +57,7 @@ static foc_result_t run_ideal_foc(double deadtime_s, double rpm, double iq_ref, 
     p.adc.noise_codes = 0.0;
     p.adc.seed = 3u;
     p.substeps = 4;
+    p.sample_at = 0.0; /* this bench's own FOC assumes a sample at the period start */
     p.theta_e0 = 0.4;
     p.omega0_m = wm;
     p.fan_rated_rpm = 2700.0;

@@ -43,6 +43,7 @@ static void rig_init(void)
     rp.adc.noise_codes = bp->noise_codes;
     rp.adc.seed = 4242U;
     rp.substeps = 2;
+    rp.sample_at = MC_SAMPLE_AT; /* the chip's timing (mc.h) */
     rp.theta_e0 = 0.3;
     rp.fan_rated_rpm = mp->rated_rpm;
     sim_rig_init(&rig, &rp);

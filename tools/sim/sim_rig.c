@@ -17,6 +17,10 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
     sim_inverter_init(&r->inv, &prm->inv, l);
     sim_adc_init(&r->adc, &prm->adc);
     r->substeps = (prm->substeps >= 1) ? prm->substeps : 1;
+    r->sample_at = (prm->sample_at > 0.0 && prm->sample_at < 1.0) ? prm->sample_at : 0.0;
+    if (r->sample_at > 0.0 && r->substeps < 2) {
+        r->substeps = 2; /* one step on each side of the boundary */
+    }
     r->ts = 1.0 / prm->inv.pwm_hz;
     r->t = 0.0;
     r->period = 0;
@@ -41,7 +45,7 @@ void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
     r->i_abc[0] = ia;
     r->i_abc[1] = ib;
     r->i_abc[2] = ic;
-    r->vbus_sampled = sim_inverter_vbus(&r->inv, r->t);
+    r->vbus_sampled = sim_inverter_vbus(&r->inv, r->t + r->sample_at * r->ts);
     if (r->spike_left > 0) {
         ia += r->spike_a;
         ib -= r->spike_a;
@@ -172,12 +176,12 @@ static void diode_step(sim_rig_t *r, double vbus, double h)
     project_floating(r);
 }
 
-void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
+/* n sub-steps of h from time t0 with the latched duties. */
+static void run_span(sim_rig_t *r, double t0, double h, int n)
 {
-    double h = r->ts / (double)r->substeps;
     int s, k;
-    for (s = 0; s < r->substeps; s++) {
-        double vbus = sim_inverter_vbus(&r->inv, r->t + ((double)s + 0.5) * h);
+    for (s = 0; s < n; s++) {
+        double vbus = sim_inverter_vbus(&r->inv, t0 + ((double)s + 0.5) * h);
         double i[3];
         sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
         if (r->inv.on) {
@@ -197,6 +201,25 @@ void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
             diode_step(r, vbus, h);
         }
     }
+}
+
+void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
+{
+    /* Sub-steps before and after the boundary in proportion to the two
+     * spans, at least one each. */
+    double rest = 1.0 - r->sample_at;
+    int n1 = r->substeps;
+    int n2 = 0;
+    if (r->sample_at > 0.0) {
+        n1 = (int)lround((double)r->substeps * rest);
+        n1 = (n1 < 1) ? 1 : ((n1 > r->substeps - 1) ? r->substeps - 1 : n1);
+        n2 = r->substeps - n1;
+    }
+    run_span(r, r->t + r->sample_at * r->ts, rest * r->ts / (double)n1, n1);
+    sim_inverter_latch(&r->inv, duty, on);
+    if (n2 > 0) {
+        run_span(r, r->t + r->ts, r->sample_at * r->ts / (double)n2, n2);
+    }
     if (r->pot_rate > 0.0) {
         double step = r->pot_rate * r->ts;
         if (fabs(r->pot_target - r->pot) <= step) {
@@ -208,7 +231,6 @@ void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
     }
     r->t += r->ts;
     r->period++;
-    sim_inverter_latch(&r->inv, duty, on);
 }
 
 static double clamp01(double x)

@@ -11,10 +11,13 @@
 #include "sim_scenario.h"
 
 /*
- * Timing (the firmware's contract): at the start of period n the ADC samples
- * the plant (sim_rig_sample); the controller computes duties D(n); the plant
- * then runs through period n with the duties latched before, D(n-1), and D(n)
- * is latched at its end (sim_rig_advance). Each period is integrated in
+ * Timing (the chip's, mc.h): the ADC samples the plant at sample_at of period
+ * n (a fraction of the period after its start; the dsPIC: the midpoint plus
+ * the trigger offset, MC_SAMPLE_AT) (sim_rig_sample); the controller
+ * computes duties D(n); the plant runs the rest of period n with the duties
+ * latched before, D(n-1), D(n) is latched at the period boundary, and the
+ * plant runs on with it up to the next sample (sim_rig_advance). sample_at =
+ * 0 is a sample at the period start and a whole period of delay. Each period is integrated in
  * `substeps` RK4 steps, the inverter re-evaluated (dead time, bus ripple) at
  * each. With the outputs off the phases are held by the free-wheeling diodes:
  * a conducting phase sits at the rail its current flows into, a phase whose
@@ -26,7 +29,8 @@ typedef struct {
     sim_motor_params_t motor;
     sim_inverter_params_t inv;
     sim_adc_params_t adc;
-    int substeps;         /* RK4 steps per PWM period (>= 1) */
+    int substeps;         /* RK4 steps per PWM period (>= 1; >= 2 when sample_at > 0) */
+    double sample_at;     /* ADC sample instant in the period, 0 <= x < 1 (0: at its start) */
     double theta_e0;      /* initial electrical angle, rad */
     double omega0_m;      /* initial mechanical speed, rad/s */
     double fan_rated_rpm; /* speed at which load_fan gives its nominal torque, rpm */
@@ -37,8 +41,9 @@ typedef struct {
     sim_inverter_t inv;
     sim_adc_t adc;
     int substeps;
+    double sample_at;  /* as in sim_rig_params_t */
     double ts;         /* PWM period, s */
-    double t;          /* time of the present period start, s */
+    double t;          /* start of the period the last sample fell in, s */
     long period;       /* periods completed */
     double pot;        /* potentiometer, 0..1 */
     double pot_target; /* ramp end, 0..1 */
@@ -54,10 +59,11 @@ typedef struct {
 
 void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm);
 
-/* ADC conversion at the present period start. */
+/* ADC conversion at the sample instant of the present period. */
 void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out);
 
-/* Runs one PWM period with the latched duties, then latches these. */
+/* Runs from this sample to the next: the rest of the period with the latched
+ * duties, then these latched at the boundary for the start of the next. */
 void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on);
 
 /* Applies a plant-side event (load, bus, rotor lock, spike, pot, dead time,
