@@ -23,11 +23,13 @@
 
 /* Sign from the current amplifiers' ADC reading to the core's "+ = into the
  * motor" (+1: as read, -1: negated; the HAL applies it, hal/dspic33f).
- * UNCHECKED: NOT FOUND for the original MCLV (hardware.md 2.1-2.2: the
- * MCLV-2 is reversed, AN1078's MCLV code shows no sign). Bench check in
- * docs/board.md: in LOCK, status ia must read positive. */
+ * -1 [SRC: AN1078's MeasCurr.s computes the current as Offset - ADC word
+ * (sub.w Offset, WREG) on this board's amplifiers, i.e. the raw reading
+ * negated; a Microchip-derived file for the same board says
+ * "w0 = -qIa (with offset)"]. Still a bench check (docs/board.md): in LOCK
+ * with the rotor held, ia must have the sign of the commanded current. */
 #ifndef BOARD_I_SIGN
-#define BOARD_I_SIGN 1
+#define BOARD_I_SIGN (-1)
 #endif
 
 /* DC-bus voltage that reads as 32767.

@@ -131,7 +131,18 @@ mplabx)
   grep -q '<targetDevice>dsPIC33FJ32MC204</targetDevice>' "$committed" || fail "device"
   grep -q '<languageToolchain>XC16</languageToolchain>' "$committed" || fail "toolchain"
   grep -q 'key="output-file-format" value="elf"' "$committed" || fail "elf"
-  grep -q 'key="fno-short-double" value="true"' "$committed" || fail "64-bit double"
+  # The IDE build gets the flags make firmware compiles with: the dialect
+  # and 64-bit double have no MPLAB X property, they go in appendMe (C30 and
+  # C30-LD), and the stack guard's key is oXC16ld-stackguard.
+  cc_line=$("${clean_env[@]}" "$root/tools/firmware_build" --print mclv hurst | grep ' -c ' | head -1)
+  for flag in -fno-short-double -std=gnu99; do
+    case " $cc_line " in *" $flag "*) ;; *) fail "make firmware lacks $flag" ;; esac
+    [ "$(grep -c "<appendMe value=\"[^\"]*$flag" "$committed")" -eq 2 ] ||
+      fail "the MPLAB X project does not append $flag in C30 and C30-LD"
+  done
+  grep -q 'key="oXC16ld-stackguard" value="16"' "$committed" || fail "stack guard key"
+  grep -q 'key="fno-short-double"' "$committed" && fail "fno-short-double is no MPLAB X key"
+  echo "measured: MPLAB X appends -fno-short-double -std=gnu99 to the compiler and the linker"
   grep -q 'value="MC_BOARD_MCLV;MC_MOTOR_HURST;MC_MOTOR_HEADER=&quot;motors/motor_hurst.h&quot;"' "$committed" ||
     fail "defines differ from make firmware"
   ;;

@@ -10,7 +10,7 @@
 
 /*
  * Built twice (test/hal/CMakeLists.txt): with the MCLV defaults, and as
- * test_hal_dspic33f_pins with HAL_BOARD_I_SIGN = -1 (the MCHV sign) and the
+ * test_hal_dspic33f_pins with HAL_BOARD_I_SIGN = +1 (the reading as is) and the
  * optional LED and UART pins assigned, so both branches of each are run.
  * Facts quoted from /work/shared/facts/hardware.md (section numbers).
  */
