@@ -309,7 +309,14 @@ static void test_pwm_write_should_load_the_three_duties_and_give_the_pins_to_the
     (void)state;
     mc_pwm_out_t out = {{100u, 1000u, 1900u}, true};
 
+    /* The three writes with the period-boundary update disabled, enabled
+     * again after them (audit: Microchip brackets them with UDIS). */
+    sfr_pdc_log_on = 1u;
     hal_pwm_write(&out);
+    sfr_pdc_log_on = 0u;
+    assert_int_equal(sfr_pdc_accesses, 3);
+    assert_int_equal(sfr_pdc_accesses_udis0, 0);
+    assert_int_equal(PWM1CON2bits.UDIS, 0);
     assert_int_equal(P1DC1, 100);
     assert_int_equal(P1DC2, 1000);
     assert_int_equal(P1DC3, 1900);

@@ -16,6 +16,21 @@
 #define SFR_DEFINE(name) volatile sfr_##name##_t sfr_##name;
 SFR_LIST(SFR_DEFINE)
 
+unsigned sfr_pdc_log_on;
+unsigned sfr_pdc_accesses;
+unsigned sfr_pdc_accesses_udis0;
+
+volatile uint16_t *sfr_pdc_access(volatile uint16_t *reg)
+{
+    if (sfr_pdc_log_on != 0u) {
+        sfr_pdc_accesses++;
+        if (PWM1CON2bits.UDIS == 0u) {
+            sfr_pdc_accesses_udis0++;
+        }
+    }
+    return reg;
+}
+
 sfr_osccon_write_t sfr_osccon_log[SFR_OSCCON_LOG_MAX];
 unsigned sfr_osccon_log_n;
 
@@ -30,6 +45,9 @@ void sfr_standin_reset(void)
     U1STA = 0x0100u;  /* TRMT */
     CORCON = 0x0024u; /* SATDW | PSV */
     sfr_osccon_log_n = 0;
+    sfr_pdc_log_on = 0u;
+    sfr_pdc_accesses = 0u;
+    sfr_pdc_accesses_udis0 = 0u;
 }
 
 static void log_write(char which, uint8_t value)

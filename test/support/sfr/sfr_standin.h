@@ -25,4 +25,11 @@ typedef struct {
 extern sfr_osccon_write_t sfr_osccon_log[SFR_OSCCON_LOG_MAX];
 extern unsigned sfr_osccon_log_n;
 
+/* Accesses of P1DC1..3 (reads and writes alike) while sfr_pdc_log_on: how
+ * many, and how many of them with PWM1CON2.UDIS = 0 (a duty that could load
+ * at a period boundary apart from the others). */
+extern unsigned sfr_pdc_log_on;
+extern unsigned sfr_pdc_accesses;
+extern unsigned sfr_pdc_accesses_udis0;
+
 #endif /* SFR_STANDIN_H */

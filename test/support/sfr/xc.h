@@ -341,9 +341,13 @@ SFR_DECLARE(P1OVDCON, P1OVDCONBITS);
 SFR_DECLARE(P1DC1, SFR_PLAINBITS);
 SFR_DECLARE(P1DC2, SFR_PLAINBITS);
 SFR_DECLARE(P1DC3, SFR_PLAINBITS);
-#define P1DC1 sfr_P1DC1.w
-#define P1DC2 sfr_P1DC2.w
-#define P1DC3 sfr_P1DC3.w
+/* The duty registers go through an accessor that notes PWM1CON2.UDIS at
+ * each access (sfr_standin.h), so a test can see that the three writes
+ * happen with the update disabled. */
+volatile uint16_t *sfr_pdc_access(volatile uint16_t *reg);
+#define P1DC1 (*sfr_pdc_access(&sfr_P1DC1.w))
+#define P1DC2 (*sfr_pdc_access(&sfr_P1DC2.w))
+#define P1DC3 (*sfr_pdc_access(&sfr_P1DC3.w))
 
 /* ---- ADC1 (hardware.md 1.7; positions [MEM] except where the sheet gives them) */
 
