@@ -294,6 +294,12 @@ bool hal_uart_put(uint8_t byte)
 
 bool hal_uart_get(uint8_t *byte)
 {
+#if HAL_UART_RX_RP == HAL_RP_NONE
+    /* No RX pin mapped: U1RX keeps its reset selection, tied to Vss, and the
+     * receiver reads a break as a stream of 0x00 bytes. Nothing is received. */
+    (void)byte;
+    return false;
+#else
     if (U1STAbits.OERR) {
         U1STAbits.OERR = 0; /* the receiver stops until this is cleared */
     }
@@ -302,6 +308,7 @@ bool hal_uart_get(uint8_t *byte)
     }
     *byte = (uint8_t)(U1RXREG & 0xFFu);
     return true;
+#endif
 }
 
 /* ---- tick, critical section --------------------------------------------------- */
