@@ -322,14 +322,16 @@ bool hal_tick_1ms(void)
     return true;
 }
 
+/* Microchip's idiom from the device header: the IPL is written inside a
+ * DISI window, so no interrupt slips in while SR is being changed. */
 hal_irq_state_t hal_critical_enter(void)
 {
-    hal_irq_state_t saved = (hal_irq_state_t)SRbits.IPL;
-    SRbits.IPL = 7;
+    hal_irq_state_t saved;
+    SET_AND_SAVE_CPU_IPL(saved, 7);
     return saved;
 }
 
 void hal_critical_exit(hal_irq_state_t saved)
 {
-    SRbits.IPL = (uint16_t)(saved & 7u);
+    RESTORE_CPU_IPL(saved);
 }

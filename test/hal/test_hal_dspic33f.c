@@ -526,6 +526,8 @@ static void test_critical_section_should_raise_ipl_to_7_and_restore_it_nested(vo
     hal_critical_exit(outer);
     assert_int_equal(SRbits.IPL, 2);
     assert_true(HAL_ADC_IRQ_PRIORITY <= 7u);
+    /* through the device header's SET_AND_SAVE_CPU_IPL / RESTORE_CPU_IPL */
+    assert_int_equal(sfr_ipl_macro_uses, 4);
 }
 
 int main(void)
@@ -578,8 +580,7 @@ int main(void)
 #endif
       cmocka_unit_test_setup(test_uart_put_should_refuse_a_byte_when_the_transmitter_is_full,
                              setup),
-      cmocka_unit_test_setup(test_uart_get_should_pass_bytes_only_from_a_mapped_rx_pin,
-                             setup),
+      cmocka_unit_test_setup(test_uart_get_should_pass_bytes_only_from_a_mapped_rx_pin, setup),
       cmocka_unit_test_setup(test_tick_should_report_each_timer1_period_once, setup),
       cmocka_unit_test_setup(test_critical_section_should_raise_ipl_to_7_and_restore_it_nested,
                              setup),

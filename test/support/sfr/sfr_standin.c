@@ -16,6 +16,7 @@
 #define SFR_DEFINE(name) volatile sfr_##name##_t sfr_##name;
 SFR_LIST(SFR_DEFINE)
 
+unsigned sfr_ipl_macro_uses;
 unsigned sfr_pdc_log_on;
 unsigned sfr_pdc_accesses;
 unsigned sfr_pdc_accesses_udis0;
@@ -45,6 +46,7 @@ void sfr_standin_reset(void)
     U1STA = 0x0100u;  /* TRMT */
     CORCON = 0x0024u; /* SATDW | PSV */
     sfr_osccon_log_n = 0;
+    sfr_ipl_macro_uses = 0u;
     sfr_pdc_log_on = 0u;
     sfr_pdc_accesses = 0u;
     sfr_pdc_accesses_udis0 = 0u;

@@ -62,6 +62,22 @@ SFR_DECLARE(SR, SRBITS);
 #define SR     sfr_SR.w
 #define SRbits sfr_SR.bits
 
+/* The device header's IPL macros: on the chip SET_CPU_IPL writes SR.IPL
+ * inside a DISI window; here they write it and count their uses
+ * (sfr_standin.h), so a test can see the HAL goes through them. */
+extern unsigned sfr_ipl_macro_uses;
+#define SET_CPU_IPL(ipl)                                                                           \
+    do {                                                                                           \
+        sfr_ipl_macro_uses++;                                                                      \
+        SRbits.IPL = (uint16_t)((ipl)&7u);                                                         \
+    } while (0)
+#define SET_AND_SAVE_CPU_IPL(save_to, ipl)                                                         \
+    do {                                                                                           \
+        (save_to) = SRbits.IPL;                                                                    \
+        SET_CPU_IPL(ipl);                                                                          \
+    } while (0)
+#define RESTORE_CPU_IPL(saved_to) SET_CPU_IPL(saved_to)
+
 typedef struct { /* hardware.md 4.6 */
     uint16_t IF : 1;
     uint16_t RND : 1;
