@@ -285,7 +285,7 @@ static void mc_start(mc_t *mc)
     }
     mc->fault = MC_FAULT_NONE;
     mc->retries = 0U;
-    mc_begin_calibration(mc, 0U);
+    mc_begin_calibration(mc, MC_CALIB_WAIT(0U));
 }
 
 static void mc_stop(mc_t *mc)
@@ -578,7 +578,7 @@ static void mc_ramp_end(mc_t *mc)
         /* keep turning at the end speed */
     } else if ((int)mc->retries < (int)MC_START_RETRIES) {
         mc->retries++;
-        mc_begin_calibration(mc, MC_COAST_PERIODS);
+        mc_begin_calibration(mc, MC_CALIB_WAIT(MC_COAST_PERIODS));
     } else {
         mc_fault(mc, MC_FAULT_START_FAILED);
     }

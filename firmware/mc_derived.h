@@ -242,6 +242,14 @@ MC_CHECK(MC_RETRY_COAST_S,
          "must be 0..65000 PWM periods");
 #define MC_COAST_PERIODS ((uint16_t)(MC_RETRY_COAST_S * PWM_FREQUENCY_HZ + 0.5))
 
+/* Periods CALIBRATE lets pass before it averages the offsets, at least: the
+ * first conversions after the ADC is switched on may be off [MEM], and a
+ * START can follow power-up at once (a remote start); the amplifiers also
+ * settle from the last PWM edges. 16 periods = 0.8 ms at 20 kHz. */
+#define MC_CALIB_SKIP_PERIODS 16U
+#define MC_CALIB_WAIT(coast)                                                                       \
+    ((uint16_t)((coast) > MC_CALIB_SKIP_PERIODS ? (coast) : MC_CALIB_SKIP_PERIODS))
+
 MC_CHECK(MC_START_RETRIES, MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250, "must be in 0..250");
 
 /* Open-loop ramp, constant acceleration: the 32-bit angle step grows by

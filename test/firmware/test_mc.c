@@ -111,23 +111,27 @@ static void test_mc_request_out_of_range_should_be_ignored(void **state)
 
 /* ---- calibration -------------------------------------------------------------- */
 
-static void test_start_should_calibrate_the_offsets_with_outputs_off_then_lock(void **state)
+static void
+test_start_should_discard_the_first_conversions_calibrate_the_offsets_then_lock(void **state)
 {
     (void)state;
     mc_request(&mc, MC_REQUEST_START);
     mc_adc_frame_t f = frame(300, -200, MC_VBUS_NOMINAL_Q15, 0);
-    step_with(f);
+    /* The first MC_CALIB_SKIP_PERIODS conversions (ADC power-up, amplifier
+     * settling) are discarded: a wild value there must not move the offsets. */
+    mc_adc_frame_t wild = frame(12000, -12000, MC_VBUS_NOMINAL_Q15, 0);
+    step_with(wild);
     assert_int_equal(st.state, MC_STATE_CALIBRATE);
     long n = 1;
     while (st.state == MC_STATE_CALIBRATE) {
         assert_off();
-        step_with(f);
+        step_with((n < (long)MC_CALIB_SKIP_PERIODS) ? wild : f);
         n++;
-        assert_true(n <= (long)MC_CALIB_PERIODS + 1);
+        assert_true(n <= (long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS + 1);
     }
-    printf("measured: calibration took %ld periods (MC_CALIB_PERIODS = %u)\n", n,
-           (unsigned)MC_CALIB_PERIODS);
-    assert_int_equal(n, (long)MC_CALIB_PERIODS);
+    printf("measured: calibration took %ld periods (%u discarded, MC_CALIB_PERIODS = %u)\n", n,
+           (unsigned)MC_CALIB_SKIP_PERIODS, (unsigned)MC_CALIB_PERIODS);
+    assert_int_equal(n, (long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS);
     assert_int_equal(st.state, MC_STATE_LOCK);
     assert_true(out.outputs_on);
     /* The same raw reading now means zero current. */
@@ -145,8 +149,9 @@ static void test_calibration_should_fault_when_an_offset_is_beyond_the_limit(voi
             mc_init(&mc);
             mc_request(&mc, MC_REQUEST_START);
             int16_t x = (int16_t)(sign * bad);
-            steps((long)MC_CALIB_PERIODS + 2, phase == 0 ? frame(x, 0, MC_VBUS_NOMINAL_Q15, 0)
-                                                         : frame(0, x, MC_VBUS_NOMINAL_Q15, 0));
+            steps((long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS + 2,
+                  phase == 0 ? frame(x, 0, MC_VBUS_NOMINAL_Q15, 0)
+                             : frame(0, x, MC_VBUS_NOMINAL_Q15, 0));
             assert_int_equal(st.state, MC_STATE_FAULT);
             assert_int_equal(st.fault, MC_FAULT_OFFSET);
             assert_off();
@@ -158,7 +163,8 @@ static void test_calibration_should_accept_an_offset_at_the_limit(void **state)
 {
     (void)state;
     mc_request(&mc, MC_REQUEST_START);
-    steps((long)MC_CALIB_PERIODS + 2, frame(MC_OFFSET_MAX_Q15, 0, MC_VBUS_NOMINAL_Q15, 0));
+    steps((long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS + 2,
+          frame(MC_OFFSET_MAX_Q15, 0, MC_VBUS_NOMINAL_Q15, 0));
     assert_int_equal(st.state, MC_STATE_LOCK);
 }
 
@@ -736,8 +742,8 @@ int main(void)
             test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_frame,
             setup),
         cmocka_unit_test_setup(test_mc_request_out_of_range_should_be_ignored, setup),
-        cmocka_unit_test_setup(test_start_should_calibrate_the_offsets_with_outputs_off_then_lock,
-                               setup),
+        cmocka_unit_test_setup(
+            test_start_should_discard_the_first_conversions_calibrate_the_offsets_then_lock, setup),
         cmocka_unit_test_setup(test_calibration_should_fault_when_an_offset_is_beyond_the_limit,
                                setup),
         cmocka_unit_test_setup(test_calibration_should_accept_an_offset_at_the_limit, setup),
