@@ -285,7 +285,7 @@ static void mc_start(mc_t *mc)
     }
     mc->fault = MC_FAULT_NONE;
     mc->retries = 0U;
-    mc_begin_calibration(mc, MC_CALIB_WAIT(0U));
+    mc_begin_calibration(mc, MC_CALIB_SKIP_PERIODS);
 }
 
 static void mc_stop(mc_t *mc)

@@ -11,6 +11,24 @@
  * provenance), which HAL_BOARD_I_SIGN follows on either board.
  */
 
+/* Pin conflict, unresolved [GUESS on the PIM]: a 2012 Microchip sample
+ * "updated to MCHV" reads push-button S3 on RB8, the pin this HAL makes the
+ * latched fault input FLTA1 (HAL_FLTA1_RP = RP8). On a PIM wired that way a
+ * press of S3 trips the fault, and the fault pin would not be where the
+ * HAL expects it. The one constant to settle: HAL_MCHV_PINS_CONFIRMED.
+ * Check on the MCHV PIM's schematic (or with a meter, board unpowered)
+ * which pins S3 and the inverter's fault output reach; if S3 is not on
+ * RB8 and the fault is, build with -DHAL_MCHV_PINS_CONFIRMED=1 (XC16_CFLAGS);
+ * otherwise move HAL_FLTA1_RP / HAL_S3_PORTB_BIT to the confirmed pins
+ * first. Until then the MCHV image is refused. */
+#ifndef HAL_MCHV_PINS_CONFIRMED
+#define HAL_MCHV_PINS_CONFIRMED 0
+#endif
+#if !HAL_MCHV_PINS_CONFIRMED
+#error                                                                                             \
+    "MCHV build refused: push-button S3 may share RB8 with the fault input FLTA1; check the MCHV PIM pin map (docs/board.md, 'MCHV pin map'), then build with -DHAL_MCHV_PINS_CONFIRMED=1"
+#endif
+
 #include "board_mclv_hal.h"
 
 #endif /* BOARD_MCHV_HAL_H */

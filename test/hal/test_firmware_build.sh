@@ -184,6 +184,21 @@ EOS
   rc=$?
   echo "measured: host-compiled image: $(grep -c ' -c ' "$tmp/stdout") objects linked, run 1 s -> exit $rc (124 = still looping)"
   [ $rc -eq 124 ] || fail "the image exited (status $rc) instead of looping"
+  # The MCHV image is refused while its pin conflict (S3 on RB8 = FLTA1?)
+  # is unresolved, with the message saying what to check; the one constant
+  # HAL_MCHV_PINS_CONFIRMED lets it build.
+  if "${clean_env[@]}" XC16_DIR="$tmp/xc16" FAKE_SFR_OBJ="$tmp/sfr.o" FAKE_ROOT="$root" \
+    FIRMWARE_OUT="$tmp/out_mchv" "$root/tools/firmware_build" mchv hispeed >"$tmp/mchv" 2>&1; then
+    fail "an MCHV image was built with its pin conflict unresolved"
+  fi
+  grep -q 'MCHV build refused: push-button S3 may share RB8 with the fault input FLTA1' "$tmp/mchv" ||
+    { tail -5 "$tmp/mchv"; fail "the MCHV refusal does not say what to check"; }
+  [ ! -e "$tmp/out_mchv/mchv.hex" ] || fail "a refused MCHV build left an image"
+  "${clean_env[@]}" XC16_DIR="$tmp/xc16" FAKE_SFR_OBJ="$tmp/sfr.o" FAKE_ROOT="$root" \
+    XC16_CFLAGS=-DHAL_MCHV_PINS_CONFIRMED=1 FIRMWARE_OUT="$tmp/out_mchv" \
+    "$root/tools/firmware_build" mchv hispeed >"$tmp/mchv" 2>&1 ||
+    { tail -20 "$tmp/mchv"; fail "the MCHV image does not build once its pins are confirmed"; }
+  echo "measured: MCHV image refused until HAL_MCHV_PINS_CONFIRMED=1, then built"
   ;;
 *) fail "unknown mode $mode" ;;
 esac
