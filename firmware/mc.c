@@ -65,6 +65,10 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "the advance at full speed must be < pi (PWM too slow for the speed range)");
 #define MC_ADV_K       Q15(MC_ADV_K_)
 #define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
+/* The open-loop step per period (binary angle counts) must stay below 2^15
+ * for the advance's Q15 product: the ramp's end below half the PWM rate. */
+MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 0.5,
+         "the ramp's end must be below half the PWM frequency (electrical)");
 
 /* The voltage the current evolved under between the previous sample and
  * this one (mc.h note 2): the duty of period n-1 (computed two steps ago,
@@ -802,7 +806,7 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->ol_angle += mc->ol_step;
             mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
             /* 1.5 - MC_SAMPLE_AT periods of the forced speed (the step
-             * is below 2^15 counts: MC_ADV_K_ < 1 bounds the speed). */
+             * is below 2^15 counts: the MOTOR_RAMP_END_RPM check above). */
             adv = (int32_t)q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
             control = true;
             break;
