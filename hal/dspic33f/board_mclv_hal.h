@@ -37,4 +37,17 @@
 #define HAL_UART_TX_RP HAL_RP_NONE
 #endif
 
+/* Timing pin, for the bench (optional; port HAL_PORT_A/B/C and bit, or
+ * HAL_PORT_NONE): high from the ADC interrupt's first statement to its
+ * last. On a scope against a PWM output it shows when the interrupt starts
+ * (the conversion ends 4.8 us after the trigger, which sits
+ * PWM_ADC_TRIGGER_TCY after the PWM midpoint) and how long it runs, the
+ * figure docs/performance.md gives in cycles. Off by default: it must be a
+ * free pin of your PIM (e.g. -DHAL_TIMING_PIN_PORT=HAL_PORT_C
+ * -DHAL_TIMING_PIN_BIT=5u). */
+#ifndef HAL_TIMING_PIN_PORT
+#define HAL_TIMING_PIN_PORT HAL_PORT_NONE
+#define HAL_TIMING_PIN_BIT  0u
+#endif
+
 #endif /* BOARD_MCLV_HAL_H */

@@ -101,6 +101,7 @@ static void pins_init(void)
 
     led_pin_init(HAL_LED_RUN_PORT, HAL_LED_RUN_BIT);
     led_pin_init(HAL_LED_FAULT_PORT, HAL_LED_FAULT_BIT);
+    led_pin_init(HAL_TIMING_PIN_PORT, HAL_TIMING_PIN_BIT); /* an output, low */
 
     /* Peripheral pin select: unlock, map, lock. FLTA1 must be on its pin
      * before P1FLTACON enables the fault (hardware.md 5). */

@@ -36,6 +36,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     mc_adc_frame_t frame;
     mc_pwm_out_t out;
 
+    hal_regs_timing_pin(true);
     IFS0bits.AD1IF = 0;
     hal_regs_adc_read(&frame);
     mc_step(&motor, &frame, &out);
@@ -47,6 +48,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     if (observer != NULL) {
         observer(observer_ctx, &motor);
     }
+    hal_regs_timing_pin(false);
 }
 
 /* The slow step, pre-empted by the ADC interrupt (mc.h note 4). */

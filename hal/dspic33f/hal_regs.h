@@ -12,6 +12,30 @@
 
 #include "hal_dspic33f.h"
 
+/* ---- timing pin (board_mclv_hal.h) ------------------------------------------- */
+
+#if HAL_TIMING_PIN_PORT == HAL_PORT_A
+#define HAL_TIMING_LAT_ LATA
+#elif HAL_TIMING_PIN_PORT == HAL_PORT_B
+#define HAL_TIMING_LAT_ LATB
+#elif HAL_TIMING_PIN_PORT == HAL_PORT_C
+#define HAL_TIMING_LAT_ LATC
+#endif
+
+/* One bit set or cleared (bset / bclr on the chip); nothing without a pin. */
+Q15_INLINE void hal_regs_timing_pin(bool high)
+{
+#if defined(HAL_TIMING_LAT_)
+    if (high) {
+        HAL_TIMING_LAT_ = (uint16_t)(HAL_TIMING_LAT_ | (1u << HAL_TIMING_PIN_BIT));
+    } else {
+        HAL_TIMING_LAT_ = (uint16_t)(HAL_TIMING_LAT_ & ~(1u << HAL_TIMING_PIN_BIT));
+    }
+#else
+    (void)high;
+#endif
+}
+
 /* ---- ADC --------------------------------------------------------------------- */
 
 /* A signed fractional result (sddd dddd dd00 0000) as the int16_t it encodes,

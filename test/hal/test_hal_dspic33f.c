@@ -415,6 +415,11 @@ static void test_leds_should_drive_their_assigned_pins(void **state)
     (void)state;
     assert_int_equal(TRISB & (1u << 9), 0);
     assert_int_equal(TRISC & (1u << 3), 0);
+#if HAL_TIMING_PIN_PORT == HAL_PORT_C
+    /* the bench's timing pin: an output, low until the interrupt runs */
+    assert_int_equal(TRISC & (1u << HAL_TIMING_PIN_BIT), 0);
+    assert_int_equal(LATC & (1u << HAL_TIMING_PIN_BIT), 0);
+#endif
     hal_led_set(HAL_LED_RUN, true);
     assert_int_equal(LATB, 1u << 9);
     hal_led_set(HAL_LED_FAULT, true);

@@ -36,6 +36,9 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     check_same_motor(mc);
     /* The flag is cleared before the step, the duties written after it. */
     assert_int_equal(IFS0bits.AD1IF, 0);
+#if HAL_TIMING_PIN_PORT == HAL_PORT_C
+    assert_int_equal((LATC >> HAL_TIMING_PIN_BIT) & 1u, 1u); /* high for the whole interrupt */
+#endif
     assert_int_equal(P1DC1, 0xAAAA);
     assert_int_equal(P1DC2, 0xAAAA);
     assert_int_equal(P1DC3, 0xAAAA);
@@ -121,6 +124,10 @@ test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_thr
     _ADC1Interrupt();
 
     assert_int_equal(IFS0bits.AD1IF, 0);
+#if HAL_TIMING_PIN_PORT == HAL_PORT_C
+    assert_int_equal((LATC >> HAL_TIMING_PIN_BIT) & 1u, 0u);  /* low again after it */
+    assert_int_equal(LATC & ~(1u << HAL_TIMING_PIN_BIT), 0u); /* no other bit touched */
+#endif
     assert_int_equal(P1DC1, 11);
     assert_int_equal(P1DC2, 1000);
     assert_int_equal(P1DC3, 1999);
