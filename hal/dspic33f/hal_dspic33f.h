@@ -128,6 +128,13 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 /* Override: POVDxx = 1 gives the pins to the PWM; 0 with POUT = 0 = off [SRC]. */
 #define HAL_P1OVDCON_PWM 0x3F00u
 #define HAL_P1OVDCON_OFF 0x0000u
+/* Bootstrap precharge: every pin overridden, the three low switches on
+ * (POUT1L, POUT2L, POUT3L), so the high-side drivers' bootstrap capacitors
+ * charge before the PWM first switches the high sides (Microchip's MCLV
+ * code: OVDCON = 0x0015 for 10 ms before 0x3F00 [SRC, board audit]). */
+#define HAL_P1OVDCON_PRECHARGE 0x0015u
+/* Its length after hal_motor_start(), in PWM periods: 10 ms. */
+#define HAL_PRECHARGE_PERIODS ((uint16_t)(PWM_FREQUENCY_HZ / 100L))
 
 /* ---- ADC1 (hardware.md 1.7, 1.8) -------------------------------------------- *
  * Four sample-and-holds sampled together at the special event, converted

@@ -26,6 +26,12 @@ static void *observer_ctx;
  * every MC_SLOW_STEP_PERIODS-th, counting from mc_init). */
 static uint16_t slow_div;
 
+/* Periods of bootstrap precharge still to come (HAL_P1OVDCON_PRECHARGE):
+ * set by hal_motor_start(), the first 10 ms after power-up; the low
+ * switches are on while the core keeps the outputs off, and the core
+ * turning them on ends it at once. */
+static uint16_t precharge_left;
+
 /* Vector of the ADC: the four results are ready (SMPI = 0, one interrupt
  * per special-event conversion set). Clearing the flag first means an
  * overrun (a step longer than a period) re-enters at once instead of
@@ -40,7 +46,16 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     IFS0bits.AD1IF = 0;
     hal_regs_adc_read(&frame);
     mc_step(&motor, &frame, &out);
-    hal_regs_pwm_write(&out);
+    hal_regs_duty_write(&out);
+    if (out.outputs_on) {
+        precharge_left = 0U;
+        P1OVDCON = HAL_P1OVDCON_PWM;
+    } else if (precharge_left != 0U) {
+        precharge_left--;
+        P1OVDCON = HAL_P1OVDCON_PRECHARGE;
+    } else {
+        P1OVDCON = HAL_P1OVDCON_OFF;
+    }
     if (++slow_div >= MC_SLOW_STEP_PERIODS) {
         slow_div = 0U;
         IFS0bits.T2IF = 1; /* the window's slow step, as soon as this interrupt returns */
@@ -64,6 +79,7 @@ void hal_motor_start(void)
     IEC0bits.T2IE = 0;
     mc_init(&motor);
     slow_div = 0U;
+    precharge_left = HAL_PRECHARGE_PERIODS;
     IFS0bits.AD1IF = 0; /* a stale conversion is not a period of the new motor */
     IFS0bits.T2IF = 0;
     IEC0bits.T2IE = 1;

@@ -145,6 +145,29 @@ static void test_adc_isr_should_override_the_outputs_off_when_the_core_says_off(
     assert_int_equal(P1DC1, 1000);
 }
 
+/* The bootstrap precharge after hal_motor_start(): the low switches on
+ * while the core keeps the outputs off, for HAL_PRECHARGE_PERIODS; the core
+ * turning the outputs on ends it at once, for good. */
+static void
+test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on(void **state)
+{
+    (void)state;
+    expect_function_call(mc_init);
+    hal_motor_start();
+    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    _ADC1Interrupt();
+    assert_int_equal(P1OVDCON, 0x0015);
+    assert_int_equal(P1DC1, 1000);
+    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu; /* the mock checks the duties are written after it */
+    expect_step(0, 0, 16384, 16384, 900u, 1000u, 1100u, true);
+    _ADC1Interrupt();
+    assert_int_equal(P1OVDCON, 0x3F00);
+    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu;
+    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    _ADC1Interrupt();
+    assert_int_equal(P1OVDCON, 0x0000); /* not again before the next hal_motor_start() */
+}
+
 static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(void **state)
 {
     (void)state;
@@ -242,6 +265,8 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
                                setup),
+        cmocka_unit_test_setup(
+            test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on, setup),
         cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
                                setup),
         cmocka_unit_test_setup(

@@ -54,9 +54,14 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
     assert_int_equal(IEC0bits.AD1IE, 1);
     set_converter();
 
-    for (n = 0; n < 200u; n++) { /* stopped: outputs stay off */
+    /* Stopped: the first 10 ms precharge the bootstrap capacitors (the three
+     * low switches on), then every switch is off. */
+    for (n = 0; n < (unsigned)HAL_PRECHARGE_PERIODS + 50u; n++) {
         period();
+        assert_int_equal(P1OVDCON, n < (unsigned)HAL_PRECHARGE_PERIODS ? 0x0015 : 0x0000);
     }
+    printf("measured: bootstrap precharge for %u periods (%.1f ms) after hal_motor_start()\n",
+           (unsigned)HAL_PRECHARGE_PERIODS, 1000.0 * HAL_PRECHARGE_PERIODS / PWM_FREQUENCY_HZ);
     hal_motor_status(&st);
     assert_int_equal(st.state, MC_STATE_STOPPED);
     assert_int_equal(P1OVDCON, 0x0000);
