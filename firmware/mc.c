@@ -582,7 +582,7 @@ static void mc_ramp_end(mc_t *mc)
         /* keep turning at the end speed */
     } else if ((int)mc->retries < (int)MC_START_RETRIES) {
         mc->retries++;
-        mc_begin_calibration(mc, MC_CALIB_WAIT(MC_COAST_PERIODS));
+        mc_begin_calibration(mc, MC_RETRY_CALIB_WAIT);
     } else {
         mc_fault(mc, MC_FAULT_START_FAILED);
     }

@@ -52,7 +52,7 @@
  *                                           references, estimator validity,
  *                                           back-EMF, duties;
  *   mc_set_gain()                           live PI gains (note 3);
- *   mc_slow_step(), MC_SLOW_STEP_PERIODS    DESIGN.md's optional slow step,
+ *   mc_slow_step(), MC_SLOW_STEP_PERIODS    the optional slow step of the seam,
  *                                           taken (note 4), with
  *                                           MC_SLOW_APPLY_PERIODS and
  *                                           MC_FAULT_OVERRUN.

@@ -247,8 +247,10 @@ MC_CHECK(MC_RETRY_COAST_S,
  * START can follow power-up at once (a remote start); the amplifiers also
  * settle from the last PWM edges. 16 periods = 0.8 ms at 20 kHz. */
 #define MC_CALIB_SKIP_PERIODS 16U
-#define MC_CALIB_WAIT(coast)                                                                       \
-    ((uint16_t)((coast) > MC_CALIB_SKIP_PERIODS ? (coast) : MC_CALIB_SKIP_PERIODS))
+/* A retry's wait before averaging: its coast, at least the skip. */
+#define MC_RETRY_CALIB_WAIT                                                                        \
+    ((uint16_t)(MC_COAST_PERIODS > MC_CALIB_SKIP_PERIODS ? MC_COAST_PERIODS                        \
+                                                         : MC_CALIB_SKIP_PERIODS))
 
 MC_CHECK(MC_START_RETRIES, MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250, "must be in 0..250");
 

@@ -162,16 +162,17 @@ static void smc_slow_restart(const smc_params_t *p, smc_slow_t *sl, q15_t omega)
     sl->startup = SMC_STARTUP_WINDOWS;
 }
 
-/* The results as they stand after a reset (speed 0, K at its floor). */
-static void smc_apply_rest(smc_t *s)
+/* The fast side takes a set of slow-side results: a window's (smc_apply)
+ * or those at rest (speed 0, K at its floor, not valid; smc_reset). */
+static void smc_take(smc_t *s, const smc_result_t *r)
 {
-    s->omega = s->rest.omega;
-    s->k = s->rest.k;
-    s->k_w = s->rest.k_w;
-    s->comp = s->rest.comp;
-    s->emf_mag = s->rest.emf_mag;
-    s->emf_ratio = s->rest.emf_ratio;
-    s->valid = false;
+    s->omega = r->omega;
+    s->k = r->k;
+    s->k_w = r->k_w;
+    s->comp = r->comp;
+    s->emf_mag = r->emf_mag;
+    s->emf_ratio = r->emf_ratio;
+    s->valid = r->valid;
 }
 
 void smc_init(smc_t *s, const smc_params_t *p)
@@ -223,7 +224,7 @@ void smc_reset(smc_t *s)
     s->theta = 0;
     s->epoch = (uint8_t)(s->epoch + 1U);
     s->preset_pending = false;
-    smc_apply_rest(s);
+    smc_take(s, &s->rest);
 }
 
 void smc_preset_speed(smc_t *s, q15_t omega)
@@ -240,13 +241,7 @@ void smc_apply(smc_t *s)
 {
     /* The results of the last window, if they still belong to this run. */
     if (s->res.epoch == s->epoch) {
-        s->omega = s->res.omega;
-        s->k = s->res.k;
-        s->k_w = s->res.k_w;
-        s->comp = s->res.comp;
-        s->emf_mag = s->res.emf_mag;
-        s->emf_ratio = s->res.emf_ratio;
-        s->valid = s->res.valid;
+        smc_take(s, &s->res);
     }
 }
 

@@ -23,10 +23,9 @@
 
 /* Sign from the current amplifiers' ADC reading to the core's "+ = into the
  * motor" (+1: as read, -1: negated; the HAL applies it, hal/dspic33f).
- * -1 [SRC: AN1078's MeasCurr.s computes the current as Offset - ADC word
- * (sub.w Offset, WREG) on this board's amplifiers, i.e. the raw reading
- * negated; a Microchip-derived file for the same board says
- * "w0 = -qIa (with offset)"]. Still a bench check (docs/board.md): in LOCK
+ * -1 [SRC: docs/board.md, "Bring-up facts": AN1078's current measurement
+ * computes Offset - ADC on this board's amplifiers, the raw reading
+ * negated]. Still a bench check (docs/board.md): in LOCK
  * with the rotor held, ia must have the sign of the commanded current. */
 #ifndef BOARD_I_SIGN
 #define BOARD_I_SIGN (-1)

@@ -130,8 +130,8 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 #define HAL_P1OVDCON_OFF 0x0000u
 /* Bootstrap precharge: every pin overridden, the three low switches on
  * (POUT1L, POUT2L, POUT3L), so the high-side drivers' bootstrap capacitors
- * charge before the PWM first switches the high sides (Microchip's MCLV
- * code: OVDCON = 0x0015 for 10 ms before 0x3F00 [SRC, board audit]). */
+ * charge before the PWM first switches the high sides [SRC: docs/board.md,
+ * "Bring-up facts": Microchip's MCLV code, OVDCON = 0x0015 for 10 ms]. */
 #define HAL_P1OVDCON_PRECHARGE 0x0015u
 /* Its length after hal_motor_start(), in PWM periods: 10 ms. */
 #define HAL_PRECHARGE_PERIODS ((uint16_t)(PWM_FREQUENCY_HZ / 100L))
@@ -149,8 +149,10 @@ Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
 #define HAL_AD1PCFGL_ANALOG ((uint16_t) ~(uint16_t)((1u << 0) | (1u << 1) | (1u << 2) | (1u << 8)))
 /* TAD = (ADCS + 1) Tcy. [MEM] the dsPIC33F 10-bit minimum TAD is about 76 ns
  * and a conversion takes 12 TAD: ADCS = 3 gives TAD = 100 ns, 4 channels in
- * 4.8 us, so the ISR starts about 5 us after the sample and mc_step() has
- * ~17 us before the period boundary (DESIGN.md's one-period contract).
+ * 4.8 us, so the ISR starts about 6.8 us after the midpoint, 18.2 us (728
+ * Tcy) before the period boundary where the duties load (mc.h timing
+ * contract; docs/board.md "Timing" says what the interrupt's length does to
+ * it).
  * AN1078 used ADCS = 15 (400 ns, 19.2 us for 4 channels) [SRC], which leaves
  * too little time before the boundary. */
 #define HAL_AD1_ADCS 3u

@@ -20,20 +20,28 @@
  * The lowest speed is the lowest closed-loop speed the build claims,
  * SPEED_REF_MIN_RPM (its ratio to SPEED_REF_MAX_RPM is printed).
  */
-static void check_speed(double rpm, double load_nm, double ang_max_deg)
+/* One steady-state window at rpm and load, the plant sampling at sample_at
+ * of the period (< 0: the chip's, as the core assumes). */
+static void measure_speed(double rpm, double load_nm, double sample_at, cl_window_t *w)
 {
     static simcore_t s;
     simcore_cfg_t cfg;
-    cl_window_t w;
     simcore_cfg_default(&cfg);
     cfg.theta0_rad = 1.0;
+    cfg.sample_at = sample_at;
     cl_setup(&s, &cfg, "hurst", "mclv");
     cl_start_and_reach(&s, rpm, 10.0);
     if (load_nm > 0.0) {
         cl_event(&s, SIM_EV_LOAD, load_nm, 0.0);
     }
     cl_run(&s, 0.5);
-    cl_measure(&s, 1.0, &w);
+    cl_measure(&s, 1.0, w);
+}
+
+static void check_speed(double rpm, double load_nm, double ang_max_deg)
+{
+    cl_window_t w;
+    measure_speed(rpm, load_nm, -1.0, &w);
     printf("measured: %5.0f rpm, load %.3f N m: speed error %+.3f %% (true %.2f, ref %.2f, "
            "est %.2f rpm), angle error mean %+.2f deg, rms %.2f deg, max %.2f deg, "
            "closed loop throughout: %s\n",
@@ -104,6 +112,21 @@ static void test_angle_bias_should_be_small_at_the_top_speed_under_load(void **s
     check_speed((double)SPEED_REF_MAX_RPM, 0.02, 2.0);
 }
 
+/* The 0.3 deg bound can fail: a plant whose timing differs from the core's
+ * by half a period (a sample at the period start, duties a whole period
+ * later: the timing the core used to assume) biases the angle well past it. */
+static void test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differs(void **state)
+{
+    cl_window_t w;
+    (void)state;
+    measure_speed(2000.0, 0.05, 0.0, &w);
+    printf("measured: 2000 rpm, load 0.050 N m, plant sampling at the period start (core: %.2f): "
+           "angle error mean %+.2f deg\n",
+           (double)MC_SAMPLE_AT, cl_ang_mean(&w));
+    assert_false(w.left_closed_loop);
+    assert_true(fabs(cl_ang_mean(&w)) > 0.3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -117,6 +140,7 @@ int main(void)
         cmocka_unit_test(test_angle_bias_should_be_small_at_3000_rpm_under_load),
         cmocka_unit_test(test_angle_bias_should_be_small_at_the_top_speed),
         cmocka_unit_test(test_angle_bias_should_be_small_at_the_top_speed_under_load),
+        cmocka_unit_test(test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

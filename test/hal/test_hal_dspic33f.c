@@ -310,7 +310,7 @@ static void test_pwm_write_should_load_the_three_duties_and_give_the_pins_to_the
     mc_pwm_out_t out = {{100u, 1000u, 1900u}, true};
 
     /* The three writes with the period-boundary update disabled, enabled
-     * again after them (audit: Microchip brackets them with UDIS). */
+     * again after them (docs/board.md, "Bring-up facts": UDIS). */
     sfr_pdc_log_on = 1u;
     hal_pwm_write(&out);
     sfr_pdc_log_on = 0u;

@@ -33,6 +33,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->vbus_v = -1.0;
     cfg->seed = 1u;
     cfg->substeps = 4;
+    cfg->sample_at = -1.0;
     cfg->csv_decim = 10;
     cfg->csv = NULL;
     cfg->progress = false;
@@ -198,7 +199,7 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     rp.adc.noise_codes = (cfg->noise_codes >= 0.0) ? cfg->noise_codes : s->bp->noise_codes;
     rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
     rp.substeps = cfg->substeps;
-    rp.sample_at = MC_SAMPLE_AT; /* the chip's timing (mc.h) */
+    rp.sample_at = (cfg->sample_at >= 0.0) ? cfg->sample_at : MC_SAMPLE_AT; /* the chip's (mc.h) */
     rp.theta_e0 = cfg->theta0_rad;
     rp.omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
     rp.fan_rated_rpm = s->mp->rated_rpm;

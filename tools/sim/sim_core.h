@@ -34,6 +34,7 @@ typedef struct {
     double vbus_v;      /* < 0: the board's */
     uint32_t seed;      /* ADC noise seed */
     int substeps;       /* RK4 steps per PWM period */
+    double sample_at;   /* ADC sample instant in the period; < 0: the chip's, MC_SAMPLE_AT */
     int csv_decim;      /* CSV row every N periods */
     FILE *csv;          /* NULL: no CSV */
     bool progress;      /* progress line on stderr for long runs */
