@@ -64,6 +64,13 @@ static const fieldweak_params_t mc_fw_params = {
 MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "the advance at full speed must be < pi (PWM too slow for the speed range)");
 #define MC_ADV_K       Q15(MC_ADV_K_)
+/* The estimator's angle is one sample old when the current loops use it
+ * (mc.h note 2): one period of the estimated speed, speed_q15 * 2
+ * omega_fs Ts angle counts. */
+#define MC_PRED_K_ (2.0 * MC_OMEGA_FS_HZ * MC_TS_S)
+MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_PRED_K_ < 1.0,
+         "one period at full speed must be < pi (PWM too slow for the speed range)");
+#define MC_PRED_K Q15(MC_PRED_K_)
 #define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
 /* The open-loop step per period (binary angle counts) must stay below 2^15
  * for the advance's Q15 product: the ramp's end below half the PWM rate. */
@@ -220,12 +227,15 @@ Q15_INLINE sincos_q15_t mc_advance(sincos_q15_t sc, sincos_q15_t a)
     return r;
 }
 
-/* The advance of the voltage in CLOSED_LOOP and its sin/cos, from the
- * estimator's speed: recomputed whenever that speed changes (the slow
- * step's results, a preset, a reset), so the period only turns sc. */
+/* The advance of the voltage in CLOSED_LOOP and its sin/cos, and the
+ * angle's one-period prediction (mc.h note 2), from the estimator's speed:
+ * recomputed whenever that speed changes (the slow step's results, a
+ * preset, a reset), so the period only turns sc and adds pred. */
 static void mc_set_advance(mc_t *mc)
 {
-    mc->adv_sc = sincos_compute(q15_mul(smc_omega(&mc->smc), MC_ADV_K));
+    q15_t w = smc_omega(&mc->smc);
+    mc->adv_sc = sincos_compute(q15_mul(w, MC_ADV_K));
+    mc->pred = q15_mul(w, MC_PRED_K);
 }
 
 /* ---- state changes --------------------------------------------------------------- */
@@ -433,19 +443,18 @@ static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t 
     out->loop = true;
 }
 
-/* Clarke of this sample and the estimator update, first thing in every
- * period with the outputs on, so the angle it gives is the one of this
- * sample (smc.h timing contract): fed the voltage applied while this
- * sample's current evolved, the two last commands weighted by the time
- * each acted between the samples (MC_VEST_W_*, mc.h note 2). */
-Q15_INLINE void mc_estimate(mc_t *mc)
+/* Clarke of this sample and the voltage the estimator is fed with it (in
+ * mc_step_finish, after the duties): the one applied while this sample's
+ * current evolved, the two last commands weighted by the time each acted
+ * between the samples (MC_VEST_W_*, mc.h note 2). Taken before
+ * mc_current_control moves the history on. */
+Q15_INLINE void mc_estimator_input(mc_t *mc)
 {
-    ab_q15_t v;
-    v.alpha =
+    mc->v_est.alpha =
         q15_dsp_mac2_r(mc->v_hist[0].alpha, MC_VEST_W_NEW, mc->v_hist[1].alpha, MC_VEST_W_OLD);
-    v.beta = q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
+    mc->v_est.beta =
+        q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
     mc->i_ab = clarke_forward(mc->ia, mc->ib);
-    smc_update(&mc->smc, mc->i_ab, v);
 }
 
 /* Current loops and modulation, for one period with the outputs on.
@@ -711,7 +720,7 @@ Q15_INLINE bool mc_overcurrent(q15_t i)
     return i >= MC_OVERCURRENT_Q15 || i <= (q15_t)(-MC_OVERCURRENT_Q15);
 }
 
-void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 {
     /* 1. Frame, requests and reference. */
     mc->vbus = in->vbus;
@@ -829,12 +838,28 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         default: /* STOPPED, FAULT: outputs stay off */
             break;
     }
+    mc->estimate = control;
     if (control) {
-        mc_estimate(mc);
+        mc_estimator_input(mc);
         if (estimated_angle) {
-            mc->theta = angle_add(smc_theta(&mc->smc), mc->theta_offset);
+            /* The estimator's angle of the previous sample, one period on
+             * (note 4): this sample's update comes after the duties. */
+            mc->theta = angle_add(angle_add(smc_theta(&mc->smc), mc->theta_offset), mc->pred);
         }
         mc_current_control(mc, adv);
+    }
+
+    /* 5. Outputs: every path writes all of them. */
+    out->duty[0] = mc->duty[0];
+    out->duty[1] = mc->duty[1];
+    out->duty[2] = mc->duty[2];
+    out->outputs_on = mc->outputs_on;
+}
+
+void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
+{
+    if (mc->estimate) {
+        smc_update(&mc->smc, mc->i_ab, mc->v_est);
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
@@ -852,11 +877,20 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         mc_window_end(mc);
     }
 
-    /* 5. Outputs: every path writes all of them. */
-    out->duty[0] = mc->duty[0];
-    out->duty[1] = mc->duty[1];
-    out->duty[2] = mc->duty[2];
-    out->outputs_on = mc->outputs_on;
+    /* A fault raised here (a failed start, a stall, an overrun) has turned
+     * the outputs off: so does *out, at once. */
+    if (!mc->outputs_on) {
+        out->duty[0] = mc->duty[0];
+        out->duty[1] = mc->duty[1];
+        out->duty[2] = mc->duty[2];
+        out->outputs_on = false;
+    }
+}
+
+void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+{
+    mc_step_control(mc, in, out);
+    mc_step_finish(mc, out);
 }
 
 void mc_status(const mc_t *mc, mc_status_t *st)

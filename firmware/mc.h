@@ -27,7 +27,12 @@
  * every low-side switch conducts, plus the ADC trigger offset
  * PWM_ADC_TRIGGER_TCY); the duties it returns are loaded at the next period
  * boundary, half a period after the sample (the dsPIC loads PDCx there),
- * and act for the whole period n+1.
+ * and act for the whole period n+1. On the dsPIC that boundary comes about
+ * 700 cycles into the interrupt, before the whole step could finish, so
+ * the step is also offered in two parts: mc_step_control() returns the
+ * duties, mc_step_finish() then does the rest (the estimator's update, the
+ * hand-off, the slow step's hand-over); mc_step() is exactly the two in
+ * a row.
  *
  * Concurrency: mc_step() runs in the ADC interrupt, mc_slow_step() in a
  * context the interrupt pre-empts (note 4). mc_request(),
@@ -72,7 +77,7 @@
 
 /* ---- input and output of one period ------------------------------------ */
 
-typedef struct {    /* one ADC conversion set, taken at the PWM period start */
+typedef struct {    /* one ADC conversion set, sampled at MC_SAMPLE_AT of the period */
     int16_t ia, ib; /* phase currents, Q15 of BOARD_I_FULLSCALE_A, + = into the motor,
                        still carrying the amplifier offset (the core calibrates it) */
     int16_t vbus;   /* DC bus, Q15 of BOARD_VBUS_FULLSCALE_V (0..32767) */
@@ -260,6 +265,9 @@ typedef struct {
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
     ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
+    ab_q15_t v_est;     /* this sample's estimator input, for mc_step_finish */
+    bool estimate;      /* mc_step_control ran the loops: mc_step_finish updates smc */
+    int16_t pred;       /* one period of the estimated speed, angle counts (note 2) */
 
     /* outputs */
     uint16_t duty[3];
@@ -287,11 +295,22 @@ typedef struct {
 /* Reset everything, outputs off, MC_STATE_STOPPED. */
 void mc_init(mc_t *mc);
 
-/* One PWM period: in = the frame sampled at this period's start; out = the
+/* One PWM period: in = the frame sampled in this period; out = the
  * duties for the next period (timing contract above). Every path writes
  * *out; in STOPPED, CALIBRATE and FAULT the duties are PWM_DUTY_MAX / 2 and
  * outputs_on is false. Protections run first, in every state. */
 void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
+
+/* mc_step() in two parts, for a caller that must load the duties before the
+ * whole step could finish (the dsPIC's interrupt): mc_step_control() does
+ * everything up to the duties and fills *out as mc_step() does;
+ * mc_step_finish() must follow it, with the same out, before the next
+ * period's call, and nothing else may touch mc in between. If the finishing
+ * part faults (a failed start, a stall, an overrun), it turns *out off
+ * (duties PWM_DUTY_MAX / 2, outputs_on false), and the caller applies that
+ * at once. The two in a row are mc_step(), bit for bit. */
+void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
+void mc_step_finish(mc_t *mc, mc_pwm_out_t *out);
 
 /* The slow work of one window (the slow step above): call it after every
  * MC_SLOW_STEP_PERIODS-th mc_step() (counting from mc_init()), from a
@@ -364,6 +383,13 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    currents measured at both ends of the period, was tried: same
  *    accuracy with the floor (1.3 to 2.2 deg max at 500 rpm, no load, three
  *    noise seeds, against 1.3 to 2.0), 13 % more instructions per step.
+ *    The duties must be ready by t_(n+1), half a period after the sample,
+ *    which on the dsPIC is less time than the whole step takes, so the
+ *    current loops do not wait for this sample's estimator update: they
+ *    run on the estimator's angle of sample n-1 advanced by one period of
+ *    the estimated speed (pred), and the update follows the duties
+ *    (mc_step_finish). At a steady speed the two angles are the same; the
+ *    estimator's own filtering is far slower than one period.
  *
  * 3. Run-time gains. mc_set_gain() writes gain_posted[g] (one 16-bit store)
  *    and then increments gain_seq; mc_step() applies all posted gains when

@@ -35,8 +35,10 @@ static uint16_t precharge_left;
 /* Vector of the ADC: the four results are ready (SMPI = 0, one interrupt
  * per special-event conversion set). Clearing the flag first means an
  * overrun (a step longer than a period) re-enters at once instead of
- * silently skipping a period. The observer, if any, comes after the
- * duties, so it can never delay them. */
+ * silently skipping a period. The duties are written as soon as the
+ * control part of the step has them, before the period boundary that
+ * loads them (mc.h timing contract; docs/board.md "Timing"); the rest of
+ * the step and the observer, if any, come after. */
 void HAL_ISR_FAST _ADC1Interrupt(void)
 {
     mc_adc_frame_t frame;
@@ -45,7 +47,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     hal_regs_timing_pin(true);
     IFS0bits.AD1IF = 0;
     hal_regs_adc_read(&frame);
-    mc_step(&motor, &frame, &out);
+    mc_step_control(&motor, &frame, &out);
     hal_regs_duty_write(&out);
     if (out.outputs_on) {
         precharge_left = 0U;
@@ -55,6 +57,11 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
         P1OVDCON = HAL_P1OVDCON_PRECHARGE;
     } else {
         P1OVDCON = HAL_P1OVDCON_OFF;
+    }
+    bool on = out.outputs_on;
+    mc_step_finish(&motor, &out);
+    if (on && !out.outputs_on) {
+        P1OVDCON = HAL_P1OVDCON_OFF; /* the finishing part faulted (mc.h): off at once */
     }
     if (++slow_div >= MC_SLOW_STEP_PERIODS) {
         slow_div = 0U;

@@ -394,6 +394,59 @@ static void test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_sched
     run(0.5); /* and the motor keeps running on it */
 }
 
+/* mc_step() is mc_step_control() then mc_step_finish() (mc.h), the way the
+ * dsPIC's interrupt calls them: a twin core fed the same frames through the
+ * two parts gives the same outputs and the same status every period,
+ * through start-up, closed loop, a load step and a stall fault raised in
+ * the finishing part (which turns the outputs off in that very period). */
+static void test_the_two_part_step_should_equal_mc_step_bit_for_bit(void **state)
+{
+    (void)state;
+    static mc_t twin;
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.pot = pot_for_rpm(1500.0);
+    mc_bench_init(&b, &c);
+    mc_init(&twin);
+    mc_request(&b.mc, MC_REQUEST_START);
+    mc_request(&twin, MC_REQUEST_START);
+    long compared = 0;
+    bool faulted_in_finish = false;
+    for (long k = 0; k < PERIODS(4.0) && b.st.state != MC_STATE_FAULT; k++) {
+        if (k == PERIODS(2.5)) {
+            b.rig.plant.load.active_nm = 0.03;
+        }
+        if (k == PERIODS(3.0)) {
+            b.rig.plant.s.locked = true;
+        }
+        mc_state_t before = b.st.state;
+        mc_bench_step(&b); /* mc_step() */
+        mc_adc_frame_t in;
+        in.ia = b.frame.ia;
+        in.ib = b.frame.ib;
+        in.vbus = b.frame.vbus;
+        in.pot = b.frame.pot;
+        mc_pwm_out_t out;
+        mc_step_control(&twin, &in, &out);
+        bool on_after_control = out.outputs_on;
+        mc_step_finish(&twin, &out);
+        mc_slow_step(&twin);
+        assert_memory_equal(&out, &b.out, sizeof(out));
+        mc_status_t st;
+        mc_status(&twin, &st);
+        assert_memory_equal(&st, &b.st, sizeof(st));
+        if (on_after_control && !out.outputs_on && before == MC_STATE_CLOSED_LOOP) {
+            faulted_in_finish = true;
+        }
+        compared++;
+    }
+    printf("measured: %ld periods compared, the stall raised in the finishing part: %s\n",
+           compared, faulted_in_finish ? "yes" : "no");
+    assert_int_equal(b.st.state, MC_STATE_FAULT);
+    assert_true(faulted_in_finish);
+    assert_false(b.out.outputs_on);
+}
+
 static void test_stop_in_closed_loop_should_turn_the_outputs_off_at_once(void **state)
 {
     (void)state;
@@ -438,6 +491,7 @@ int main(void)
         cmocka_unit_test(test_the_hand_off_difference_should_bleed_to_zero_by_the_step_each_period),
         cmocka_unit_test(test_closed_loop_should_not_trip_through_speed_changes_and_load_steps),
         cmocka_unit_test(test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_schedule),
+        cmocka_unit_test(test_the_two_part_step_should_equal_mc_step_bit_for_bit),
         cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
         cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
     };

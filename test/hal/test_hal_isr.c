@@ -7,7 +7,7 @@
 
 /*
  * hal_isr.c is linked here against the mocks below instead of the core, so
- * the test sees exactly what the trampoline hands to mc_step() and what it
+ * the test sees exactly what the trampoline hands to mc_step_control() and what it
  * does with the answer, and in which order relative to the registers.
  */
 
@@ -28,7 +28,9 @@ void mc_init(mc_t *mc)
     assert_int_equal(IEC0bits.AD1IE, 0); /* not stepped while being reset */
 }
 
-void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+static mc_pwm_out_t last_out; /* what the control part returned last */
+
+void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 {
     int ia = in->ia, ib = in->ib, vbus = in->vbus, pot = in->pot;
 
@@ -50,6 +52,27 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     out->duty[1] = (uint16_t)mock();
     out->duty[2] = (uint16_t)mock();
     out->outputs_on = (bool)mock();
+    last_out = *out;
+}
+
+/* The rest of the step comes after the duties and the pins: they are
+ * already in the registers when it runs (mc.h timing contract). */
+void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
+{
+    function_called();
+    check_same_motor(mc);
+    assert_memory_equal(out, &last_out, sizeof(*out)); /* the same out */
+    assert_int_equal(P1DC1, last_out.duty[0]);
+    assert_int_equal(P1DC2, last_out.duty[1]);
+    assert_int_equal(P1DC3, last_out.duty[2]);
+    assert_int_equal(P1OVDCON & 0x3F00u, last_out.outputs_on ? 0x3F00u : 0u);
+    assert_int_equal(IFS0bits.T2IF, 0); /* the window's slow step is triggered after it */
+    if ((bool)mock()) { /* this part faulted */
+        out->duty[0] = PWM_DUTY_MAX / 2U;
+        out->duty[1] = PWM_DUTY_MAX / 2U;
+        out->duty[2] = PWM_DUTY_MAX / 2U;
+        out->outputs_on = false;
+    }
 }
 
 void mc_slow_step(mc_t *mc)
@@ -96,15 +119,17 @@ static int setup(void **state)
 static void expect_step(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
                         bool on)
 {
-    expect_function_call(mc_step);
-    expect_value(mc_step, ia, ia);
-    expect_value(mc_step, ib, ib);
-    expect_value(mc_step, vbus, vbus);
-    expect_value(mc_step, pot, pot);
-    will_return(mc_step, d0);
-    will_return(mc_step, d1);
-    will_return(mc_step, d2);
-    will_return(mc_step, on);
+    expect_function_call(mc_step_control);
+    expect_value(mc_step_control, ia, ia);
+    expect_value(mc_step_control, ib, ib);
+    expect_value(mc_step_control, vbus, vbus);
+    expect_value(mc_step_control, pot, pot);
+    will_return(mc_step_control, d0);
+    will_return(mc_step_control, d1);
+    will_return(mc_step_control, d2);
+    will_return(mc_step_control, on);
+    expect_function_call(mc_step_finish);
+    will_return(mc_step_finish, false);
 }
 
 static void
@@ -143,6 +168,28 @@ static void test_adc_isr_should_override_the_outputs_off_when_the_core_says_off(
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0000);
     assert_int_equal(P1DC1, 1000);
+}
+
+/* A fault the core's finishing part raises (mc_step_finish turns out off)
+ * switches the outputs off in the same interrupt, after the duties. */
+static void test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults(void **state)
+{
+    (void)state;
+    P1OVDCON = 0x0000u;
+    expect_function_call(mc_step_control);
+    expect_value(mc_step_control, ia, 0);
+    expect_value(mc_step_control, ib, 0);
+    expect_value(mc_step_control, vbus, 16384);
+    expect_value(mc_step_control, pot, 16384);
+    will_return(mc_step_control, 900u);
+    will_return(mc_step_control, 1000u);
+    will_return(mc_step_control, 1100u);
+    will_return(mc_step_control, true);
+    expect_function_call(mc_step_finish);
+    will_return(mc_step_finish, true);
+    _ADC1Interrupt();
+    assert_int_equal(P1OVDCON, 0x0000);
+    assert_int_equal(P1DC1, 900); /* the PWM already had them; the override wins */
 }
 
 /* The bootstrap precharge after hal_motor_start(): the low switches on
@@ -261,6 +308,8 @@ int main(void)
         cmocka_unit_test_setup(
             test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties,
             setup),
+        cmocka_unit_test_setup(test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults,
+                               setup),
         cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
                                setup),
         cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
