@@ -86,11 +86,6 @@ MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0
 #define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
 #define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
 
-/* mc_current_control's advance argument: none, or the closed loop's
- * (mc->adv_sc); anything else is an open-loop advance in angle counts. */
-#define MC_ADV_NONE   0L
-#define MC_ADV_CLOSED 0x10000L
-
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
  * for |speed_ref| < MC_KP_FULL_Q15, so the product stays below 2^30. */
@@ -240,6 +235,8 @@ static void mc_set_advance(mc_t *mc)
 
 /* ---- state changes --------------------------------------------------------------- */
 
+static void mc_prepare_angle(mc_t *mc);
+
 static void mc_enter(mc_t *mc, mc_state_t s)
 {
     mc->state = s;
@@ -326,6 +323,7 @@ static void mc_enter_lock(mc_t *mc)
     mc->i_ref.q = MC_LOCK_CURRENT_Q15;
     mc->outputs_on = true;
     mc_enter(mc, MC_STATE_LOCK);
+    mc_prepare_angle(mc); /* for this very period (mc_calibrate's) */
 }
 
 /* Id reference with the light-load floor (UserParms.h MC_ID_MIN_A): at
@@ -443,27 +441,27 @@ static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t 
     out->loop = true;
 }
 
-/* Clarke of this sample and the voltage the estimator is fed with it (in
- * mc_step_finish, after the duties): the one applied while this sample's
- * current evolved, the two last commands weighted by the time each acted
- * between the samples (MC_VEST_W_*, mc.h note 2). Taken before
- * mc_current_control moves the history on. */
-Q15_INLINE void mc_estimator_input(mc_t *mc)
+/* The estimator's update for this sample, after the duties
+ * (mc_step_finish): fed the voltage applied while this sample's current
+ * evolved, the two last commands weighted by the time each acted between
+ * the samples (MC_VEST_W_*, mc.h note 2); then this period's command, from
+ * the effective duties mc_current_control left, joins the history. */
+Q15_INLINE void mc_estimate(mc_t *mc)
 {
-    mc->v_est.alpha =
+    ab_q15_t v;
+    v.alpha =
         q15_dsp_mac2_r(mc->v_hist[0].alpha, MC_VEST_W_NEW, mc->v_hist[1].alpha, MC_VEST_W_OLD);
-    mc->v_est.beta =
-        q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
-    mc->i_ab = clarke_forward(mc->ia, mc->ib);
+    v.beta = q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
+    smc_update(&mc->smc, mc->i_ab, v);
+    mc->v_hist[1] = mc->v_hist[0];
+    mc->v_hist[0] = mc_duty_to_voltage(mc->eff, mc->vbus);
 }
 
-/* Current loops and modulation, for one period with the outputs on.
- * mc->theta: angle of this sample; adv: advance for the voltage. */
-/* adv: MC_ADV_NONE (LOCK), MC_ADV_CLOSED (mc->adv_sc) or an open-loop
- * advance in angle counts. */
-Q15_INLINE void mc_current_control(mc_t *mc, int32_t adv)
+/* Current loops and modulation, for one period with the outputs on, at
+ * the angle mc_prepare_angle made ready: mc->theta (this sample's), its
+ * sin/cos sc and the voltage's sin/cos scv. */
+Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
 {
-    sincos_q15_t sc = sincos_compute(mc->theta);
     mc->i_dq = park_forward(mc->i_ab, sc);
 
     /* The references are meant on the estimated rotor axes; while the
@@ -496,19 +494,15 @@ Q15_INLINE void mc_current_control(mc_t *mc, int32_t adv)
         v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
     }
 #if defined(ENVOLTRIPPLE)
-    v = ripple_compensate_dq(v, mc->vbus, MC_VBUS_NOMINAL_Q15);
+    /* The gain from the previous sample's bus (mc_step_finish forms it,
+     * after the duties): 50 us older than this one, against a voltage
+     * that acts 0.5 to 1.5 periods from now. */
+    v.d = ripple_apply(v.d, mc->ripple_gain);
+    v.q = ripple_apply(v.q, mc->ripple_gain);
 #endif
     mc->v_dq = v;
 
-    /* Voltage at the angle it will be applied at (no second sin/cos when
-     * there is no advance: LOCK and the first OPEN_LOOP period; in
-     * CLOSED_LOOP a rotation by the advance's sin/cos, set once per window). */
-    sincos_q15_t scv = sc;
-    if (adv == MC_ADV_CLOSED) {
-        scv = mc_advance(sc, mc->adv_sc);
-    } else if (adv != 0) {
-        scv = sincos_compute(angle_add(mc->theta, (angle_q15_t)adv));
-    }
+    /* Voltage at the angle it will be applied at. */
     ab_q15_t v_ab = park_inverse(v, scv);
     svgen_out_t sv;
     svgen_update(v_ab, PWM_DUTY_MAX, &sv);
@@ -523,7 +517,6 @@ Q15_INLINE void mc_current_control(mc_t *mc, int32_t adv)
 
     /* 16-bit arithmetic: PWM_DUTY_MAX plus the dead-time counts fits int16
      * (mc_derived.h checks it). */
-    int16_t eff[3];
     for (uint8_t k = 0U; k < 3U; k++) {
         int16_t dt = mc_deadtime_counts(iph[k]);
         int16_t d = (int16_t)sv.duty[k];
@@ -538,13 +531,59 @@ Q15_INLINE void mc_current_control(mc_t *mc, int32_t adv)
             dt = 0;
         }
         mc->duty[k] = (uint16_t)d;
-        /* What the inverter will really apply: the duty less the dead-time loss. */
-        eff[k] = (int16_t)(d - dt);
+        /* What the inverter will really apply: the duty less the dead-time
+         * loss (the estimator's input, formed in mc_estimate). */
+        mc->eff[k] = (int16_t)(d - dt);
     }
+}
 
-    /* This step's applied voltage, for the estimator two steps on. */
-    mc->v_hist[1] = mc->v_hist[0];
-    mc->v_hist[0] = mc_duty_to_voltage(eff, mc->vbus);
+/* The next period's angles, at the end of this one (mc_step_finish), so
+ * that the part of the step before the duties does not compute them:
+ * theta_next (the angle of the next sample), its sin/cos and the sin/cos
+ * of the angle the next voltage acts at (theta_next plus the advance).
+ *   LOCK         the lock angle 0, no advance;
+ *   OPEN_LOOP    the forced angle one more step of the ramp on, advanced
+ *                by (1.5 - MC_SAMPLE_AT) steps;
+ *   CLOSED_LOOP  the hand-off difference bled one step further; the
+ *                estimator's angle of this sample plus the difference, one
+ *                period of the estimated speed on (mc.h note 2), advanced
+ *                by a rotation by adv_sc (set once per window).
+ * In the other states there is nothing to prepare. */
+static void mc_prepare_angle(mc_t *mc)
+{
+    angle_q15_t th;
+    sincos_q15_t sc;
+    if (mc->state == MC_STATE_CLOSED_LOOP) {
+        int16_t off = mc->theta_offset;
+        if (off > MC_BLEED_STEP) {
+            off = (int16_t)(off - MC_BLEED_STEP);
+        } else if (off < -MC_BLEED_STEP) {
+            off = (int16_t)(off + MC_BLEED_STEP);
+        } else {
+            off = 0;
+        }
+        mc->theta_offset = off;
+        th = angle_add(angle_add(smc_theta(&mc->smc), off), mc->pred);
+        sc = sincos_compute(th);
+        mc->scv_next = mc_advance(sc, mc->adv_sc);
+    } else if (mc->state == MC_STATE_OPEN_LOOP) {
+        mc->ol_step += MC_RAMP_STEP_INC;
+        mc->ol_angle += mc->ol_step;
+        th = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
+        sc = sincos_compute(th);
+        /* 1.5 - MC_SAMPLE_AT periods of the forced speed (the step is
+         * below 2^15 counts: the MOTOR_RAMP_END_RPM check above). */
+        angle_q15_t adv = q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
+        mc->scv_next = (adv != 0) ? sincos_compute(angle_add(th, adv)) : sc;
+    } else if (mc->state == MC_STATE_LOCK) {
+        th = 0;
+        sc = sincos_compute(th);
+        mc->scv_next = sc;
+    } else {
+        return;
+    }
+    mc->theta_next = th;
+    mc->sc_next = sc;
 }
 
 /* CALIBRATE: after calib_wait periods of coasting, average the two current
@@ -616,6 +655,7 @@ void mc_init(mc_t *mc)
     mc->speed_ref = MC_SPEED_REF_MIN_Q15;
     mc->speed_target = MC_SPEED_REF_MIN_Q15;
     mc->spd_ref = MC_SPEED_REF_MIN_Q15;
+    mc->ripple_gain = RIPPLE_ONE;
     mc_outputs_off(mc);
     mc->slow_epoch = mc->epoch;
     mc->fault = MC_FAULT_NONE;
@@ -793,60 +833,26 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             break;
     }
 
-    /* The state's own work, then the loops once for every running state (a
-     * single call site, so the compiler inlines the estimator step and the
-     * current control into this function). */
-    int32_t adv = MC_ADV_NONE;
+    /* The loops once for every running state (a single call site, so the
+     * compiler inlines the current control into this function), at the
+     * angle the previous period's mc_step_finish prepared (mc_prepare_angle;
+     * a start from CALIBRATE prepares it in mc_enter_lock). */
     bool control = false;
-    bool estimated_angle = false;
-    switch (mc->state) {
-        case MC_STATE_CALIBRATE:
-            control = mc_calibrate(mc, in); /* true once it has entered LOCK */
-            break;
-        case MC_STATE_LOCK:
-            if (mc->timer >= MC_LOCK_PERIODS) {
-                mc->i_ref.q = MC_RAMP_CURRENT_Q15;
-                mc_enter(mc, MC_STATE_OPEN_LOOP);
-            }
-            control = true;
-            break;
-        case MC_STATE_OPEN_LOOP:
-            mc->ol_step += MC_RAMP_STEP_INC;
-            mc->ol_angle += mc->ol_step;
-            mc->theta = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
-            /* 1.5 - MC_SAMPLE_AT periods of the forced speed (the step
-             * is below 2^15 counts: the MOTOR_RAMP_END_RPM check above). */
-            adv = (int32_t)q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
-            control = true;
-            break;
-        case MC_STATE_CLOSED_LOOP: {
-            /* Bleed the hand-off difference towards 0. */
-            int16_t off = mc->theta_offset;
-            if (off > MC_BLEED_STEP) {
-                off = (int16_t)(off - MC_BLEED_STEP);
-            } else if (off < -MC_BLEED_STEP) {
-                off = (int16_t)(off + MC_BLEED_STEP);
-            } else {
-                off = 0;
-            }
-            mc->theta_offset = off;
-            adv = MC_ADV_CLOSED;
-            control = true;
-            estimated_angle = true;
-            break;
-        }
-        default: /* STOPPED, FAULT: outputs stay off */
-            break;
+    if (mc->state == MC_STATE_CALIBRATE) {
+        control = mc_calibrate(mc, in); /* true once it has entered LOCK */
+    } else if (mc->state == MC_STATE_LOCK && mc->timer >= MC_LOCK_PERIODS) {
+        mc->i_ref.q = MC_RAMP_CURRENT_Q15;
+        mc_enter(mc, MC_STATE_OPEN_LOOP); /* this period still at the lock angle */
+        control = true;
+    } else {
+        control = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
+                  mc->state == MC_STATE_CLOSED_LOOP;
     }
     mc->estimate = control;
     if (control) {
-        mc_estimator_input(mc);
-        if (estimated_angle) {
-            /* The estimator's angle of the previous sample, one period on
-             * (note 4): this sample's update comes after the duties. */
-            mc->theta = angle_add(angle_add(smc_theta(&mc->smc), mc->theta_offset), mc->pred);
-        }
-        mc_current_control(mc, adv);
+        mc->i_ab = clarke_forward(mc->ia, mc->ib);
+        mc->theta = mc->theta_next;
+        mc_current_control(mc, mc->sc_next, mc->scv_next);
     }
 
     /* 5. Outputs: every path writes all of them. */
@@ -859,7 +865,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
 {
     if (mc->estimate) {
-        smc_update(&mc->smc, mc->i_ab, mc->v_est);
+        mc_estimate(mc);
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
@@ -876,6 +882,10 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         mc->slow_div = 0U;
         mc_window_end(mc);
     }
+#if defined(ENVOLTRIPPLE)
+    mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15); /* for the next period */
+#endif
+    mc_prepare_angle(mc);
 
     /* A fault raised here (a failed start, a stall, an overrun) has turned
      * the outputs off: so does *out, at once. */
@@ -910,7 +920,10 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->id_ref = mc->i_ref.d;
     st->iq_ref = mc->i_ref.q;
     st->speed_target = mc->speed_target;
-    st->theta_forced = (int16_t)(uint16_t)(mc->ol_angle >> 16);
+    /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare_angle). */
+    st->theta_forced = (mc->state == MC_STATE_OPEN_LOOP)
+                           ? mc->theta
+                           : (int16_t)(uint16_t)(mc->ol_angle >> 16);
     st->bemf = smc_emf_amplitude(&mc->smc);
     st->ia = mc->ia;
     st->ib = mc->ib;

@@ -209,8 +209,9 @@ static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(
     const double target = MC_VBUS_NOMINAL_Q15;
     long n_up = 0, n_down = 0;
     for (long k = 0; k < PERIODS(1.0); k++) {
-        mc_bench_step(&b);
+        /* The gain is the previous sample's (formed after the duties, mc.c). */
         double dc = b.frame.vbus;
+        mc_bench_step(&b);
         double vpi[2] = {b.mc.pi_d.out, b.mc.pi_q.out};
         double got[2] = {b.st.vd, b.st.vq};
         for (int j = 0; j < 2; j++) {
