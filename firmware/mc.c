@@ -235,7 +235,7 @@ static void mc_set_advance(mc_t *mc)
 
 /* ---- state changes --------------------------------------------------------------- */
 
-static void mc_prepare_angle(mc_t *mc);
+static void mc_prepare(mc_t *mc);
 
 static void mc_enter(mc_t *mc, mc_state_t s)
 {
@@ -323,7 +323,7 @@ static void mc_enter_lock(mc_t *mc)
     mc->i_ref.q = MC_LOCK_CURRENT_Q15;
     mc->outputs_on = true;
     mc_enter(mc, MC_STATE_LOCK);
-    mc_prepare_angle(mc); /* for this very period (mc_calibrate's) */
+    mc_prepare(mc); /* for this very period (mc_calibrate's) */
 }
 
 /* Id reference with the light-load floor (UserParms.h MC_ID_MIN_A): at
@@ -458,7 +458,7 @@ Q15_INLINE void mc_estimate(mc_t *mc)
 }
 
 /* Current loops and modulation, for one period with the outputs on, at
- * the angle mc_prepare_angle made ready: mc->theta (this sample's), its
+ * the angle mc_prepare made ready: mc->theta (this sample's), its
  * sin/cos sc and the voltage's sin/cos scv. */
 Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
 {
@@ -494,9 +494,7 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
         v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
     }
 #if defined(ENVOLTRIPPLE)
-    /* The gain from the previous sample's bus (mc_step_finish forms it,
-     * after the duties): 50 us older than this one, against a voltage
-     * that acts 0.5 to 1.5 periods from now. */
+    /* The gain mc_prepare formed from the previous sample's bus. */
     v.d = ripple_apply(v.d, mc->ripple_gain);
     v.q = ripple_apply(v.q, mc->ripple_gain);
 #endif
@@ -537,10 +535,12 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     }
 }
 
-/* The next period's angles, at the end of this one (mc_step_finish), so
- * that the part of the step before the duties does not compute them:
- * theta_next (the angle of the next sample), its sin/cos and the sin/cos
- * of the angle the next voltage acts at (theta_next plus the advance).
+/* The next period's angles and bus ripple gain, at the end of this one
+ * (mc_step_finish), so that the part of the step before the duties does
+ * not compute them: theta_next (the angle of the next sample), its sin/cos,
+ * the sin/cos of the angle the next voltage acts at (theta_next plus the
+ * advance), and the ripple gain from this sample's bus, 50 us older than
+ * the next one, against a voltage that acts 0.5 to 1.5 periods after it.
  *   LOCK         the lock angle 0, no advance;
  *   OPEN_LOOP    the forced angle one more step of the ramp on, advanced
  *                by (1.5 - MC_SAMPLE_AT) steps;
@@ -549,7 +549,7 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
  *                period of the estimated speed on (mc.h note 2), advanced
  *                by a rotation by adv_sc (set once per window).
  * In the other states there is nothing to prepare. */
-static void mc_prepare_angle(mc_t *mc)
+static void mc_prepare(mc_t *mc)
 {
     angle_q15_t th;
     sincos_q15_t sc;
@@ -584,6 +584,9 @@ static void mc_prepare_angle(mc_t *mc)
     }
     mc->theta_next = th;
     mc->sc_next = sc;
+#if defined(ENVOLTRIPPLE)
+    mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15);
+#endif
 }
 
 /* CALIBRATE: after calib_wait periods of coasting, average the two current
@@ -835,7 +838,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 
     /* The loops once for every running state (a single call site, so the
      * compiler inlines the current control into this function), at the
-     * angle the previous period's mc_step_finish prepared (mc_prepare_angle;
+     * angle the previous period's mc_step_finish prepared (mc_prepare;
      * a start from CALIBRATE prepares it in mc_enter_lock). */
     bool control = false;
     if (mc->state == MC_STATE_CALIBRATE) {
@@ -882,10 +885,7 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         mc->slow_div = 0U;
         mc_window_end(mc);
     }
-#if defined(ENVOLTRIPPLE)
-    mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15); /* for the next period */
-#endif
-    mc_prepare_angle(mc);
+    mc_prepare(mc);
 
     /* A fault raised here (a failed start, a stall, an overrun) has turned
      * the outputs off: so does *out, at once. */
@@ -920,7 +920,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->id_ref = mc->i_ref.d;
     st->iq_ref = mc->i_ref.q;
     st->speed_target = mc->speed_target;
-    /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare_angle). */
+    /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare). */
     st->theta_forced = (mc->state == MC_STATE_OPEN_LOOP)
                            ? mc->theta
                            : (int16_t)(uint16_t)(mc->ol_angle >> 16);
