@@ -63,14 +63,14 @@ static const fieldweak_params_t mc_fw_params = {
 #define MC_ADV_K_       (2.0 * MC_ADV_PERIODS_ * MC_OMEGA_FS_HZ * MC_TS_S)
 MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
          "the advance at full speed must be < pi (PWM too slow for the speed range)");
-#define MC_ADV_K       Q15(MC_ADV_K_)
+#define MC_ADV_K Q15(MC_ADV_K_)
 /* The estimator's angle is one sample old when the current loops use it
  * (mc.h note 2): one period of the estimated speed, speed_q15 * 2
  * omega_fs Ts angle counts. */
 #define MC_PRED_K_ (2.0 * MC_OMEGA_FS_HZ * MC_TS_S)
 MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_PRED_K_ < 1.0,
          "one period at full speed must be < pi (PWM too slow for the speed range)");
-#define MC_PRED_K Q15(MC_PRED_K_)
+#define MC_PRED_K      Q15(MC_PRED_K_)
 #define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
 /* The open-loop step per period (binary angle counts) must stay below 2^15
  * for the advance's Q15 product: the ramp's end below half the PWM rate. */
@@ -921,9 +921,8 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->iq_ref = mc->i_ref.q;
     st->speed_target = mc->speed_target;
     /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare). */
-    st->theta_forced = (mc->state == MC_STATE_OPEN_LOOP)
-                           ? mc->theta
-                           : (int16_t)(uint16_t)(mc->ol_angle >> 16);
+    st->theta_forced =
+        (mc->state == MC_STATE_OPEN_LOOP) ? mc->theta : (int16_t)(uint16_t)(mc->ol_angle >> 16);
     st->bemf = smc_emf_amplitude(&mc->smc);
     st->ia = mc->ia;
     st->ib = mc->ib;

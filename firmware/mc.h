@@ -256,22 +256,22 @@ typedef struct {
     int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE (from the slow step) */
 
     /* angle */
-    angle_q15_t theta;    /* angle the transforms use this period */
-    angle_q15_t theta_next;  /* the next period's, prepared by mc_step_finish */
-    sincos_q15_t sc_next;    /* its sin/cos */
-    sincos_q15_t scv_next;   /* sin/cos of the angle the next voltage acts at */
-    uint32_t ol_angle;    /* open-loop angle, 32-bit binary angle */
-    uint32_t ol_step;     /* open-loop angle increment per period, 32-bit binary angle */
-    int16_t theta_offset; /* theta_forced - theta_est at hand-off, bled to 0 */
-    sincos_q15_t adv_sc;  /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
+    angle_q15_t theta;      /* angle the transforms use this period */
+    angle_q15_t theta_next; /* the next period's, prepared by mc_step_finish */
+    sincos_q15_t sc_next;   /* its sin/cos */
+    sincos_q15_t scv_next;  /* sin/cos of the angle the next voltage acts at */
+    uint32_t ol_angle;      /* open-loop angle, 32-bit binary angle */
+    uint32_t ol_step;       /* open-loop angle increment per period, 32-bit binary angle */
+    int16_t theta_offset;   /* theta_forced - theta_est at hand-off, bled to 0 */
+    sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
-    ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
+    ab_q15_t v_hist[2];   /* applied voltage: [0] for the next step, [1] for this one */
     int16_t eff[3];       /* this period's effective duties (dead-time loss off), counts */
     bool estimate;        /* mc_step_control ran the loops: mc_step_finish updates smc */
     uint16_t ripple_gain; /* bus ripple gain for the next period (foc/ripple.h), Q15 */
-    int16_t pred;       /* one period of the estimated speed, angle counts (note 2) */
+    int16_t pred;         /* one period of the estimated speed, angle counts (note 2) */
 
     /* outputs */
     uint16_t duty[3];

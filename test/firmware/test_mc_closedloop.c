@@ -441,8 +441,8 @@ static void test_the_two_part_step_should_equal_mc_step_bit_for_bit(void **state
         }
         compared++;
     }
-    printf("measured: %ld periods compared, the stall raised in the finishing part: %s\n",
-           compared, faulted_in_finish ? "yes" : "no");
+    printf("measured: %ld periods compared, the stall raised in the finishing part: %s\n", compared,
+           faulted_in_finish ? "yes" : "no");
     assert_int_equal(b.st.state, MC_STATE_FAULT);
     assert_true(faulted_in_finish);
     assert_false(b.out.outputs_on);

@@ -67,7 +67,7 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     assert_int_equal(P1DC3, last_out.duty[2]);
     assert_int_equal(P1OVDCON & 0x3F00u, last_out.outputs_on ? 0x3F00u : 0u);
     assert_int_equal(IFS0bits.T2IF, 0); /* the window's slow step is triggered after it */
-    if ((bool)mock()) { /* this part faulted */
+    if ((bool)mock()) {                 /* this part faulted */
         out->duty[0] = PWM_DUTY_MAX / 2U;
         out->duty[1] = PWM_DUTY_MAX / 2U;
         out->duty[2] = PWM_DUTY_MAX / 2U;
@@ -308,8 +308,8 @@ int main(void)
         cmocka_unit_test_setup(
             test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties,
             setup),
-        cmocka_unit_test_setup(test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults,
-                               setup),
+        cmocka_unit_test_setup(
+            test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults, setup),
         cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
                                setup),
         cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
