@@ -428,12 +428,14 @@ static void test_the_two_part_step_should_equal_mc_step_bit_for_bit(void **state
         in.vbus = b.frame.vbus;
         in.pot = b.frame.pot;
         mc_pwm_out_t out;
+        memset(&out, 0, sizeof(out)); /* padding compared below, as b.out's (static) */
         mc_step_control(&twin, &in, &out);
         bool on_after_control = out.outputs_on;
         mc_step_finish(&twin, &out);
         mc_slow_step(&twin);
         assert_memory_equal(&out, &b.out, sizeof(out));
         mc_status_t st;
+        memset(&st, 0, sizeof(st));
         mc_status(&twin, &st);
         assert_memory_equal(&st, &b.st, sizeof(st));
         if (on_after_control && !out.outputs_on && before == MC_STATE_CLOSED_LOOP) {
