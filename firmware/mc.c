@@ -548,7 +548,7 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
  *                estimator's angle of this sample plus the difference, one
  *                period of the estimated speed on (mc.h note 2), advanced
  *                by a rotation by adv_sc (set once per window).
- * In the other states there is nothing to prepare. */
+ * Called in those three states only (the outputs on). */
 static void mc_prepare(mc_t *mc)
 {
     angle_q15_t th;
@@ -575,12 +575,10 @@ static void mc_prepare(mc_t *mc)
          * below 2^15 counts: the MOTOR_RAMP_END_RPM check above). */
         angle_q15_t adv = q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
         mc->scv_next = (adv != 0) ? sincos_compute(angle_add(th, adv)) : sc;
-    } else if (mc->state == MC_STATE_LOCK) {
+    } else { /* LOCK */
         th = 0;
         sc = sincos_compute(th);
         mc->scv_next = sc;
-    } else {
-        return;
     }
     mc->theta_next = th;
     mc->sc_next = sc;
@@ -758,6 +756,15 @@ void mc_slow_step(mc_t *mc)
 
 /* |i| >= MC_OVERCURRENT_Q15, with |-32768| counted as 32767 (q15_abs_sat),
  * as two compares. */
+/* The period's outputs: every path writes all of them. */
+Q15_INLINE void mc_output(const mc_t *mc, mc_pwm_out_t *out)
+{
+    out->duty[0] = mc->duty[0];
+    out->duty[1] = mc->duty[1];
+    out->duty[2] = mc->duty[2];
+    out->outputs_on = mc->outputs_on;
+}
+
 Q15_INLINE bool mc_overcurrent(q15_t i)
 {
     return i >= MC_OVERCURRENT_Q15 || i <= (q15_t)(-MC_OVERCURRENT_Q15);
@@ -851,23 +858,19 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         control = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
                   mc->state == MC_STATE_CLOSED_LOOP;
     }
-    mc->estimate = control;
     if (control) {
         mc->i_ab = clarke_forward(mc->ia, mc->ib);
         mc->theta = mc->theta_next;
         mc_current_control(mc, mc->sc_next, mc->scv_next);
     }
 
-    /* 5. Outputs: every path writes all of them. */
-    out->duty[0] = mc->duty[0];
-    out->duty[1] = mc->duty[1];
-    out->duty[2] = mc->duty[2];
-    out->outputs_on = mc->outputs_on;
+    mc_output(mc, out);
 }
 
 void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
 {
-    if (mc->estimate) {
+    /* The outputs are on exactly when mc_step_control ran the loops. */
+    if (mc->outputs_on) {
         mc_estimate(mc);
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
@@ -885,15 +888,12 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         mc->slow_div = 0U;
         mc_window_end(mc);
     }
-    mc_prepare(mc);
-
-    /* A fault raised here (a failed start, a stall, an overrun) has turned
-     * the outputs off: so does *out, at once. */
-    if (!mc->outputs_on) {
-        out->duty[0] = mc->duty[0];
-        out->duty[1] = mc->duty[1];
-        out->duty[2] = mc->duty[2];
-        out->outputs_on = false;
+    if (mc->outputs_on) {
+        mc_prepare(mc);
+    } else {
+        /* Off, or a fault raised here (a failed start, a stall, an
+         * overrun) has just turned the outputs off: so does *out, at once. */
+        mc_output(mc, out);
     }
 }
 

@@ -269,7 +269,6 @@ typedef struct {
     smc_t smc;
     ab_q15_t v_hist[2];   /* applied voltage: [0] for the next step, [1] for this one */
     int16_t eff[3];       /* this period's effective duties (dead-time loss off), counts */
-    bool estimate;        /* mc_step_control ran the loops: mc_step_finish updates smc */
     uint16_t ripple_gain; /* bus ripple gain for the next period (foc/ripple.h), Q15 */
     int16_t pred;         /* one period of the estimated speed, angle counts (note 2) */
 
