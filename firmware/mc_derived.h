@@ -294,6 +294,30 @@ MC_CHECK(PWM_DEADTIME_NS,
          MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
          "must be below 10 % of the PWM period");
 #define MC_DT_COUNTS ((int16_t)(MC_DT_COUNTS_ + 0.5))
+
+/* Shunt window (mc.h timing contract). Centre-aligned with PTPER =
+ * PWM_DUTY_MAX / 2 - 1, a phase's low-side switch is commanded on from the
+ * up-count's PTMR = PDC / 2 to the down-count's, and conducts from the dead
+ * time after that. The sample comes PWM_ADC_TRIGGER_TCY after the midpoint
+ * (PTMR = PTPER). So, in Tcy:
+ *   the switch is still on at the sample:  PDC / 2 < PTPER - trigger;
+ *   it has conducted long enough:          (PTPER - PDC / 2) + trigger -
+ *                                          dead time >= BOARD_SHUNT_MIN_ON_NS.
+ * MC_DUTY_SAMPLE_MAX is the largest PDC that meets both (the second
+ * decides on the MCLV: 1758 of 2000, 87.9 %; the first alone would be 1836).
+ * Duty counts are PDC units, 1 count = 1 Tcy of on-time. */
+#define MC_SHUNT_MIN_ON_COUNTS_ ((double)BOARD_SHUNT_MIN_ON_NS * 1e-9 * (double)BOARD_FCY_HZ)
+#define MC_PTPER_               ((double)PWM_DUTY_MAX / 2.0 - 1.0)
+#define MC_DUTY_SAMPLE_ON_      (2.0 * (MC_PTPER_ - (double)PWM_ADC_TRIGGER_TCY) - 2.0)
+#define MC_DUTY_SAMPLE_SETTLED_                                                                    \
+    (2.0 * (MC_PTPER_ + (double)PWM_ADC_TRIGGER_TCY - MC_DT_COUNTS_ - MC_SHUNT_MIN_ON_COUNTS_))
+#define MC_DUTY_SAMPLE_MAX_                                                                        \
+    ((MC_DUTY_SAMPLE_ON_ < MC_DUTY_SAMPLE_SETTLED_) ? MC_DUTY_SAMPLE_ON_ : MC_DUTY_SAMPLE_SETTLED_)
+MC_CHECK(BOARD_SHUNT_MIN_ON_NS,
+         BOARD_SHUNT_MIN_ON_NS >= 0L && MC_DUTY_SAMPLE_MAX_ >= 0.75 * (double)PWM_DUTY_MAX,
+         "with PWM_ADC_TRIGGER_TCY and PWM_DEADTIME_NS it must leave the measured phases at "
+         "least 75 % duty (shunt window, mc_derived.h)");
+#define MC_DUTY_SAMPLE_MAX ((int16_t)MC_DUTY_SAMPLE_MAX_)
 MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_ + 1.0 <= 32767.0,
          "duty full scale plus the dead-time counts must fit 16 bits (the "
          "compensated duty is formed in int16)");

@@ -47,6 +47,13 @@
 #define BOARD_VBUS_OVERVOLTAGE_V 385.0
 #endif
 
+/* Shunt window as on the MCLV (board_mclv.h): the low-side conduction a
+ * measured phase needs before the sample, ns. [CHOSEN: 3 us, the MCHV's
+ * amplifier figure not found either.] */
+#ifndef BOARD_SHUNT_MIN_ON_NS
+#define BOARD_SHUNT_MIN_ON_NS 3000L
+#endif
+
 /* Dead time as on the MCLV (AN1078's 2 us). */
 #ifndef BOARD_DEADTIME_NS
 #define BOARD_DEADTIME_NS 2000L

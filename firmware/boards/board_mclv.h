@@ -55,6 +55,19 @@
 #define BOARD_VBUS_OVERVOLTAGE_V 32.0
 #endif
 
+/* Shunt window: how long the low-side switch of a measured phase must have
+ * conducted before the ADC samples its shunt, ns: the current amplifier's
+ * settling from "no current" (the high side was on) to the phase current.
+ * The MCLV's amplifier settling time was not found in Microchip's
+ * documents. [CHOSEN: 3 us. A first-order amplifier settles to 1 % in 4.6
+ * time constants, so this covers a time constant up to 0.65 us, a closed-
+ * loop bandwidth down to about 250 kHz.] The core keeps the measured
+ * phases' duties at or below MC_DUTY_SAMPLE_MAX (1758 of 2000 here,
+ * mc_derived.h). Bench check: docs/board.md, first power-on step 7. */
+#ifndef BOARD_SHUNT_MIN_ON_NS
+#define BOARD_SHUNT_MIN_ON_NS 3000L
+#endif
+
 /* Power-stage dead time (AN1078: 2 us, DTCON1 = 0x40 | 40). */
 #ifndef BOARD_DEADTIME_NS
 #define BOARD_DEADTIME_NS 2000L

@@ -10,9 +10,10 @@
  * Every value below is derived from the description; the comment above each says how. Units
  * are in every name; R and L are per phase, currents and voltages are peak phase amplitudes.
  *
- * Steady-state voltage budget: 0.95 x 320 V / sqrt 3 = 175.51 V phase peak
- * (MC_VOLTAGE_LIMIT_FRACTION of the SVGen circle), times 0.91 (5 % left to the current
- * loops, 4 % = dead time 2 us x 20000 Hz) = 159.72 V.
+ * Steady-state voltage budget: 0.879 (the shunt window: the measured phases' duties stay at
+ * or below 87.9 %, MC_DUTY_SAMPLE_MAX; MC_VOLTAGE_LIMIT_FRACTION is 0.95) x 320 V / sqrt 3 =
+ * 162.40 V phase peak, times 0.91 (5 % left to the current loops, 4 % = dead time 2 us x
+ * 20000 Hz) = 147.78 V.
  */
 
 #define MOTOR_NAME "high-speed 2pp, assumed data (tools/tune)"
@@ -43,7 +44,7 @@
 #endif
 
 /* ---- speeds ---------------------------------------------------------------------------------- */
-/* = the top speed 17000 rpm (motor.rated_speed): the bus reaches 27422 rpm without field
+/* = the top speed 17000 rpm (motor.rated_speed): the bus reaches 25363 rpm without field
  * weakening at Iq = 0.62 A, so none is needed (AN1078: nominal = FW max disables it) */
 #ifndef MOTOR_SPEED_NOMINAL_RPM
 #define MOTOR_SPEED_NOMINAL_RPM 17000.0

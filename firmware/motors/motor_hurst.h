@@ -27,7 +27,7 @@
 
 /* ---- speeds ------------------------------------------------------------- */
 #ifndef MOTOR_SPEED_NOMINAL_RPM
-#define MOTOR_SPEED_NOMINAL_RPM 2700.0 /* field weakening starts above this */
+#define MOTOR_SPEED_NOMINAL_RPM 2500.0 /* field weakening starts above this (the table below) */
 #endif
 #ifndef MOTOR_SPEED_FW_MAX_RPM
 #define MOTOR_SPEED_FW_MAX_RPM 5300.0 /* top of the field-weakening table */
@@ -116,17 +116,23 @@
  * MOTOR_SPEED_NOMINAL_RPM (entry 0) to MOTOR_SPEED_FW_MAX_RPM (entry 15).
  * Derived, not copied: the smallest |Id| that keeps the steady-state
  * voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within 92 %
- * of the 0.95 circle at 24 V (headroom for the current loops), with
- * psi = Ke / sqrt(3) / w_e(1 krpm) = 8.05 mWb and a light load Iq = 0.3 A.
- * Above about 3900 rpm (entries 6..7) |Id| exceeds the rated 1.64 A peak: the top of the
- * range is for short bursts. Entry 0 is set to 0 (computed -0.039 A) so the
- * reference is continuous at the nominal speed. (AN1078 reaches -2.1 A.) - */
+ * of what the shunt window leaves at 24 V (headroom for the current loops):
+ * the measured phases' duties at most MC_DUTY_SAMPLE_MAX = 87.9 %, so a
+ * circle of 0.879 x 24 V / sqrt 3, below the 0.95 limit. psi = Ke / sqrt(3)
+ * / w_e(1 krpm) = 8.05 mWb; the load is Iq = 0.3 A up to 4,370 rpm (entry
+ * 10); above, |(Id, Iq)| <= 3.0 A leaves less, down to 0.165 A (10 mN m) at
+ * 5,300 rpm, and Id stays at about -2.98 A (entries 11..15, made monotonic).
+ * Nominal: 2,460 rpm is where Iq = 0.3 A needs field weakening in that
+ * budget, rounded to 2,500; entry 0 is 0 there (computed -0.05 A). Above
+ * about 3,800 rpm (entry 7) |Id| exceeds the rated 1.64 A peak: the top of
+ * the range is for short bursts. (AN1078 reaches -2.1 A.) Before the shunt
+ * window (0.95 circle, nominal 2,700 rpm) the table ended at -2.891 A. */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: edit the numbers, keep X( ) around each (exactly 16 entries). */
 /* clang-format off */
 #define MOTOR_FW_ID_TABLE_A(X) \
-    X(0.000) X(-0.320) X(-0.584) X(-0.831) X(-1.063) X(-1.280) X(-1.483) X(-1.673) \
-    X(-1.852) X(-2.021) X(-2.181) X(-2.333) X(-2.478) X(-2.618) X(-2.755) X(-2.891)
+    X(0.000) X(-0.399) X(-0.710) X(-1.004) X(-1.280) X(-1.541) X(-1.790) X(-2.029) \
+    X(-2.263) X(-2.501) X(-2.769) X(-2.984) X(-2.984) X(-2.984) X(-2.984) X(-2.985)
 /* clang-format on */
 #endif
 

@@ -10,9 +10,10 @@
  * Every value below is derived from the description; the comment above each says how. Units
  * are in every name; R and L are per phase, currents and voltages are peak phase amplitudes.
  *
- * Steady-state voltage budget: 0.95 x 24 V / sqrt 3 = 13.16 V phase peak
- * (MC_VOLTAGE_LIMIT_FRACTION of the SVGen circle), times 0.91 (5 % left to the current
- * loops, 4 % = dead time 2 us x 20000 Hz) = 11.98 V.
+ * Steady-state voltage budget: 0.879 (the shunt window: the measured phases' duties stay at
+ * or below 87.9 %, MC_DUTY_SAMPLE_MAX; MC_VOLTAGE_LIMIT_FRACTION is 0.95) x 24 V / sqrt 3 =
+ * 12.18 V phase peak, times 0.91 (5 % left to the current loops, 4 % = dead time 2 us x
+ * 20000 Hz) = 11.08 V.
  */
 
 #define MOTOR_NAME "Hurst075 DMB0224C10002 (tools/tune)"
@@ -44,9 +45,9 @@
 
 /* ---- speeds ---------------------------------------------------------------------------------- */
 /* highest speed with Id = 0: back-EMF 4.215 V/krpm phase peak plus the R and wL drops at Iq =
- * 0.2 A reach the 11.98 V budget at 2713 rpm */
+ * 0.1 A reach the 11.08 V budget at 2566 rpm */
 #ifndef MOTOR_SPEED_NOMINAL_RPM
-#define MOTOR_SPEED_NOMINAL_RPM 2710.0
+#define MOTOR_SPEED_NOMINAL_RPM 2560.0
 #endif
 /* top speed asked for (application.max_speed) */
 #ifndef MOTOR_SPEED_FW_MAX_RPM
@@ -184,21 +185,21 @@
 /*
  * Id (A) at 16 speeds evenly spaced from MOTOR_SPEED_NOMINAL_RPM (entry 0) to
  * MOTOR_SPEED_FW_MAX_RPM (entry 15): at each speed the smallest |Id| that keeps the
- * steady-state voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within the 11.98
- * V budget, with Iq = 0.2 A (the load the table is computed for: a quarter of the Iq limit
+ * steady-state voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within the 11.08
+ * V budget, with Iq = 0.1 A (the load the table is computed for: a quarter of the Iq limit
  * unless application.fw_load_current says otherwise). A quadratic in Id, solved exactly. The
- * current limit |(Id, Iq)| <= 3 A allows Id down to -2.99 A. Speeds (rpm): 2710, 2883, 3055,
- * 3228, 3401, 3573, 3746, 3919, 4091, 4264, 4437, 4609, 4782, 4955, 5127, 5300.
+ * current limit |(Id, Iq)| <= 3 A allows Id down to -3.00 A. Speeds (rpm): 2560, 2743, 2925,
+ * 3108, 3291, 3473, 3656, 3839, 4021, 4204, 4387, 4569, 4752, 4935, 5117, 5300.
  */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: exactly 16 entries (layout kept: clang-format does not
  * settle on a fixed point for this macro). */
 /* clang-format off */
 #define MOTOR_FW_ID_TABLE_A(X) \
-    X(0.000) X(-0.267) X(-0.521) X(-0.759) \
-    X(-0.980) X(-1.187) X(-1.380) X(-1.559) \
-    X(-1.727) X(-1.883) X(-2.029) X(-2.166) \
-    X(-2.295) X(-2.416) X(-2.530) X(-2.638)
+    X(0.000) X(-0.287) X(-0.564) X(-0.823) \
+    X(-1.062) X(-1.285) X(-1.491) X(-1.683) \
+    X(-1.860) X(-2.025) X(-2.179) X(-2.321) \
+    X(-2.455) X(-2.580) X(-2.698) X(-2.809)
 /* clang-format on */
 #endif
 

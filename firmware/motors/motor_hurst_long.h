@@ -10,9 +10,10 @@
  * Every value below is derived from the description; the comment above each says how. Units
  * are in every name; R and L are per phase, currents and voltages are peak phase amplitudes.
  *
- * Steady-state voltage budget: 0.95 x 24 V / sqrt 3 = 13.16 V phase peak
- * (MC_VOLTAGE_LIMIT_FRACTION of the SVGen circle), times 0.91 (5 % left to the current
- * loops, 4 % = dead time 2 us x 20000 Hz) = 11.98 V.
+ * Steady-state voltage budget: 0.879 (the shunt window: the measured phases' duties stay at
+ * or below 87.9 %, MC_DUTY_SAMPLE_MAX; MC_VOLTAGE_LIMIT_FRACTION is 0.95) x 24 V / sqrt 3 =
+ * 12.18 V phase peak, times 0.91 (5 % left to the current loops, 4 % = dead time 2 us x
+ * 20000 Hz) = 11.08 V.
  *
  * DERATED: derated: the MCLV reads +-4.4 A, the trip must stay below 90 % of it (3.96 A) and
  * the core holds |I| to 90 % of the trip, so the motor's 4.88 A peak is limited to 3.56 A
@@ -48,13 +49,13 @@
 
 /* ---- speeds ---------------------------------------------------------------------------------- */
 /* highest speed with Id = 0: back-EMF 4.215 V/krpm phase peak plus the R and wL drops at Iq =
- * 0.89 A reach the 11.98 V budget at 2756 rpm */
+ * 0.89 A reach the 11.08 V budget at 2544 rpm */
 #ifndef MOTOR_SPEED_NOMINAL_RPM
-#define MOTOR_SPEED_NOMINAL_RPM 2750.0
+#define MOTOR_SPEED_NOMINAL_RPM 2540.0
 #endif
 /* top speed asked for (application.max_speed) */
 #ifndef MOTOR_SPEED_FW_MAX_RPM
-#define MOTOR_SPEED_FW_MAX_RPM 3000.0
+#define MOTOR_SPEED_FW_MAX_RPM 2900.0
 #endif
 /* max(back-EMF = 3 x the dead-time voltage error 0.81 V -> 580 rpm, 8 % of the top speed),
  * rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the ramp
@@ -114,7 +115,7 @@
 /* ---- sliding-mode observer ------------------------------------------------------------------- */
 /* Kslide = min(1.5 x the largest back-EMF the observer sees, 97 % of V_FS = 13.4 V, the cap of
  * the hand-tuned profiles; the core allows 2 V_FS, docs/estimator.md wants Kslide above that
- * back-EMF); that back-EMF is min(Ke at the top speed = 12.6 V, the voltage limit 13.2 V:
+ * back-EMF); that back-EMF is min(Ke at the top speed = 12.2 V, the voltage limit 13.2 V:
  * above nominal field weakening holds it there) */
 #ifndef MOTOR_SMC_GAIN_V
 #define MOTOR_SMC_GAIN_V 13.44
@@ -190,21 +191,21 @@
 /*
  * Id (A) at 16 speeds evenly spaced from MOTOR_SPEED_NOMINAL_RPM (entry 0) to
  * MOTOR_SPEED_FW_MAX_RPM (entry 15): at each speed the smallest |Id| that keeps the
- * steady-state voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within the 11.98
+ * steady-state voltage sqrt((R Id - w L Iq)^2 + (R Iq + w (psi + L Id))^2) within the 11.08
  * V budget, with Iq = 0.89 A (the load the table is computed for: a quarter of the Iq limit
  * unless application.fw_load_current says otherwise). A quadratic in Id, solved exactly. The
- * current limit |(Id, Iq)| <= 3.56 A allows Id down to -3.45 A. Speeds (rpm): 2750, 2767,
- * 2783, 2800, 2817, 2833, 2850, 2867, 2883, 2900, 2917, 2933, 2950, 2967, 2983, 3000.
+ * current limit |(Id, Iq)| <= 3.56 A allows Id down to -3.45 A. Speeds (rpm): 2540, 2564,
+ * 2588, 2612, 2636, 2660, 2684, 2708, 2732, 2756, 2780, 2804, 2828, 2852, 2876, 2900.
  */
 #ifndef MOTOR_FW_ID_TABLE_A
 /* X-macro: exactly 16 entries (layout kept: clang-format does not
  * settle on a fixed point for this macro). */
 /* clang-format off */
 #define MOTOR_FW_ID_TABLE_A(X) \
-    X(0.000) X(-0.096) X(-0.242) X(-0.387) \
-    X(-0.532) X(-0.675) X(-0.816) X(-0.957) \
-    X(-1.097) X(-1.235) X(-1.372) X(-1.509) \
-    X(-1.644) X(-1.778) X(-1.911) X(-2.043)
+    X(0.000) X(-0.196) X(-0.423) X(-0.648) \
+    X(-0.871) X(-1.091) X(-1.308) X(-1.523) \
+    X(-1.736) X(-1.946) X(-2.154) X(-2.359) \
+    X(-2.562) X(-2.762) X(-2.960) X(-3.156)
 /* clang-format on */
 #endif
 

@@ -106,10 +106,14 @@ static void test_angle_bias_should_be_small_at_the_top_speed(void **state)
     check_speed((double)SPEED_REF_MAX_RPM, 0.0, 2.0);
 }
 
+/* 8 mN m, 0.13 A: what the field-weakening table is derived for at the top
+ * speed (motor_hurst.h: 0.165 A). The shunt window leaves the Hurst at most
+ * about 16 mN m at 5,300 rpm on 24 V (docs/board.md "Shunt window"); 20 mN m
+ * held 5,300 rpm before it and now runs at 4,930 rpm. */
 static void test_angle_bias_should_be_small_at_the_top_speed_under_load(void **state)
 {
     (void)state;
-    check_speed((double)SPEED_REF_MAX_RPM, 0.02, 2.0);
+    check_speed((double)SPEED_REF_MAX_RPM, 0.008, 2.0);
 }
 
 /* The 0.3 deg bound can fail: a plant whose timing differs from the core's

@@ -123,6 +123,16 @@ def board_env(board):
 # ---- the core's arithmetic --------------------------------------------------
 
 
+def duty_sample_max(fcy, fpwm, trig_tcy, deadtime_ns, min_on_ns):
+    """mc_derived.h MC_DUTY_SAMPLE_MAX: the largest duty (counts) of a measured
+    phase that leaves its low-side switch on min_on_ns before the ADC trigger,
+    trig_tcy after the centre-aligned period's midpoint, and still on at it."""
+    ptper = fcy // fpwm / 2.0 - 1.0
+    dt = deadtime_ns * 1e-9 * fcy
+    on = min_on_ns * 1e-9 * fcy
+    return int(min(2.0 * (ptper - trig_tcy) - 2.0, 2.0 * (ptper + trig_tcy - dt - on)))
+
+
 def q15_round(x):
     """q15.h Q15(x): range [-1, 1], x*32768 rounded half away from zero, 1.0 -> 32767."""
     if not (-1.0 <= x <= 1.0):
@@ -367,6 +377,11 @@ def derive_core(env):
     # dead time
     dt = g("PWM_DEADTIME_NS") * 1e-9 * fcy
     d.check("PWM_DEADTIME_NS", 0.0 <= dt < 0.1 * duty_max, "must be below 10 % of the PWM period")
+    # shunt window
+    win = duty_sample_max(fcy, fpwm, g("PWM_ADC_TRIGGER_TCY"), g("PWM_DEADTIME_NS"), g("BOARD_SHUNT_MIN_ON_NS"))
+    d.check("BOARD_SHUNT_MIN_ON_NS", g("BOARD_SHUNT_MIN_ON_NS") >= 0.0 and win >= 0.75 * duty_max,
+            "with PWM_ADC_TRIGGER_TCY and PWM_DEADTIME_NS it must leave the measured phases at least 75 % duty")
+    d.row("MC_DUTY_SAMPLE_MAX", win, "counts", note="largest duty of a measured phase (shunt window)")
     # field weakening
     if "MOTOR_FW_ID_TABLE_A" in env.xtables:
         tab = env.table("MOTOR_FW_ID_TABLE_A")

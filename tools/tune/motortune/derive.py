@@ -147,14 +147,26 @@ def derive(desc):
                          f"the {board_name} scales ({v_fs:.1f} V, {i_fs:g} A)")
 
     # ---- voltage available in steady state -----------------------------------
+    # The shunt window keeps the measured phases' duties at or below
+    # MC_DUTY_SAMPLE_MAX (mc_derived.h), so no line-to-line duty difference
+    # involving them exceeds it: a circle wider than that fraction is not
+    # available in every sector.
     dt_frac = td * fpwm
     headroom = 1.0 - 0.05 - dt_frac
-    v_ss = vfrac * v_fs * headroom
+    win = cheader.duty_sample_max(fcy, fpwm, float(gb("PWM_ADC_TRIGGER_TCY")), float(gb("PWM_DEADTIME_NS")),
+                                  float(gb("BOARD_SHUNT_MIN_ON_NS"))) / (fcy // fpwm)
+    vfrac_ss = min(vfrac, win)
+    v_ss = vfrac_ss * v_fs * headroom
     t.v_ss, t.headroom = v_ss, headroom
+    if vfrac_ss < vfrac:
+        limit = (f"{vfrac_ss:.3f} (the shunt window: the measured phases' duties stay at or below "
+                 f"{100 * win:.1f} %, MC_DUTY_SAMPLE_MAX; MC_VOLTAGE_LIMIT_FRACTION is {vfrac:g})")
+    else:
+        limit = f"{vfrac:g} (MC_VOLTAGE_LIMIT_FRACTION)"
     t.notes.append(
-        f"Steady-state voltage budget: {vfrac:g} x {vbus:g} V / sqrt 3 = {vfrac * v_fs:.2f} V phase peak "
-        f"(MC_VOLTAGE_LIMIT_FRACTION of the SVGen circle), times {headroom:.2f} (5 % left to the current "
-        f"loops, {100 * dt_frac:.0f} % = dead time {td * 1e6:g} us x {fpwm} Hz) = {v_ss:.2f} V.")
+        f"Steady-state voltage budget: {limit} x {vbus:g} V / sqrt 3 = {vfrac_ss * v_fs:.2f} V phase peak, "
+        f"times {headroom:.2f} (5 % left to the current loops, {100 * dt_frac:.0f} % = dead time "
+        f"{td * 1e6:g} us x {fpwm} Hz) = {v_ss:.2f} V.")
 
     # ---- currents and the board ---------------------------------------------
     trip_board = 0.9 * i_fs
