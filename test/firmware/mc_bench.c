@@ -16,6 +16,7 @@ void mc_bench_cfg_default(mc_bench_cfg_t *c)
     c->deadtime_s = -1.0;
     c->noise_codes = -1.0;
     c->vbus_v = -1.0;
+    c->amp_tau_s = -1.0;
     c->pot = 0.0;
 }
 
@@ -39,12 +40,14 @@ void mc_bench_init(mc_bench_t *b, const mc_bench_cfg_t *c)
     rp.adc.seed = 12345u;
     rp.substeps = 2;
     rp.sample_at = MC_SAMPLE_AT; /* the chip's timing (mc.h) */
+    rp.amp_tau_s = (c->amp_tau_s >= 0.0) ? c->amp_tau_s : bp->amp_tau_s;
     rp.theta_e0 = c->theta0_rad;
     rp.fan_rated_rpm = mp->rated_rpm;
     sim_rig_init(&b->rig, &rp);
     b->rig.pot = c->pot;
     b->rig.pot_target = c->pot;
     mc_init(&b->mc);
+    mc_status(&b->mc, &b->st); /* not the previous run's */
     b->n = 0;
     b->out.duty[0] = b->out.duty[1] = b->out.duty[2] = PWM_DUTY_MAX / 2U;
     b->out.outputs_on = false;

@@ -29,6 +29,7 @@ typedef struct {
     double deadtime_s;  /* < 0: the board's */
     double noise_codes; /* < 0: the board's */
     double vbus_v;      /* < 0: the board's */
+    double amp_tau_s;   /* current amplifiers' time constant, s; < 0: the board's */
     double pot;         /* 0..1 */
 } mc_bench_cfg_t;
 

@@ -261,6 +261,133 @@ static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_sat
     assert_true(at_limit > 1000);
 }
 
+/* ---- the shunt window ---------------------------------------------------------------- */
+
+/* What the chip gives phase k's low-side switch before the sample, us: the
+ * centre-aligned period counts PTMR up to PTPER and down again; the high side
+ * is on while PTMR < PDC / 2, the low side from a dead time after it turns
+ * off on the way up until PTMR = PDC / 2 on the way down; the ADC triggers
+ * PWM_ADC_TRIGGER_TCY after the midpoint. <= 0: off at the sample. */
+static double low_side_on_us(uint16_t pdc)
+{
+    const double ptper = (double)PWM_DUTY_MAX / 2.0 - 1.0;
+    const double tcy_us = 1e6 / (double)BOARD_FCY_HZ;
+    const double dt_tcy = (double)PWM_DEADTIME_NS * 1e-3 / tcy_us;
+    if (pdc == 0U) {
+        return 1e6 / (double)PWM_FREQUENCY_HZ; /* no edge: on all period */
+    }
+    if ((double)pdc / 2.0 >= ptper - (double)PWM_ADC_TRIGGER_TCY) {
+        return 0.0; /* turned off before the trigger */
+    }
+    return ((ptper - (double)pdc / 2.0) + (double)PWM_ADC_TRIGGER_TCY - dt_tcy) * tcy_us;
+}
+
+typedef struct {
+    long on;         /* periods with the outputs on */
+    long at_window;  /* ... with phase A or B within 2 counts of MC_DUTY_SAMPLE_MAX */
+    double min_on_us;
+    long states[8];  /* periods per state with the outputs on */
+} window_stats_t;
+
+/* Steps the bench n periods and checks every duty it latches. */
+static void run_checking_window(long n, window_stats_t *w)
+{
+    for (long k = 0; k < n && b.st.state != MC_STATE_FAULT; k++) {
+        mc_bench_step(&b);
+        if (!b.out.outputs_on) {
+            continue;
+        }
+        w->on++;
+        w->states[b.st.state & 7U]++;
+        for (int ph = 0; ph < 2; ph++) {
+            assert_true(b.out.duty[ph] <= (uint16_t)MC_DUTY_SAMPLE_MAX);
+            double t = low_side_on_us(b.out.duty[ph]);
+            w->min_on_us = fmin(w->min_on_us, t);
+            if (b.out.duty[ph] + 2U >= (uint16_t)MC_DUTY_SAMPLE_MAX) {
+                w->at_window++;
+            }
+        }
+    }
+}
+
+/* The core never commands a duty that corrupts its next sample: phases A
+ * and B leave their low side on for BOARD_SHUNT_MIN_ON_NS before the
+ * trigger in every period with the outputs on, through the lock, the ramp,
+ * closed loop at full load, field weakening at the top speed with more load
+ * than the voltage allows (the q loop held at the voltage circle), and a
+ * weak bus that over-modulates at 3,000 rpm. The simulator's amplifiers
+ * (sim_rig.h) confirm it: no sample short of their settling. */
+static void test_the_measured_phases_should_keep_their_shunt_window_in_every_state(void **state)
+{
+    (void)state;
+    window_stats_t w;
+    memset(&w, 0, sizeof(w));
+    w.min_on_us = 1e9;
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.pot = pot_for_rpm(1500.0);
+    mc_bench_init(&b, &c);
+    mc_request(&b.mc, MC_REQUEST_START);
+    run_checking_window(PERIODS(4.0), &w); /* calibration, lock, ramp, closed loop at 1500 */
+    assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+    b.rig.plant.load.active_nm = 0.1; /* near the current limit */
+    run_checking_window(PERIODS(1.0), &w);
+    b.rig.plant.load.active_nm = 0.02; /* beyond what the top speed leaves (16 mN m) */
+    set_pot_rpm(SPEED_REF_MAX_RPM);
+    run_checking_window(PERIODS(5.0), &w);
+    long circle = 0;
+    for (long k = 0; k < PERIODS(0.5); k++) {
+        run_checking_window(1, &w);
+        double m = hypot((double)b.mc.v_dq.d, (double)b.mc.v_dq.q);
+        circle += (m > MC_VMAX_Q15 - 40.0);
+    }
+    printf("measured: top speed with 20 mN m: %.0f rpm, Id %.2f A, %ld of %ld periods with |V| "
+           "at the circle\n",
+           b.rpm_sample, b.st.id * BOARD_I_FULLSCALE_A / 32768.0, circle, PERIODS(0.5));
+    assert_true(circle > PERIODS(0.25));
+    b.rig.plant.load.active_nm = 0.03;
+    set_pot_rpm(3000.0);
+    run_checking_window(PERIODS(3.0), &w);
+    b.rig.inv.prm.vbus_v = 17.0; /* weak bus: over-modulation at 3000 rpm */
+    run_checking_window(PERIODS(1.0), &w);
+    printf("measured: 3000 rpm, 30 mN m on a 17 V bus: %.0f rpm, state %d fault %d\n",
+           b.rpm_sample, (int)b.st.state, (int)b.st.fault);
+    assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+    printf("measured: %ld periods with the outputs on (LOCK %ld, OPEN_LOOP %ld, CLOSED_LOOP %ld), "
+           "%ld phase-periods at the window's limit %d; shortest low-side time before the "
+           "sample %.2f us (BOARD_SHUNT_MIN_ON_NS %.2f us); simulator: %ld samples short of the "
+           "amplifiers' settling, shortest conduction %.2f us\n",
+           w.on, w.states[MC_STATE_LOCK], w.states[MC_STATE_OPEN_LOOP],
+           w.states[MC_STATE_CLOSED_LOOP], w.at_window, MC_DUTY_SAMPLE_MAX, w.min_on_us,
+           (double)BOARD_SHUNT_MIN_ON_NS * 1e-3, b.rig.samples_short, b.rig.t_cond_min_s * 1e6);
+    assert_true(w.states[MC_STATE_LOCK] > 0 && w.states[MC_STATE_OPEN_LOOP] > 0);
+    assert_true(w.at_window > 1000); /* the limit was active, not merely never reached */
+    assert_true(w.min_on_us >= (double)BOARD_SHUNT_MIN_ON_NS * 1e-3 - 1e-9);
+    assert_int_equal(b.rig.samples_short, 0);
+}
+
+/* The check above can fail: the same run against amplifiers slower than
+ * the board constant allows for (0.6 us, settling in 4.2 us) gives
+ * corrupted samples, and the simulator counts them. */
+static void test_amplifiers_slower_than_the_window_should_show_as_short_samples(void **state)
+{
+    (void)state;
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.pot = pot_for_rpm(SPEED_REF_MAX_RPM);
+    c.amp_tau_s = 0.6e-6;
+    mc_bench_init(&b, &c);
+    mc_request(&b.mc, MC_REQUEST_START);
+    for (long k = 0; k < PERIODS(8.0) && b.st.state != MC_STATE_FAULT; k++) {
+        mc_bench_step(&b);
+    }
+    printf("measured: amplifier tau 0.6 us: %ld samples short of its settling (%.2f us), "
+           "shortest conduction %.2f us, state %d at %.0f rpm\n",
+           b.rig.samples_short, SIM_AMP_SETTLE_TAUS * 0.6, b.rig.t_cond_min_s * 1e6,
+           (int)b.st.state, b.rpm_sample);
+    assert_true(b.rig.samples_short > 1000);
+}
+
 /* ---- protections in closed loop ---------------------------------------------------- */
 
 static void test_stall_should_fault_within_50_ms_when_the_rotor_locks(void **state)
@@ -488,6 +615,8 @@ int main(void)
         cmocka_unit_test(test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target),
         cmocka_unit_test(test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus),
         cmocka_unit_test(test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate),
+        cmocka_unit_test(test_the_measured_phases_should_keep_their_shunt_window_in_every_state),
+        cmocka_unit_test(test_amplifiers_slower_than_the_window_should_show_as_short_samples),
         cmocka_unit_test(test_stall_should_fault_within_50_ms_when_the_rotor_locks),
         cmocka_unit_test(test_a_back_emf_far_below_what_the_speed_implies_should_fault_as_a_stall),
         cmocka_unit_test(test_an_overload_beyond_the_current_limit_should_fault_as_lost_tracking),

@@ -34,6 +34,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->seed = 1u;
     cfg->substeps = 4;
     cfg->sample_at = -1.0;
+    cfg->amp_tau_s = -1.0;
     cfg->csv_decim = 10;
     cfg->csv = NULL;
     cfg->progress = false;
@@ -145,6 +146,7 @@ static const sim_board_profile_t *board_from_firmware(const char *name)
     bp.offset_a_codes = 6.0;
     bp.offset_b_codes = -4.0;
     bp.noise_codes = 1.0;
+    bp.amp_tau_s = 0.35e-6; /* as the simulator's boards (sim_profiles.c) */
     fprintf(stderr, "sim: no simulator profile '%s': simulating the firmware's board data\n", name);
     return &bp;
 #else
@@ -200,6 +202,7 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
     rp.substeps = cfg->substeps;
     rp.sample_at = (cfg->sample_at >= 0.0) ? cfg->sample_at : MC_SAMPLE_AT; /* the chip's (mc.h) */
+    rp.amp_tau_s = (cfg->amp_tau_s >= 0.0) ? cfg->amp_tau_s : s->bp->amp_tau_s;
     rp.theta_e0 = cfg->theta0_rad;
     rp.omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
     rp.fan_rated_rpm = s->mp->rated_rpm;
@@ -529,6 +532,13 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     fprintf(f,
             "   peak phase current        %.2f A at %.3f s (rated %.2f A, ADC full scale %.2f A)\n",
             s->i_peak_a, s->t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
+    if (s->rig.amp_tau_s > 0.0) {
+        fprintf(f,
+                "   shunt window              %ld samples short of the amplifiers' settling "
+                "(%.2f us); shortest conduction before a sample %.2f us\n",
+                s->rig.samples_short, SIM_AMP_SETTLE_TAUS * s->rig.amp_tau_s * 1e6,
+                s->rig.t_cond_min_s * 1e6);
+    }
     for (k = 0; k < s->n_log; k++) {
         if (s->log[k].to == MC_STATE_FAULT) {
             n_fault++;

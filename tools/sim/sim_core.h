@@ -35,6 +35,7 @@ typedef struct {
     uint32_t seed;      /* ADC noise seed */
     int substeps;       /* RK4 steps per PWM period */
     double sample_at;   /* ADC sample instant in the period; < 0: the chip's, MC_SAMPLE_AT */
+    double amp_tau_s;   /* current amplifiers' time constant, s; < 0: the board's */
     int csv_decim;      /* CSV row every N periods */
     FILE *csv;          /* NULL: no CSV */
     bool progress;      /* progress line on stderr for long runs */

@@ -27,6 +27,7 @@ typedef struct {
     double vbus_fs_v;  /* bus ADC full scale, V (overridden by the core's macro) */
     double offset_a_codes, offset_b_codes; /* amplifier offsets, ADC codes */
     double noise_codes;                    /* ADC noise sigma, codes */
+    double amp_tau_s; /* current amplifier's time constant, s (sim_rig.h: the shunt window) */
 } sim_board_profile_t;
 
 /* NULL when the name is unknown. */

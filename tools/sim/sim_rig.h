@@ -31,6 +31,7 @@ typedef struct {
     sim_adc_params_t adc;
     int substeps;         /* RK4 steps per PWM period (>= 1; >= 2 when sample_at > 0) */
     double sample_at;     /* ADC sample instant in the period, 0 <= x < 1 (0: at its start) */
+    double amp_tau_s;     /* current amplifiers' time constant, s (0: ideal; note below) */
     double theta_e0;      /* initial electrical angle, rad */
     double omega0_m;      /* initial mechanical speed, rad/s */
     double fan_rated_rpm; /* speed at which load_fan gives its nominal torque, rpm */
@@ -55,7 +56,26 @@ typedef struct {
     double fan_rated_w;  /* rad/s */
     double i_abc[3];     /* phase currents at the last sample, A */
     double vbus_sampled; /* V */
+    double amp_tau_s;    /* as in sim_rig_params_t */
+    long samples_short;  /* samples with the outputs on where a measured phase's shunt had
+                            conducted less than SIM_AMP_SETTLE_TAUS time constants */
+    double t_cond_min_s; /* shortest such conduction seen before a sample, s */
 } sim_rig_t;
+
+/*
+ * The shunt window. Phases A and B are measured by low-side shunts and
+ * amplifiers: a shunt carries the phase current only while its leg's low
+ * side conducts (centre-aligned PWM: from d Ts / 2 after the period start
+ * to d Ts / 2 before its end, d the latched duty), the switch after the
+ * dead time, the diode at once for a current into the motor. At the sample
+ * the amplifier reads i (1 - exp(-t / amp_tau_s)) after t of conduction, 0
+ * if the low side is off then (the high side has held the shunt at zero
+ * current): what a board reads when the core's duty leaves too short a
+ * window. samples_short counts the samples where t was below
+ * SIM_AMP_SETTLE_TAUS time constants, the settling to half a code of a
+ * full-scale step of the 10-bit ADC.
+ */
+#define SIM_AMP_SETTLE_TAUS 6.93 /* ln(1024) */
 
 void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm);
 
