@@ -166,6 +166,7 @@ static sim_rig_params_t hurst_rig(void)
     r.adc = mclv_adc(0.0);
     r.substeps = 4;
     r.sample_at = 0.0; /* the period-level expectations below: sample at the start */
+    r.amp_tau_s = 0.0; /* ideal current sensors (the shunt window is tested with the core) */
     r.theta_e0 = 0.0;
     r.omega0_m = 0.0;
     r.fan_rated_rpm = 2700.0;

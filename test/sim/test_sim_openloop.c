@@ -58,6 +58,7 @@ static foc_result_t run_ideal_foc(double deadtime_s, double rpm, double iq_ref, 
     p.adc.seed = 3u;
     p.substeps = 4;
     p.sample_at = 0.0; /* this bench's own FOC assumes a sample at the period start */
+    p.amp_tau_s = 0.0; /* with ideal current sensors */
     p.theta_e0 = 0.4;
     p.omega0_m = wm;
     p.fan_rated_rpm = 2700.0;

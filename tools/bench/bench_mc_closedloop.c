@@ -44,6 +44,7 @@ static void rig_init(void)
     rp.adc.seed = 4242U;
     rp.substeps = 2;
     rp.sample_at = MC_SAMPLE_AT; /* the chip's timing (mc.h) */
+    rp.amp_tau_s = bp->amp_tau_s;
     rp.theta_e0 = 0.3;
     rp.fan_rated_rpm = mp->rated_rpm;
     sim_rig_init(&rig, &rp);
