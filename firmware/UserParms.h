@@ -113,8 +113,11 @@
     ((4.0 * MC_DEADTIME_BAND_A < 0.4 * MOTOR_CURRENT_MAX_A) ? 4.0 * MC_DEADTIME_BAND_A             \
                                                             : 0.4 * MOTOR_CURRENT_MAX_A)
 #endif
-/* Largest voltage vector, fraction of the SVGen circle: leaves room in every
- * period for the low-side shunt sampling (AN1078 uses 0.95). */
+/* Largest voltage vector, fraction of the SVGen circle (AN1078 uses 0.95).
+ * The shunt sampling has its own limit, on the measured phases' duties
+ * (MC_DUTY_SAMPLE_MAX, from the board's BOARD_SHUNT_MIN_ON_NS), which
+ * leaves less in the sectors where phase A or B is the highest: the
+ * field-weakening tables are derived for that. */
 #ifndef MC_VOLTAGE_LIMIT_FRACTION
 #define MC_VOLTAGE_LIMIT_FRACTION 0.95
 #endif
