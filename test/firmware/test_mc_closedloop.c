@@ -283,10 +283,10 @@ static double low_side_on_us(uint16_t pdc)
 }
 
 typedef struct {
-    long on;         /* periods with the outputs on */
-    long at_window;  /* ... with phase A or B within 2 counts of MC_DUTY_SAMPLE_MAX */
+    long on;        /* periods with the outputs on */
+    long at_window; /* ... with phase A or B within 2 counts of MC_DUTY_SAMPLE_MAX */
     double min_on_us;
-    long states[8];  /* periods per state with the outputs on */
+    long states[8]; /* periods per state with the outputs on */
 } window_stats_t;
 
 /* Steps the bench n periods and checks every duty it latches. */
@@ -350,8 +350,8 @@ static void test_the_measured_phases_should_keep_their_shunt_window_in_every_sta
     run_checking_window(PERIODS(3.0), &w);
     b.rig.inv.prm.vbus_v = 17.0; /* weak bus: over-modulation at 3000 rpm */
     run_checking_window(PERIODS(1.0), &w);
-    printf("measured: 3000 rpm, 30 mN m on a 17 V bus: %.0f rpm, state %d fault %d\n",
-           b.rpm_sample, (int)b.st.state, (int)b.st.fault);
+    printf("measured: 3000 rpm, 30 mN m on a 17 V bus: %.0f rpm, state %d fault %d\n", b.rpm_sample,
+           (int)b.st.state, (int)b.st.fault);
     assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
     printf("measured: %ld periods with the outputs on (LOCK %ld, OPEN_LOOP %ld, CLOSED_LOOP %ld), "
            "%ld phase-periods at the window's limit %d; shortest low-side time before the "
