@@ -457,28 +457,25 @@ Q15_INLINE void mc_estimate(mc_t *mc)
     mc->v_hist[0] = mc_duty_to_voltage(mc->eff, mc->vbus);
 }
 
-/* Shunt window (mc_derived.h MC_DUTY_SAMPLE_MAX, mc.h timing contract):
- * phases A and B, the measured ones, must leave their low-side switch on
- * long enough before the next sample. A duty above the limit first moves
- * the three down by the same amount (a common-mode shift: the line
- * voltages, hence the motor's voltage, do not change), as far as the
- * smallest duty allows. What is still above is clamped by the caller,
- * which cuts the voltage (the estimator is fed what was applied). */
-Q15_INLINE void mc_shunt_window(int16_t d[3])
+/* One phase's duty, clamped to [0, hi], and what the inverter will really
+ * apply: the duty less the dead-time loss dt (the estimator's input, formed
+ * in mc_estimate). A phase at 0, or at 100 % (hi_still_switches false),
+ * does not switch and loses nothing; A and B at the shunt window's limit
+ * still switch. */
+Q15_INLINE void mc_duty_set(mc_t *mc, uint8_t k, int16_t d, int16_t dt, int16_t hi,
+                            bool hi_still_switches)
 {
-    int16_t hi = (d[0] > d[1]) ? d[0] : d[1];
-    int16_t ex = (int16_t)(hi - MC_DUTY_SAMPLE_MAX);
-    if (ex <= 0) {
-        return;
+    if (d <= 0) {
+        d = 0;
+        dt = 0;
+    } else if (d >= hi) {
+        d = hi;
+        if (!hi_still_switches) {
+            dt = 0;
+        }
     }
-    int16_t lo = (d[0] < d[1]) ? d[0] : d[1];
-    lo = (d[2] < lo) ? d[2] : lo;
-    int16_t sh = (ex < lo) ? ex : lo;
-    if (sh > 0) {
-        d[0] = (int16_t)(d[0] - sh);
-        d[1] = (int16_t)(d[1] - sh);
-        d[2] = (int16_t)(d[2] - sh);
-    }
+    mc->duty[k] = (uint16_t)d;
+    mc->eff[k] = (int16_t)(d - dt);
 }
 
 /* Current loops and modulation, for one period with the outputs on, at
@@ -539,33 +536,38 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
 
     /* 16-bit arithmetic: PWM_DUTY_MAX plus the dead-time counts fits int16
      * (mc_derived.h checks it). */
-    int16_t d[3];
-    int16_t dt[3];
-    for (uint8_t k = 0U; k < 3U; k++) {
-        dt[k] = mc_deadtime_counts(iph[k]);
-        d[k] = (int16_t)sv.duty[k];
+    int16_t dt0 = mc_deadtime_counts(iph[0]);
+    int16_t dt1 = mc_deadtime_counts(iph[1]);
+    int16_t dt2 = mc_deadtime_counts(iph[2]);
+    int16_t d0 = (int16_t)sv.duty[0];
+    int16_t d1 = (int16_t)sv.duty[1];
+    int16_t d2 = (int16_t)sv.duty[2];
 #if MC_DEADTIME_COMP
-        d[k] = (int16_t)(d[k] + dt[k]);
+    d0 = (int16_t)(d0 + dt0);
+    d1 = (int16_t)(d1 + dt1);
+    d2 = (int16_t)(d2 + dt2);
 #endif
-    }
-    mc_shunt_window(d);
-    for (uint8_t k = 0U; k < 3U; k++) {
-        int16_t hi = (k < 2U) ? MC_DUTY_SAMPLE_MAX : (int16_t)PWM_DUTY_MAX;
-        if (d[k] <= 0) {
-            d[k] = 0;
-            dt[k] = 0; /* a phase that does not switch loses nothing */
-        } else if (d[k] >= hi) {
-            d[k] = hi;
-            if (k == 2U) {
-                dt[k] = 0; /* C at PWM_DUTY_MAX does not switch; A and B at the window's
-                              limit still do */
-            }
+    /* Shunt window (mc_derived.h MC_DUTY_SAMPLE_MAX): phases A and B, the
+     * measured ones, must leave their low-side switch on long enough before
+     * the next sample. A duty above the limit first moves the three down by
+     * the same amount (a common-mode shift: the line voltages, hence the
+     * motor's voltage, do not change), as far as the smallest duty allows;
+     * what is still above is clamped below, which cuts the voltage (the
+     * estimator is fed what is applied). */
+    int16_t ex = (int16_t)(((d0 > d1) ? d0 : d1) - MC_DUTY_SAMPLE_MAX);
+    if (ex > 0) {
+        int16_t lo = (d0 < d1) ? d0 : d1;
+        lo = (d2 < lo) ? d2 : lo;
+        int16_t sh = (ex < lo) ? ex : lo;
+        if (sh > 0) {
+            d0 = (int16_t)(d0 - sh);
+            d1 = (int16_t)(d1 - sh);
+            d2 = (int16_t)(d2 - sh);
         }
-        mc->duty[k] = (uint16_t)d[k];
-        /* What the inverter will really apply: the duty less the dead-time
-         * loss (the estimator's input, formed in mc_estimate). */
-        mc->eff[k] = (int16_t)(d[k] - dt[k]);
     }
+    mc_duty_set(mc, 0U, d0, dt0, MC_DUTY_SAMPLE_MAX, true);
+    mc_duty_set(mc, 1U, d1, dt1, MC_DUTY_SAMPLE_MAX, true);
+    mc_duty_set(mc, 2U, d2, dt2, (int16_t)PWM_DUTY_MAX, false);
 }
 
 /* The next period's angles and bus ripple gain, at the end of this one
