@@ -111,8 +111,10 @@ MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
  * executes stores in order. */
 #define MC_BARRIER() __asm__ __volatile__("" ::: "memory")
 
-/* Vmax^2 on the Q30 scale of a Q15 x Q15 product (the voltage circle). */
-#define MC_VMAX_SQ ((int32_t)MC_VMAX_Q15 * (int32_t)MC_VMAX_Q15)
+/* The voltage circle on the Q30 scale of a Q15 x Q15 product (note 3):
+ * Vmax^2, and (7/8 Vmax)^2, past which a period's vector is near it. */
+#define MC_VMAX_SQ  ((int32_t)MC_VMAX_Q15 * (int32_t)MC_VMAX_Q15)
+#define MC_VNEAR_SQ ((int32_t)(MC_VMAX_Q15 * 7L / 8L) * (int32_t)(MC_VMAX_Q15 * 7L / 8L))
 
 /* sqrt(3) / 2 and -1/2 in Q15, for the phase currents from alpha/beta. */
 #define MC_SQRT3_2    Q15(0.86602540378443865)
@@ -321,9 +323,8 @@ static void mc_enter_lock(mc_t *mc)
      * axis, which is where the ramp's load angle starts from. */
     mc->i_ref.d = 0;
     mc->i_ref.q = MC_LOCK_CURRENT_Q15;
-    mc->outputs_on = true;
     mc_enter(mc, MC_STATE_LOCK);
-    mc_prepare(mc); /* for this very period (mc_calibrate's) */
+    mc_prepare(mc); /* the outputs turn on with the lock's first period */
 }
 
 /* Id reference with the light-load floor (UserParms.h MC_ID_MIN_A): at
@@ -499,20 +500,33 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     }
 
     /* d first, then q gets what is left of the voltage circle (AN1078):
-     * |Vq| <= sqrt(Vmax^2 - Vd^2). The q PI runs first against +-Vmax; only
-     * if its output leaves the circle is the step redone against the circle
-     * limit (note 3: the same bits as always limiting to the circle, without
-     * a square root in the periods that stay inside). */
+     * |Vq| <= sqrt(Vmax^2 - Vd^2). If the previous period's vector was near
+     * the circle, the limit is formed first and the q PI runs once against
+     * it; otherwise the q PI runs against +-Vmax and, only if its output
+     * leaves the circle, is redone against the limit (note 3: AN1078's bits
+     * either way, the square root only near the circle, before the duties
+     * at most once). */
+    bool near = q15_dsp_mulss(mc->pi_q.out, mc->pi_q.out) >=
+                MC_VNEAR_SQ - q15_dsp_mulss(mc->pi_d.out, mc->pi_d.out);
     dq_q15_t v;
     v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
-    q31_t sum_q = mc->pi_q.sum;
-    pi_set_limits(&mc->pi_q, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15);
-    v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-    if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
+    if (near) {
         q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
-        mc->pi_q.sum = sum_q;
         pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
         v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+    } else {
+        q31_t sum_q = mc->pi_q.sum;
+        pi_set_limits(&mc->pi_q, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15);
+        v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+        if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
+            q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
+            mc->pi_q.sum = sum_q;
+            pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+            v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+            if (mc->circle_redos != UINT16_MAX) {
+                mc->circle_redos++;
+            }
+        }
     }
 #if defined(ENVOLTRIPPLE)
     /* The gain mc_prepare formed from the previous sample's bus. */
@@ -622,19 +636,24 @@ static void mc_prepare(mc_t *mc)
 #endif
 }
 
-/* CALIBRATE: after calib_wait periods of coasting, average the two current
- * readings over MC_CALIB_PERIODS; then the offsets, or FAULT OFFSET.
- * Returns true when it has entered LOCK (this period runs the loops). */
-static bool mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
+/* CALIBRATE: after calib_wait periods of coasting, sum the two current
+ * readings over MC_CALIB_PERIODS (mc_calibrate, before the duties); the
+ * period that took the last one ends it after the duties
+ * (mc_calibrate_end, from mc_step_finish), so its divisions and the lock's
+ * preparation never delay a duty write. */
+static void mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
 {
-    if (mc->timer < mc->calib_wait) {
-        return false;
+    if (mc->timer >= mc->calib_wait && mc->timer - mc->calib_wait < (uint32_t)MC_CALIB_PERIODS) {
+        mc->offset_acc_a += in->ia;
+        mc->offset_acc_b += in->ib;
     }
-    mc->offset_acc_a += in->ia;
-    mc->offset_acc_b += in->ib;
-    if (mc->timer - mc->calib_wait < (uint32_t)(MC_CALIB_PERIODS - 1U)) {
-        return false;
-    }
+}
+
+/* The offsets, then LOCK from the next period, or FAULT OFFSET. Called
+ * once, with mc->timer already counting the period that took the last
+ * sample. */
+static void mc_calibrate_end(mc_t *mc)
+{
     /* Two divisions per start, not per period: the mean of
      * MC_CALIB_PERIODS <= 32767 int16 samples fits div.sd. */
     mc->offset_a = q15_dsp_divsd(mc->offset_acc_a, (int16_t)MC_CALIB_PERIODS);
@@ -644,15 +663,9 @@ static bool mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
         mc->offset_a = 0;
         mc->offset_b = 0;
         mc_fault(mc, MC_FAULT_OFFSET);
-        return false;
+        return;
     }
-    /* This sample still carried the old offsets: zero the currents the
-     * lock's first period sees. */
-    mc->ia = 0;
-    mc->ib = 0;
-    mc->ic = 0;
     mc_enter_lock(mc);
-    return true;
 }
 
 /* OPEN_LOOP at the end speed: hold it until the estimate is valid, for at
@@ -880,11 +893,11 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 
     /* The loops once for every running state (a single call site, so the
      * compiler inlines the current control into this function), at the
-     * angle the previous period's mc_step_finish prepared (mc_prepare;
-     * a start from CALIBRATE prepares it in mc_enter_lock). */
+     * angle the previous period's mc_step_finish prepared (mc_prepare,
+     * also after the period that ended CALIBRATE). */
     bool control = false;
     if (mc->state == MC_STATE_CALIBRATE) {
-        control = mc_calibrate(mc, in); /* true once it has entered LOCK */
+        mc_calibrate(mc, in);
     } else if (mc->state == MC_STATE_LOCK && mc->timer >= MC_LOCK_PERIODS) {
         mc->i_ref.q = MC_RAMP_CURRENT_Q15;
         mc_enter(mc, MC_STATE_OPEN_LOOP); /* this period still at the lock angle */
@@ -894,6 +907,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
                   mc->state == MC_STATE_CLOSED_LOOP;
     }
     if (control) {
+        mc->outputs_on = true;
         mc->i_ab = clarke_forward(mc->ia, mc->ib);
         mc->theta = mc->theta_next;
         mc_current_control(mc, mc->sc_next, mc->scv_next);
@@ -927,7 +941,13 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         mc_prepare(mc);
     } else {
         /* Off, or a fault raised here (a failed start, a stall, an
-         * overrun) has just turned the outputs off: so does *out, at once. */
+         * overrun) has just turned the outputs off: so does *out, at once.
+         * CALIBRATE ends here once it has its samples (the lock's first
+         * period turns the outputs on). */
+        if (mc->state == MC_STATE_CALIBRATE &&
+            mc->timer == (uint32_t)mc->calib_wait + (uint32_t)MC_CALIB_PERIODS) {
+            mc_calibrate_end(mc);
+        }
         mc_output(mc, out);
     }
 }
@@ -994,13 +1014,20 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    the speed PI at its limit (MC_STALL_TRACK_TIME_S).
  *
  * 3. The circle limit. With lim = round(sqrt(Vmax^2 - Vd^2)), AN1078's q PI
- *    gives Out = clamp(round(U), -lim, lim). A first run against +-Vmax gives
- *    Out1 = clamp(round(U), -Vmax, Vmax). If Out1^2 + Vd^2 <= Vmax^2, then
- *    |Out1| <= sqrt(Vmax^2 - Vd^2), so |Out1| <= lim (an integer below a
- *    real is below its rounding), and either Out1 = round(U) (not clamped,
- *    hence not clamped by lim either) or Out1 = +-Vmax with Vd = 0, lim =
- *    Vmax: in both cases Out1 is AN1078's Out, with the same U, Exc and
- *    integral. Otherwise the integral is restored and the step redone
- *    against +-lim. The square root (and the second PI run) is paid only at
- *    the voltage limit: field weakening's transients, not steady running.
+ *    gives Out = clamp(round(U), -lim, lim). Its square root (one division
+ *    inside, q15_sqrt.h) stands between the d PI and the duty write, so it
+ *    is paid at most once there, and only near the circle:
+ *    - previous period's |V| >= 7/8 Vmax: lim first, one q PI run: Out.
+ *    - otherwise a first run against +-Vmax gives Out1 = clamp(round(U),
+ *      -Vmax, Vmax). If Out1^2 + Vd^2 <= Vmax^2, then |Out1| <=
+ *      sqrt(Vmax^2 - Vd^2), so |Out1| <= lim (an integer below a real is
+ *      below its rounding), and either Out1 = round(U) (not clamped, hence
+ *      not clamped by lim either) or Out1 = +-Vmax with Vd = 0, lim = Vmax:
+ *      in both cases Out1 is Out, with the same U, Exc and integral.
+ *      Otherwise the integral is restored and the step redone against +-lim
+ *      (counted in circle_redos): a jump onto the circle from more than
+ *      1/8 Vmax inside in one period, a transient's exception.
+ *    The redo costs a second q PI run and the square root before the write;
+ *    running at the circle (field weakening, the top speed) costs the
+ *    square root alone (docs/board.md "Timing" has the write instants).
  */

@@ -251,6 +251,8 @@ typedef struct {
     pi_t pi_d, pi_q;
     dq_q15_t i_ref;
     dq_q15_t v_dq;         /* after the circle limit and ripple compensation */
+    uint16_t circle_redos; /* periods the q step was redone at the circle (mc.c note 3),
+                              saturates */
     int16_t speed_target;  /* unramped reference, Q15 speed (from the slow step) */
     int16_t speed_ref;     /* ramped reference, Q15 speed (from the slow step) */
     int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE (from the slow step) */

@@ -9,8 +9,9 @@
  * AN1078 limits Vd first (to +-Vmax, e.g. 0.95 of the SVGen full scale) and
  * gives Vq what is left of the voltage circle:
  *   vq_max = sqrt(Vmax^2 - Vd^2)
- * so |(Vd, Vq)| <= Vmax. Typical use in the core, every period:
- *   pi_set_limits(&pi_q, -vq_max, vq_max) with vq_max = vlimit_vq_max(vd, vmax).
+ * so |(Vd, Vq)| <= Vmax. AN1078's use, every period:
+ *   pi_set_limits(&pi_q, -vq_max, vq_max) with vq_max = vlimit_vq_max(vd, vmax)
+ * (the core pays it only near the circle: firmware/mc.c note 3).
  *
  * vlimit_vq_max(vd, vmax): vmax Q15 (<= 0 gives 0); vd Q15, clamped to
  * [-vmax, vmax] first, so vd = -32768 is harmless. Returns Q15 in 0..vmax.

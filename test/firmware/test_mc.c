@@ -133,9 +133,11 @@ test_start_should_discard_the_first_conversions_calibrate_the_offsets_then_lock(
            (unsigned)MC_CALIB_SKIP_PERIODS, (unsigned)MC_CALIB_PERIODS);
     assert_int_equal(n, (long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS);
     assert_int_equal(st.state, MC_STATE_LOCK);
-    assert_true(out.outputs_on);
-    /* The same raw reading now means zero current. */
+    /* The offsets are formed after that period's duties: the outputs turn
+     * on with the next, where the same raw reading means zero current. */
+    assert_off();
     step_with(f);
+    assert_true(out.outputs_on);
     assert_int_equal(st.ia, 0);
     assert_int_equal(st.ib, 0);
 }
@@ -175,13 +177,17 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
 {
     (void)state;
     run_to(MC_STATE_LOCK);
-    long n = 0;
-    while (st.state == MC_STATE_LOCK) {
+    assert_off(); /* the period that ended CALIBRATE; the lock's first is the next */
+    long n = 0;   /* periods that end in LOCK with the outputs on */
+    for (;;) {
+        step_with(nominal());
+        if (st.state != MC_STATE_LOCK) {
+            break;
+        }
         assert_int_equal(st.theta_est, 0);
         assert_int_equal(st.iq_ref, MC_LOCK_CURRENT_Q15);
         assert_int_equal(st.id_ref, 0);
         assert_true(out.outputs_on);
-        step_with(nominal());
         n++;
     }
     printf("measured: lock lasted %ld periods (MC_LOCK_PERIODS = %u)\n", n,
@@ -198,6 +204,33 @@ static void test_lock_should_drive_the_current_towards_its_reference(void **stat
     steps(50, nominal());
     assert_true(st.vq > 0);
     assert_int_equal(st.vd, 0);
+}
+
+/* The circle limit (mc.c note 3) against currents that jump by a quarter of
+ * full scale every few periods, so that the vector jumps onto the circle
+ * from inside: |V| never leaves it (by more than the limit's rounding), and
+ * the jumps are the periods redone (counted in circle_redos). */
+static void test_voltage_circle_should_hold_when_vd_jumps_between_periods(void **state)
+{
+    (void)state;
+    run_to(MC_STATE_LOCK);
+    double over = -1e9;
+    long near = 0;
+    for (long k = 0; k < 4000; k++) {
+        int16_t a = (int16_t)(((k / 3) % 2 == 0) ? 8192 : -8192);
+        int16_t bb = (int16_t)(((k / 7) % 2 == 0) ? 8192 : -8192);
+        step_with(frame(a, bb, MC_VBUS_NOMINAL_Q15, 0));
+        assert_int_equal(st.state, MC_STATE_LOCK);
+        double m = hypot((double)mc.pi_d.out, (double)mc.pi_q.out);
+        over = fmax(over, m - MC_VMAX_Q15);
+        near += (m > 0.875 * MC_VMAX_Q15);
+        assert_true(m <= MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
+    }
+    printf("measured: %ld of 4000 periods with |V| >= 7/8 Vmax, |V| - Vmax at most %.2f LSB, "
+           "%u redone at the circle\n",
+           near, over, (unsigned)mc.circle_redos);
+    assert_true(near > 500);
+    assert_true(mc.circle_redos > 0U);
 }
 
 static void test_open_loop_should_advance_the_angle_at_constant_acceleration(void **state)
@@ -750,6 +783,8 @@ int main(void)
         cmocka_unit_test_setup(
             test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time, setup),
         cmocka_unit_test_setup(test_lock_should_drive_the_current_towards_its_reference, setup),
+        cmocka_unit_test_setup(test_voltage_circle_should_hold_when_vd_jumps_between_periods,
+                               setup),
         cmocka_unit_test_setup(test_open_loop_should_advance_the_angle_at_constant_acceleration,
                                setup),
         cmocka_unit_test_setup(test_open_loop_should_retry_a_failed_start_then_fault, setup),

@@ -9,6 +9,7 @@
 
 #include "mc_bench.h"
 #include "mc_internal.h"
+#include "vlimit.h"
 
 static mc_bench_t b;
 
@@ -243,22 +244,67 @@ static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_sat
     /* A weak bus and the top speed: the current loops run into the limit. */
     b.rig.inv.prm.vbus_v = 17.0;
     set_pot_rpm(SPEED_REF_MAX_RPM);
-    err_stats_t e;
-    err_stats_init(&e);
+    double over = -1e9;
     long at_limit = 0;
+    uint16_t redos0 = b.mc.circle_redos;
     for (long k = 0; k < PERIODS(3.0) && b.st.state == MC_STATE_CLOSED_LOOP; k++) {
         mc_bench_step(&b);
         double m = hypot((double)b.mc.pi_d.out, (double)b.mc.pi_q.out);
-        err_stats_add(&e, m - MC_VMAX_Q15, (double)k);
-        assert_true(m <= MC_VMAX_Q15 + 1.0);
+        over = fmax(over, m - MC_VMAX_Q15);
+        assert_true(m <= MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
         assert_true(abs(b.mc.pi_d.out) <= MC_VMAX_Q15);
         if (m > MC_VMAX_Q15 - 2.0) {
             at_limit++;
         }
     }
-    printf("measured: %ld periods at the voltage limit (|V| within 2 LSB of %d)\n", at_limit,
-           MC_VMAX_Q15);
+    printf("measured: %ld periods at the voltage limit (|V| from 2 LSB below %d), |V| - Vmax at "
+           "most %.2f LSB, %d redone at the circle\n",
+           at_limit, MC_VMAX_Q15, over, (int)(uint16_t)(b.mc.circle_redos - redos0));
     assert_true(at_limit > 1000);
+}
+
+/* Near the voltage circle the q limit is formed before the q PI, which then
+ * runs once (mc.c note 3). Held at the circle (the top speed against more
+ * load than it leaves, then a bus step), every period whose q output sits
+ * at its limit must be at AN1078's exact limit, and the redo (a second q PI
+ * run before the duties) must stay a transient's exception. The 0.1 % bound
+ * is this test's choice: a period redone writes its duties later
+ * (docs/board.md "Timing"). */
+static void test_at_the_voltage_circle_the_q_limit_should_be_exact_without_a_redo(void **state)
+{
+    (void)state;
+    start_at(SPEED_REF_MAX_RPM);
+    b.rig.plant.load.active_nm = 0.02;
+    run(4.0);
+    long clamped = 0, periods = 0;
+    double lo = 1e9, hi = -1e9, sum = 0.0;
+    uint16_t redos0 = b.mc.circle_redos;
+    for (int phase = 0; phase < 2; phase++) {
+        if (phase == 1) {
+            b.rig.inv.prm.vbus_v = 22.0; /* a bus step: a transient on the circle */
+        }
+        for (long k = 0; k < PERIODS(1.0); k++) {
+            mc_bench_step(&b);
+            assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
+            periods++;
+            q15_t vq = b.mc.pi_q.out;
+            if (vq == b.mc.pi_q.p.out_max || vq == b.mc.pi_q.p.out_min) {
+                double m = hypot((double)b.mc.pi_d.out, (double)vq);
+                lo = fmin(lo, m - MC_VMAX_Q15);
+                hi = fmax(hi, m - MC_VMAX_Q15);
+                sum += m - MC_VMAX_Q15;
+                assert_int_equal(abs(vq), vlimit_vq_max(b.mc.pi_d.out, MC_VMAX_Q15));
+                clamped++;
+            }
+        }
+    }
+    long redos = (long)(uint16_t)(b.mc.circle_redos - redos0);
+    printf("measured: %ld of %ld periods with Vq at its limit, |V| - Vmax %.2f .. %.2f LSB (mean "
+           "%.2f); %ld redone at the circle\n",
+           clamped, periods, lo, hi, sum / (double)clamped, redos);
+    assert_true(clamped > periods / 4);
+    assert_true(lo >= -0.5 && hi <= 0.5); /* AN1078's rounded limit */
+    assert_true(redos * 1000L <= periods);
 }
 
 /* ---- the shunt window ---------------------------------------------------------------- */
@@ -615,6 +661,7 @@ int main(void)
         cmocka_unit_test(test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target),
         cmocka_unit_test(test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus),
         cmocka_unit_test(test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate),
+        cmocka_unit_test(test_at_the_voltage_circle_the_q_limit_should_be_exact_without_a_redo),
         cmocka_unit_test(test_the_measured_phases_should_keep_their_shunt_window_in_every_state),
         cmocka_unit_test(test_amplifiers_slower_than_the_window_should_show_as_short_samples),
         cmocka_unit_test(test_stall_should_fault_within_50_ms_when_the_rotor_locks),
