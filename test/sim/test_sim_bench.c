@@ -11,7 +11,8 @@
 
 static sim_inverter_params_t mclv_inv(void)
 {
-    sim_inverter_params_t p = {24.0, 0.0, 0.0, 2e-6, 20000.0, 2000.0, 0.05};
+    sim_inverter_params_t p = {
+        24.0, 0.0, 0.0, 2e-6, 20000.0, 2000.0, 0.05, SIM_INV_AVERAGED, SIM_DT_LINEAR, 0.0, 0.0};
     return p;
 }
 
@@ -62,6 +63,101 @@ static void test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_curren
     sim_inverter_init(&inv, &prm, 1.92e-3);
     printf("measured: automatic dead-time band for the Hurst on 24 V = %.4f A\n", inv.i_band_a);
     assert_true(fabs(inv.i_band_a - 24.0 / (12.0 * 1.92e-3 * 20000.0)) < 1e-12);
+}
+
+/* Mean pin voltage of the switching model over one period, integrated
+ * exactly between its edges (the pins are constant in between). */
+static void switching_mean(const sim_inverter_t *inv, const double i[3], double mean[3])
+{
+    double ts = 1.0 / inv->prm.pwm_hz, edge[SIM_INV_MAX_EDGES + 1], a = 0.0;
+    int n = sim_inverter_edges(inv, 0.0, ts, edge), k, j;
+    mean[0] = mean[1] = mean[2] = 0.0;
+    for (k = 1; k < n; k++) {
+        assert_true(edge[k] >= edge[k - 1]); /* ascending */
+    }
+    edge[n] = ts;
+    for (k = 0; k <= n; k++) {
+        double v[3];
+        sim_inverter_pins_at(inv, 24.0, i, a, v);
+        for (j = 0; j < 3; j++) {
+            mean[j] += v[j] * (edge[k] - a) / ts;
+        }
+        a = edge[k];
+    }
+}
+
+/* The switching model against the averaged one's hard-sign shape, which
+ * is its period mean when the current keeps its sign: (d - Td/Ts s) Vbus.
+ * Diode drops add 2 Td/Ts Vf of loss; a high pulse shorter than the dead
+ * time vanishes; 0 and 100 % have no edge. */
+static void test_switching_inverter_should_average_to_the_hard_sign_dead_time(void **state)
+{
+    sim_inverter_params_t prm = mclv_inv();
+    sim_inverter_t inv, avg;
+    uint16_t duty[3] = {1300, 700, 1000};
+    double i[3] = {1.0, -0.4, -0.6}, m[3], v[3];
+    int k;
+    (void)state;
+    prm.model = SIM_INV_SWITCHING;
+    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_latch(&inv, duty, true);
+    prm.model = SIM_INV_AVERAGED;
+    prm.dt_shape = SIM_DT_HARD;
+    sim_inverter_init(&avg, &prm, 1.92e-3);
+    sim_inverter_latch(&avg, duty, true);
+    switching_mean(&inv, i, m);
+    sim_inverter_pins(&avg, 24.0, i, v);
+    for (k = 0; k < 3; k++) {
+        double want = ((double)duty[k] / 2000.0 - 0.04 * ((i[k] > 0.0) ? 1.0 : -1.0)) * 24.0;
+        printf("measured: phase %d: switching mean %.6f V, hard-sign averaged %.6f V\n", k, m[k],
+               v[k]);
+        assert_true(fabs(m[k] - want) < 1e-9);
+        assert_true(fabs(v[k] - want) < 1e-9);
+    }
+    /* diode drop: the two dead times of a current into the motor at -Vf */
+    inv.prm.v_diode_v = 0.7;
+    switching_mean(&inv, i, m);
+    assert_true(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.08 * 0.7)) < 1e-9);
+    assert_true(fabs(m[1] - ((700.0 / 2000.0 + 0.04) * 24.0 + 0.08 * 0.7)) < 1e-9);
+    /* switch resistance: i r_on off the pin while a switch conducts (92 %) */
+    inv.prm.v_diode_v = 0.0;
+    inv.prm.r_on_ohm = 0.1;
+    switching_mean(&inv, i, m);
+    assert_true(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.92 * 0.1)) < 1e-9);
+    /* a pulse shorter than the dead time (h = 1 us < 2 us), and no edges */
+    {
+        uint16_t d2[3] = {40, 0, 2000};
+        inv.prm.r_on_ohm = 0.0;
+        sim_inverter_latch(&inv, d2, true);
+        assert_int_equal(sim_inverter_edges(&inv, 0.0, 50e-6, (double[SIM_INV_MAX_EDGES]){0}), 4);
+        switching_mean(&inv, i, m);
+        assert_true(fabs(m[0]) < 1e-9);        /* high never on, low diode in the gaps */
+        assert_true(fabs(m[1]) < 1e-9);        /* low side all period */
+        assert_true(fabs(m[2] - 24.0) < 1e-9); /* high side all period */
+    }
+}
+
+/* The averaged model's three dead-time shapes near zero current. */
+static void test_averaged_inverter_should_offer_three_dead_time_shapes(void **state)
+{
+    sim_inverter_params_t prm = mclv_inv(); /* band 0.05 A */
+    sim_inverter_t inv;
+    uint16_t duty[3] = {1000, 1000, 1000};
+    double i[3] = {0.025, -0.0125, -0.0125}, v[3];
+    const double half = 0.5 * 24.0, err = 0.04 * 24.0;
+    (void)state;
+    prm.dt_shape = SIM_DT_HARD;
+    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_latch(&inv, duty, true);
+    sim_inverter_pins(&inv, 24.0, i, v);
+    assert_true(fabs(v[0] - (half - err)) < 1e-12);
+    assert_true(fabs(v[1] - (half + err)) < 1e-12);
+    inv.prm.dt_shape = SIM_DT_RIPPLE; /* (2 / pi) asin(0.5) = 1/3 */
+    sim_inverter_pins(&inv, 24.0, i, v);
+    assert_true(fabs(v[0] - (half - err / 3.0)) < 1e-12);
+    inv.prm.dt_shape = SIM_DT_LINEAR;
+    sim_inverter_pins(&inv, 24.0, i, v);
+    assert_true(fabs(v[0] - (half - err * 0.5)) < 1e-12);
 }
 
 static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **state)
@@ -333,6 +429,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(
             test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_current_sign),
+        cmocka_unit_test(test_switching_inverter_should_average_to_the_hard_sign_dead_time),
+        cmocka_unit_test(test_averaged_inverter_should_offer_three_dead_time_shapes),
         cmocka_unit_test(test_inverter_should_float_the_star_point_and_ripple_the_bus),
         cmocka_unit_test(test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale),
         cmocka_unit_test(test_adc_noise_should_have_the_requested_sigma_and_zero_mean),

@@ -3,6 +3,7 @@
 #include "test_support.h"
 
 #include <math.h>
+#include <string.h>
 #include <stdio.h>
 
 #include "sim_profiles.h"
@@ -40,6 +41,7 @@ static foc_result_t run_ideal_foc(double deadtime_s, double rpm, double iq_ref, 
     foc_result_t r;
     long n, N = 8000, n_avg = 0;
 
+    memset(&p, 0, sizeof(p));
     sim_motor_params_from_profile(sim_motor_profile("hurst"), &p.motor);
     p.motor.j_kgm2 = 1e3; /* speed held */
     p.inv.vbus_v = 24.0;

@@ -159,6 +159,7 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
 {
     sim_rig_params_t rp;
     memset(s, 0, sizeof(*s));
+    memset(&rp, 0, sizeof(rp)); /* the averaged inverter, linear dead-time band, no drops */
     s->cfg = *cfg;
     s->mp = sim_motor_profile(cfg->motor);
     s->bp = sim_board_profile(cfg->board);
@@ -439,7 +440,8 @@ void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *na
         if (e->kind == SIM_EV_END) {
             break;
         }
-        if (e->kind == SIM_EV_ZOOM || e->kind == SIM_EV_NOISE || e->kind == SIM_EV_DEADTIME) {
+        if (e->kind == SIM_EV_ZOOM || e->kind == SIM_EV_NOISE || e->kind == SIM_EV_DEADTIME ||
+            e->kind == SIM_EV_INVERTER || e->kind == SIM_EV_DEADTIME_SHAPE) {
             continue; /* not a change of operating point */
         }
         if (s->n_seg > 0 && s->seg[s->n_seg - 1].t0_s == e->t_s) {

@@ -1,4 +1,5 @@
-/* sim_inverter.h - averaged three-phase inverter with dead time and a DC bus with ripple. */
+/* sim_inverter.h - three-phase inverter (averaged or switching) with dead time, DC bus with ripple.
+ */
 #ifndef SIM_INVERTER_H
 #define SIM_INVERTER_H
 
@@ -19,7 +20,37 @@
  * The star point floats: phase-to-neutral voltages are the pin voltages minus
  * their mean. With all switches off the pins are set by the free-wheeling
  * diodes (handled by sim_rig.c).
+ *
+ * The shape of s(i) (dt_shape, note 2 in sim_inverter.c):
+ *   SIM_DT_LINEAR  clamp(i / i_band, -1, 1)            (the default)
+ *   SIM_DT_HARD    sign(i): the dead-time error at full size down to 0 A
+ *   SIM_DT_RIPPLE  (2 / pi) asin(clamp(i / i_band)): sign(i + a sin phi)
+ *                  averaged over the phase phi of a ripple of peak a = i_band
+ *
+ * Switching model (model = SIM_INV_SWITCHING): the pins are evaluated at
+ * each instant of the period instead (sim_inverter_pin_at), with the
+ * switching edges as integration boundaries (sim_inverter_edges). Centre-
+ * aligned, as the dsPIC's MCPWM: with h = d Ts / 2, phase k's high switch
+ * is on for t < h and from Ts - h + Td (it carries on into the next period),
+ * its low switch from h + Td to Ts - h; between, both are off for a dead
+ * time and the diode of the rail the current flows from conducts (current
+ * into the motor: the low diode, pin at -Vf; out of it: the high diode,
+ * Vbus + Vf), by the sign of the current at the edge that began the dead
+ * time. A switch that conducts drops i r_on. A high pulse shorter than the
+ * dead time (h < Td) vanishes; so does a low one (Ts - 2h < Td). Duty 0 and
+ * 100 % have no edge.
  */
+
+typedef enum {
+    SIM_INV_AVERAGED = 0, /* period-averaged pin voltages (the default) */
+    SIM_INV_SWITCHING = 1 /* every edge of the period, dead time and diodes */
+} sim_inv_model_t;
+
+typedef enum {
+    SIM_DT_LINEAR = 0, /* the averaged model's dead-time shape, see above */
+    SIM_DT_HARD = 1,
+    SIM_DT_RIPPLE = 2
+} sim_dt_shape_t;
 
 typedef struct {
     double vbus_v;     /* DC bus level, V */
@@ -29,6 +60,10 @@ typedef struct {
     double pwm_hz;     /* 1/Ts, Hz */
     double duty_max;   /* duty count of 100 % (PWM_DUTY_MAX) */
     double i_band_a;   /* dead-time linear band, A; <= 0: automatic, see sim_inverter_init */
+    int model;         /* sim_inv_model_t */
+    int dt_shape;      /* sim_dt_shape_t, averaged model only */
+    double r_on_ohm;   /* switching model: conducting switch's resistance, ohm (0: none) */
+    double v_diode_v;  /* switching model: diode forward drop, V (0: none) */
 } sim_inverter_params_t;
 
 typedef struct {
@@ -51,6 +86,18 @@ double sim_inverter_vbus(const sim_inverter_t *inv, double t_s);
 /* Pin voltages vs the negative rail (V) with the outputs on. */
 void sim_inverter_pins(const sim_inverter_t *inv, double vbus, const double i_abc[3],
                        double v_pin[3]);
+
+/* Switching model: the edges of the latched duties strictly inside
+ * (t0, t1), times within the period (0..Ts), s, ascending, at most
+ * SIM_INV_MAX_EDGES. Returns their count. */
+#define SIM_INV_MAX_EDGES 15
+int sim_inverter_edges(const sim_inverter_t *inv, double t0, double t1, double edge[]);
+
+/* Switching model: pin voltages vs the negative rail (V) with the outputs on,
+ * over the interval that starts at t (within the period, s) and ends at the
+ * next edge; i_abc, the currents at its start, give the diodes' rails. */
+void sim_inverter_pins_at(const sim_inverter_t *inv, double vbus, const double i_abc[3], double t,
+                          double v_pin[3]);
 
 /* Phase-to-neutral alpha-beta voltage of three pin voltages (floating star). */
 void sim_pins_to_ab(const double v_pin[3], double *v_alpha, double *v_beta);

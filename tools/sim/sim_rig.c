@@ -209,20 +209,52 @@ static void diode_step(sim_rig_t *r, double vbus, double h)
     project_floating(r);
 }
 
-/* n sub-steps of h from time t0 with the latched duties. */
-static void run_span(sim_rig_t *r, double t0, double h, int n)
+/* One sub-step of h with the outputs on and the pins at v. */
+static void on_step(sim_rig_t *r, const double v[3], double h)
 {
+    double va, vb;
+    sim_pins_to_ab(v, &va, &vb);
+    sim_plant_step(&r->plant, va, vb, h, false);
+    r->was_on = true;
+}
+
+/* The latched duties from tau0 to tau1 within the period (s), n sub-steps;
+ * the period started at t_start (absolute, s). The switching model splits
+ * the span at every edge as well, no sub-step longer than the averaged
+ * one's (sim_inverter.h). */
+static void run_span(sim_rig_t *r, double t_start, double tau0, double tau1, int n)
+{
+    double h = (tau1 - tau0) / (double)n;
     int s, k;
+    if (r->inv.on && r->inv.prm.model == SIM_INV_SWITCHING) {
+        double edge[SIM_INV_MAX_EDGES + 1];
+        int ne = sim_inverter_edges(&r->inv, tau0, tau1, edge);
+        double a = tau0;
+        edge[ne] = tau1;
+        for (k = 0; k <= ne; k++) {
+            double len = edge[k] - a;
+            int m = (int)ceil(len / h - 1e-9);
+            m = (m < 1) ? 1 : m;
+            for (s = 0; s < m; s++) {
+                double t = a + len * (double)s / (double)m;
+                double vbus = sim_inverter_vbus(&r->inv, t_start + t + 0.5 * len / (double)m);
+                double i[3], v[3];
+                sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
+                sim_inverter_pins_at(&r->inv, vbus, i, t, v);
+                on_step(r, v, len / (double)m);
+            }
+            a = edge[k];
+        }
+        return;
+    }
     for (s = 0; s < n; s++) {
-        double vbus = sim_inverter_vbus(&r->inv, t0 + ((double)s + 0.5) * h);
+        double vbus = sim_inverter_vbus(&r->inv, t_start + tau0 + ((double)s + 0.5) * h);
         double i[3];
         sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
         if (r->inv.on) {
-            double v[3], va, vb;
+            double v[3];
             sim_inverter_pins(&r->inv, vbus, i, v);
-            sim_pins_to_ab(v, &va, &vb);
-            sim_plant_step(&r->plant, va, vb, h, false);
-            r->was_on = true;
+            on_step(r, v, h);
         } else {
             if (r->was_on) {
                 for (k = 0; k < 3; k++) {
@@ -248,10 +280,10 @@ void sim_rig_advance(sim_rig_t *r, const uint16_t duty[3], bool on)
         n1 = (n1 < 1) ? 1 : ((n1 > r->substeps - 1) ? r->substeps - 1 : n1);
         n2 = r->substeps - n1;
     }
-    run_span(r, r->t + r->sample_at * r->ts, rest * r->ts / (double)n1, n1);
+    run_span(r, r->t, r->sample_at * r->ts, r->ts, n1);
     sim_inverter_latch(&r->inv, duty, on);
     if (n2 > 0) {
-        run_span(r, r->t + r->ts, r->sample_at * r->ts / (double)n2, n2);
+        run_span(r, r->t + r->ts, 0.0, r->sample_at * r->ts, n2);
     }
     if (r->pot_rate > 0.0) {
         double step = r->pot_rate * r->ts;
@@ -319,6 +351,12 @@ bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
             return true;
         case SIM_EV_DEADTIME:
             r->inv.prm.deadtime_s = ev->v1 * 1e-6;
+            return true;
+        case SIM_EV_INVERTER:
+            r->inv.prm.model = (int)ev->v1;
+            return true;
+        case SIM_EV_DEADTIME_SHAPE:
+            r->inv.prm.dt_shape = (int)ev->v1;
             return true;
         case SIM_EV_NOISE:
             r->adc.prm.noise_codes = ev->v1;

@@ -29,6 +29,8 @@ static const ev_desc_t EVENTS[] = {
     {"current_spike", SIM_EV_CURRENT_SPIKE, 1, 2},
     {"hw_fault", SIM_EV_HW_FAULT, 0, 0},
     {"deadtime", SIM_EV_DEADTIME, 1, 1},
+    {"inverter", SIM_EV_INVERTER, 1, 1},
+    {"deadtime_shape", SIM_EV_DEADTIME_SHAPE, 1, 1},
     {"noise", SIM_EV_NOISE, 1, 1},
     {"zoom", SIM_EV_ZOOM, 0, 1},
     {"mark", SIM_EV_MARK, 0, 0},
@@ -60,6 +62,20 @@ static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double
             *out = SIM_SPEED_MIN;
             return 0;
         }
+    }
+    if (kind == SIM_EV_INVERTER || kind == SIM_EV_DEADTIME_SHAPE) {
+        static const char *const models[] = {"averaged", "switching"};
+        static const char *const shapes[] = {"linear", "hard", "ripple"};
+        const char *const *names = (kind == SIM_EV_INVERTER) ? models : shapes;
+        int n = (kind == SIM_EV_INVERTER) ? 2 : 3;
+        int k;
+        for (k = 0; k < n; k++) {
+            if (strcmp(tok, names[k]) == 0) {
+                *out = (double)k;
+                return 0;
+            }
+        }
+        return -1;
     }
     *out = strtod(tok, &endp);
     return (endp == tok || *endp != '\0') ? -1 : 0;

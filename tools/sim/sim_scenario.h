@@ -50,6 +50,8 @@ typedef enum {
     SIM_EV_CURRENT_SPIKE,
     SIM_EV_HW_FAULT,
     SIM_EV_DEADTIME,
+    SIM_EV_INVERTER,       /* averaged | switching (sim_inv_model_t) */
+    SIM_EV_DEADTIME_SHAPE, /* linear | hard | ripple (sim_dt_shape_t) */
     SIM_EV_NOISE,
     SIM_EV_ZOOM,
     SIM_EV_MARK,
