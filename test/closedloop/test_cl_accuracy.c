@@ -136,6 +136,41 @@ static void test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differ
     assert_true(fabs(cl_ang_mean(&w)) > 0.3);
 }
 
+/* The same core on the switching-level inverter (sim_inverter.h): every
+ * edge, the diodes in the dead times, the PWM ripple in the samples. Near
+ * no load the angle bias is larger than on the averaged model (+0.67 deg
+ * at 1,000 rpm when written, against +0.02): the dead-time error the
+ * core compensates is not the averaged band's there. Held to 1 deg here
+ * as a regression guard; the 0.3 deg of the averaged model is issue 13's
+ * goal for this inverter too. */
+static void test_angle_bias_on_the_switching_inverter(void **state)
+{
+    static const double rpm[3] = {1000.0, 2000.0, 2000.0};
+    static const double load[3] = {0.0, 0.0, 0.05};
+    (void)state;
+    for (int k = 0; k < 3; k++) {
+        static simcore_t s;
+        simcore_cfg_t cfg;
+        cl_window_t w;
+        simcore_cfg_default(&cfg);
+        cfg.theta0_rad = 1.0;
+        cl_setup(&s, &cfg, "hurst", "mclv");
+        cl_event(&s, SIM_EV_INVERTER, (double)SIM_INV_SWITCHING, 0.0);
+        cl_start_and_reach(&s, rpm[k], 10.0);
+        if (load[k] > 0.0) {
+            cl_event(&s, SIM_EV_LOAD, load[k], 0.0);
+        }
+        cl_run(&s, 0.5);
+        cl_measure(&s, 1.0, &w);
+        printf("measured: switching inverter, %4.0f rpm, load %.3f N m: speed error %+.3f %%, "
+               "angle error mean %+.2f deg, rms %.2f deg, max %.2f deg\n",
+               rpm[k], load[k], cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max);
+        assert_false(w.left_closed_loop);
+        assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
+        assert_true(fabs(cl_ang_mean(&w)) <= 1.0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -150,6 +185,7 @@ int main(void)
         cmocka_unit_test(test_angle_bias_should_be_small_at_the_top_speed),
         cmocka_unit_test(test_angle_bias_should_be_small_at_the_top_speed_under_load),
         cmocka_unit_test(test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differs),
+        cmocka_unit_test(test_angle_bias_on_the_switching_inverter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
