@@ -510,22 +510,17 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
                 MC_VNEAR_SQ - q15_dsp_mulss(mc->pi_d.out, mc->pi_d.out);
     dq_q15_t v;
     v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
-    if (near) {
-        q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
+    q15_t vq_max = near ? vlimit_vq_max(v.d, MC_VMAX_Q15) : MC_VMAX_Q15;
+    q31_t sum_q = mc->pi_q.sum;
+    pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+    v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
+    if (!near && q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
+        vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
+        mc->pi_q.sum = sum_q;
         pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
         v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-    } else {
-        q31_t sum_q = mc->pi_q.sum;
-        pi_set_limits(&mc->pi_q, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15);
-        v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-        if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
-            q15_t vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
-            mc->pi_q.sum = sum_q;
-            pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
-            v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-            if (mc->circle_redos != UINT16_MAX) {
-                mc->circle_redos++;
-            }
+        if (mc->circle_redos != UINT16_MAX) {
+            mc->circle_redos++;
         }
     }
 #if defined(ENVOLTRIPPLE)

@@ -21,10 +21,12 @@
  * SPEED_REF_MIN_RPM (its ratio to SPEED_REF_MAX_RPM is printed).
  */
 /* One steady-state window at rpm and load, the plant sampling at sample_at
- * of the period (< 0: the chip's, as the core assumes). Another instant
- * than the chip's gets ideal current sensors: low-side shunts read nothing
- * at the period start (sim_rig.h). */
-static void measure_speed(double rpm, double load_nm, double sample_at, cl_window_t *w)
+ * of the period (< 0: the chip's, as the core assumes), on the inverter
+ * model given (sim_inv_model_t). Another instant than the chip's gets
+ * ideal current sensors: low-side shunts read nothing at the period start
+ * (sim_rig.h). */
+static void measure_speed(double rpm, double load_nm, double sample_at, int inverter,
+                          cl_window_t *w)
 {
     static simcore_t s;
     simcore_cfg_t cfg;
@@ -35,6 +37,7 @@ static void measure_speed(double rpm, double load_nm, double sample_at, cl_windo
         cfg.amp_tau_s = 0.0;
     }
     cl_setup(&s, &cfg, "hurst", "mclv");
+    cl_event(&s, SIM_EV_INVERTER, (double)inverter, 0.0);
     cl_start_and_reach(&s, rpm, 10.0);
     if (load_nm > 0.0) {
         cl_event(&s, SIM_EV_LOAD, load_nm, 0.0);
@@ -46,7 +49,7 @@ static void measure_speed(double rpm, double load_nm, double sample_at, cl_windo
 static void check_speed(double rpm, double load_nm, double ang_max_deg)
 {
     cl_window_t w;
-    measure_speed(rpm, load_nm, -1.0, &w);
+    measure_speed(rpm, load_nm, -1.0, SIM_INV_AVERAGED, &w);
     printf("measured: %5.0f rpm, load %.3f N m: speed error %+.3f %% (true %.2f, ref %.2f, "
            "est %.2f rpm), angle error mean %+.2f deg, rms %.2f deg, max %.2f deg, "
            "closed loop throughout: %s\n",
@@ -128,7 +131,7 @@ static void test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differ
 {
     cl_window_t w;
     (void)state;
-    measure_speed(2000.0, 0.05, 0.0, &w);
+    measure_speed(2000.0, 0.05, 0.0, SIM_INV_AVERAGED, &w);
     printf("measured: 2000 rpm, load 0.050 N m, plant sampling at the period start (core: %.2f): "
            "angle error mean %+.2f deg\n",
            (double)MC_SAMPLE_AT, cl_ang_mean(&w));
@@ -149,19 +152,8 @@ static void test_angle_bias_on_the_switching_inverter(void **state)
     static const double load[3] = {0.0, 0.0, 0.05};
     (void)state;
     for (int k = 0; k < 3; k++) {
-        static simcore_t s;
-        simcore_cfg_t cfg;
         cl_window_t w;
-        simcore_cfg_default(&cfg);
-        cfg.theta0_rad = 1.0;
-        cl_setup(&s, &cfg, "hurst", "mclv");
-        cl_event(&s, SIM_EV_INVERTER, (double)SIM_INV_SWITCHING, 0.0);
-        cl_start_and_reach(&s, rpm[k], 10.0);
-        if (load[k] > 0.0) {
-            cl_event(&s, SIM_EV_LOAD, load[k], 0.0);
-        }
-        cl_run(&s, 0.5);
-        cl_measure(&s, 1.0, &w);
+        measure_speed(rpm[k], load[k], -1.0, SIM_INV_SWITCHING, &w);
         printf("measured: switching inverter, %4.0f rpm, load %.3f N m: speed error %+.3f %%, "
                "angle error mean %+.2f deg, rms %.2f deg, max %.2f deg\n",
                rpm[k], load[k], cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max);

@@ -148,12 +148,27 @@ void sim_inverter_pins_at(const sim_inverter_t *inv, double vbus, const double i
             v_pin[k] = vbus - i * ron;
         } else if (lo) {
             v_pin[k] = -i * ron;
-        } else if (i > 0.0) {
+        } else if (i >= 0.0) {
             v_pin[k] = -inv->prm.v_diode_v; /* into the motor: the low diode */
         } else {
             v_pin[k] = vbus + inv->prm.v_diode_v;
         }
     }
+}
+
+double sim_inverter_low_conduction(const sim_inverter_t *inv, int k, double t, double i)
+{
+    double ts = 1.0 / inv->prm.pwm_hz;
+    double h = half_on(inv, k);
+    double on;
+    if (h < 0.0) {
+        return ts; /* no edge: the low side conducts all period */
+    }
+    if (h >= 0.5 * ts || t < h || t >= ts - h) {
+        return 0.0; /* the high switch or its dead time before: not the low leg */
+    }
+    on = t - h - ((i >= 0.0) ? 0.0 : inv->prm.deadtime_s);
+    return (on > 0.0) ? on : 0.0;
 }
 
 void sim_pins_to_ab(const double v_pin[3], double *v_alpha, double *v_beta)

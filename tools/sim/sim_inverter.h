@@ -99,6 +99,13 @@ int sim_inverter_edges(const sim_inverter_t *inv, double t0, double t1, double e
 void sim_inverter_pins_at(const sim_inverter_t *inv, double vbus, const double i_abc[3], double t,
                           double v_pin[3]);
 
+/* How long phase k's low leg (its switch, or for a current i >= 0 into the
+ * motor its diode from the high switch's turn-off) has carried the phase
+ * current at time t within the period, s; 0 if the high side holds the pin
+ * then. The edges are those of sim_inverter_edges; used for the shunt
+ * window in both models (sim_rig.h). */
+double sim_inverter_low_conduction(const sim_inverter_t *inv, int k, double t, double i);
+
 /* Phase-to-neutral alpha-beta voltage of three pin voltages (floating star). */
 void sim_pins_to_ab(const double v_pin[3], double *v_alpha, double *v_beta);
 

@@ -41,23 +41,6 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
     r->vbus_sampled = sim_inverter_vbus(&r->inv, 0.0);
 }
 
-/* How long phase k's shunt has carried the phase current i at the sample
- * (sim_rig.h, the shunt window), s; 0 if its low side is off then. */
-static double shunt_conduction(const sim_rig_t *r, int k, double i)
-{
-    double d = (double)r->inv.duty[k] / r->inv.prm.duty_max;
-    double t_s = r->sample_at * r->ts;
-    double t_off = 0.5 * d * r->ts; /* high side off (up-count) */
-    if (r->inv.duty[k] == 0U) {
-        return r->ts; /* no edge: the low side conducts all period */
-    }
-    if (d >= 1.0 || t_s >= r->ts - t_off) {
-        return 0.0; /* never on, or off again before the sample */
-    }
-    double t = t_s - t_off - ((i >= 0.0) ? 0.0 : r->inv.prm.deadtime_s);
-    return (t > 0.0) ? t : 0.0;
-}
-
 void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
 {
     double ia, ib, ic;
@@ -66,8 +49,9 @@ void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
     r->i_abc[1] = ib;
     r->i_abc[2] = ic;
     if (r->inv.on && r->amp_tau_s > 0.0) {
-        double ta = shunt_conduction(r, 0, ia);
-        double tb = shunt_conduction(r, 1, ib);
+        double t_s = r->sample_at * r->ts;
+        double ta = sim_inverter_low_conduction(&r->inv, 0, t_s, ia);
+        double tb = sim_inverter_low_conduction(&r->inv, 1, t_s, ib);
         double t = (ta < tb) ? ta : tb;
         if (t < r->t_cond_min_s) {
             r->t_cond_min_s = t;
