@@ -479,6 +479,15 @@ Q15_INLINE void mc_duty_set(mc_t *mc, uint8_t k, int16_t d, int16_t dt, int16_t 
     mc->eff[k] = (int16_t)(d - dt);
 }
 
+/* The q current PI's step against +-vq_max (the circle limit, note 3). Its
+ * three call sites are the three ways to that limit: each inlined, so the
+ * near-circle path does not pay for saving the integral the redo needs. */
+Q15_INLINE q15_t mc_q_step(mc_t *mc, q15_t ref_q, q15_t vq_max)
+{
+    pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
+    return pi_update(&mc->pi_q, ref_q, mc->i_dq.q);
+}
+
 /* Current loops and modulation, for one period with the outputs on, at
  * the angle mc_prepare made ready: mc->theta (this sample's), its
  * sin/cos sc and the voltage's sin/cos scv. */
@@ -510,17 +519,17 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
                 MC_VNEAR_SQ - q15_dsp_mulss(mc->pi_d.out, mc->pi_d.out);
     dq_q15_t v;
     v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
-    q15_t vq_max = near ? vlimit_vq_max(v.d, MC_VMAX_Q15) : MC_VMAX_Q15;
-    q31_t sum_q = mc->pi_q.sum;
-    pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
-    v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-    if (!near && q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
-        vq_max = vlimit_vq_max(v.d, MC_VMAX_Q15);
-        mc->pi_q.sum = sum_q;
-        pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
-        v.q = pi_update(&mc->pi_q, ref.q, mc->i_dq.q);
-        if (mc->circle_redos != UINT16_MAX) {
-            mc->circle_redos++;
+    if (near) {
+        v.q = mc_q_step(mc, ref.q, vlimit_vq_max(v.d, MC_VMAX_Q15));
+    } else {
+        q31_t sum_q = mc->pi_q.sum;
+        v.q = mc_q_step(mc, ref.q, MC_VMAX_Q15);
+        if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
+            mc->pi_q.sum = sum_q;
+            v.q = mc_q_step(mc, ref.q, vlimit_vq_max(v.d, MC_VMAX_Q15));
+            if (mc->circle_redos != UINT16_MAX) {
+                mc->circle_redos++;
+            }
         }
     }
 #if defined(ENVOLTRIPPLE)
