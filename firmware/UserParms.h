@@ -155,6 +155,24 @@
 #define MC_HANDOFF_BLEED_DEG_PER_S 1000.0
 #endif
 
+/* Open-loop damping (mc.c note 1): once the estimator is valid in
+ * OPEN_LOOP, the forced angle is moved back by MOTOR_OL_DAMP_S times the
+ * rotor's excess speed (electrical rad per electrical rad/s). A rotor
+ * driven by a current at a forced angle is an undamped spring and mass:
+ * with little friction it swings about the forced angle for the whole ramp,
+ * and the hand-off meets it at any phase of the swing. The shift gives a
+ * damping ratio zeta = MOTOR_OL_DAMP_S wn / 2, wn = sqrt(1.5 p^2 psi
+ * I_ramp / J) the swing's natural frequency (rad/s). Motor profiles set it
+ * for zeta 0.7 at their inertia (tools/tune does); without one, 5 ms (zeta
+ * 0.7 for wn = 280 rad/s, 0.25 for 100 rad/s). The shift is held to
+ * +-MC_OL_DAMP_MAX_DEG. 0 = off. */
+#ifndef MOTOR_OL_DAMP_S
+#define MOTOR_OL_DAMP_S 0.005
+#endif
+#ifndef MC_OL_DAMP_MAX_DEG
+#define MC_OL_DAMP_MAX_DEG 30.0
+#endif
+
 /* ---- estimator ------------------------------------------------------------------ */
 /* Lowest speed the estimator is trusted at (its filter floor and validity
  * threshold); below the hand-off speed so a start is judged with margin. */

@@ -315,6 +315,7 @@ static void mc_enter_lock(mc_t *mc)
     mc_set_advance(mc);
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
+    mc->ol_damp = 0;
     mc->ol_step = 0U;
     mc->theta = 0;
     mc->theta_offset = 0;
@@ -715,6 +716,26 @@ void mc_init(mc_t *mc)
     mc_enter(mc, MC_STATE_STOPPED);
 }
 
+/* OPEN_LOOP, with the estimator's speed fresh (mc_slow_apply): the forced
+ * angle moved back by MOTOR_OL_DAMP_S times the rotor's excess speed while
+ * the estimate is valid (note 1), the previous shift taken out. */
+static void mc_ol_damp(mc_t *mc)
+{
+    int32_t shift = 0;
+    if (smc_valid(&mc->smc)) {
+        /* forced minus estimated speed, angle counts per period (< 2^16) */
+        int32_t d = (int32_t)(uint16_t)(mc->ol_step >> 16) - (int32_t)mc->pred;
+        shift = d * MC_OL_DAMP_K / 16; /* |d| < 2^17, K <= 16000: no overflow */
+        if (shift > MC_OL_DAMP_MAX) {
+            shift = MC_OL_DAMP_MAX;
+        } else if (shift < -MC_OL_DAMP_MAX) {
+            shift = -MC_OL_DAMP_MAX;
+        }
+    }
+    mc->ol_angle += (uint32_t)(shift - (int32_t)mc->ol_damp) << 16;
+    mc->ol_damp = (int16_t)shift;
+}
+
 /* MC_SLOW_APPLY_PERIODS after a window end (mc.h note 4): the slow step's
  * results in. */
 static void mc_slow_apply(mc_t *mc)
@@ -729,6 +750,9 @@ static void mc_slow_apply(mc_t *mc)
     }
     smc_apply(&mc->smc);
     mc_set_advance(mc);
+    if (mc->state == MC_STATE_OPEN_LOOP) {
+        mc_ol_damp(mc);
+    }
     mc->speed_target = so->speed_target;
     mc->torque_target = so->torque_target;
     if (so->loop && so->epoch == mc->epoch && mc->state == MC_STATE_CLOSED_LOOP) {

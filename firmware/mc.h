@@ -265,6 +265,7 @@ typedef struct {
     uint32_t ol_angle;      /* open-loop angle, 32-bit binary angle */
     uint32_t ol_step;       /* open-loop angle increment per period, 32-bit binary angle */
     int16_t theta_offset;   /* theta_forced - theta_est at hand-off, bled to 0 */
+    int16_t ol_damp;        /* OPEN_LOOP: the damping shift in ol_angle, angle counts */
     sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 
     /* estimator and the voltage it is fed (note 2) */

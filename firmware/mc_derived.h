@@ -286,6 +286,16 @@ MC_CHECK(MC_HANDOFF_BLEED_DEG_PER_S, MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 
          "must give 1..4096 angle counts per period");
 #define MC_BLEED_STEP ((int16_t)(MC_BLEED_STEP_ + 0.5))
 
+/* Open-loop damping (UserParms.h): the forced angle's shift in angle
+ * counts = (forced - estimated step, counts per period) * MC_OL_DAMP_K / 16,
+ * MC_OL_DAMP_K = MOTOR_OL_DAMP_S * fpwm in Q4; held to +-MC_OL_DAMP_MAX. */
+MC_CHECK(MOTOR_OL_DAMP_S, MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ <= 1000.0,
+         "must be 0..1000 PWM periods");
+MC_CHECK(MC_OL_DAMP_MAX_DEG, MC_OL_DAMP_MAX_DEG >= 0.0 && MC_OL_DAMP_MAX_DEG <= 90.0,
+         "must be 0..90 deg");
+#define MC_OL_DAMP_K   ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * 16.0 + 0.5))
+#define MC_OL_DAMP_MAX ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
+
 /* ---- dead time ---------------------------------------------------------------------- */
 
 /* Dead time in duty counts: Td / Ts * PWM_DUTY_MAX = Td * Fcy (80 on the MCLV). */

@@ -35,6 +35,13 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->substeps = 4;
     cfg->sample_at = -1.0;
     cfg->amp_tau_s = -1.0;
+    cfg->offsets_set = false;
+    cfg->offset_a_codes = 0.0;
+    cfg->offset_b_codes = 0.0;
+    cfg->j_extra_kgm2 = 0.0;
+    cfg->b_scale = 1.0;
+    cfg->coulomb_nm = -1.0;
+    memset(&cfg->inv, 0, sizeof(cfg->inv)); /* averaged, linear band (automatic), no drops */
     cfg->csv_decim = 10;
     cfg->csv = NULL;
     cfg->progress = false;
@@ -159,7 +166,7 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
 {
     sim_rig_params_t rp;
     memset(s, 0, sizeof(*s));
-    memset(&rp, 0, sizeof(rp)); /* the averaged inverter, linear dead-time band, no drops */
+    memset(&rp, 0, sizeof(rp));
     s->cfg = *cfg;
     s->mp = sim_motor_profile(cfg->motor);
     s->bp = sim_board_profile(cfg->board);
@@ -186,19 +193,23 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
     rp.motor.ld_h *= cfg->l_scale;
     rp.motor.lq_h *= cfg->l_scale;
     rp.motor.psi_vs *= cfg->ke_scale;
-    rp.motor.j_kgm2 *= cfg->j_scale;
+    rp.motor.j_kgm2 = rp.motor.j_kgm2 * cfg->j_scale + cfg->j_extra_kgm2;
+    rp.motor.b_nms *= cfg->b_scale;
+    if (cfg->coulomb_nm >= 0.0) {
+        rp.motor.coulomb_nm = cfg->coulomb_nm;
+    }
+    rp.inv = cfg->inv;
     rp.inv.vbus_v = (cfg->vbus_v >= 0.0) ? cfg->vbus_v : s->bp->vbus_v;
     rp.inv.ripple_v = 0.0;
     rp.inv.ripple_hz = 0.0;
     rp.inv.deadtime_s = (cfg->deadtime_s >= 0.0) ? cfg->deadtime_s : s->bp->deadtime_s;
     rp.inv.pwm_hz = (double)PWM_FREQUENCY_HZ;
     rp.inv.duty_max = (double)PWM_DUTY_MAX;
-    rp.inv.i_band_a = 0.0;
     rp.adc.i_fs_a = (double)BOARD_I_FULLSCALE_A;
     rp.adc.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
     rp.adc.bits = 10;
-    rp.adc.offset_a_codes = s->bp->offset_a_codes;
-    rp.adc.offset_b_codes = s->bp->offset_b_codes;
+    rp.adc.offset_a_codes = cfg->offsets_set ? cfg->offset_a_codes : s->bp->offset_a_codes;
+    rp.adc.offset_b_codes = cfg->offsets_set ? cfg->offset_b_codes : s->bp->offset_b_codes;
     rp.adc.noise_codes = (cfg->noise_codes >= 0.0) ? cfg->noise_codes : s->bp->noise_codes;
     rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
     rp.substeps = cfg->substeps;

@@ -73,6 +73,12 @@ typedef struct {
     bool on;          /* latched output enable */
 } sim_inverter_t;
 
+/* The names scenario files and the command line use: "averaged" /
+ * "switching" (sim_inv_model_t), "linear" / "hard" / "ripple"
+ * (sim_dt_shape_t). Return 0, or -1 (out untouched) for another name. */
+int sim_inverter_model_parse(const char *name, int *out);
+int sim_inverter_shape_parse(const char *name, int *out);
+
 /* Outputs off, duties 0. l_h: motor inductance used for the automatic band
  * Vbus / (12 L fpwm), about half the peak PWM current ripple. */
 void sim_inverter_init(sim_inverter_t *inv, const sim_inverter_params_t *prm, double l_h);

@@ -31,8 +31,16 @@ static void usage(void)
             "  --noise LSB       ADC noise sigma in codes (default: the board's, 1)\n"
             "  --vbus V          DC bus (default: the board's)\n"
             "  --seed N          noise seed\n"
-            "  --rs-scale X --l-scale X --ke-scale X --j-scale X\n"
+            "  --rs-scale X --l-scale X --ke-scale X --j-scale X --b-scale X\n"
             "                    plant parameters times X (mismatch with UserParms.h)\n"
+            "  --j-extra KGM2    load inertia added to the rotor's\n"
+            "  --coulomb NM      plant dry friction (default: the profile's)\n"
+            "  --offsets A,B     current amplifier offsets, ADC codes (default: the board's)\n"
+            "  --inverter M      averaged (default) or switching (docs/sim.md)\n"
+            "  --deadtime-shape S  averaged model: linear (default), hard or ripple\n"
+            "  --dt-band A       averaged model: dead-time band, A (default: automatic)\n"
+            "  --r-on OHM        switching model: switch on-resistance (default 0)\n"
+            "  --v-diode V       switching model: diode forward drop (default 0)\n"
             "  --no-progress     no progress line on stderr\n"
             "  --pty             no scenario: serve the monitor protocol on a pty\n"
             "  --realtime X      with --pty: X times real time (default 1; 0 = free-running)\n"
@@ -128,6 +136,34 @@ int main(int argc, char **argv)
             cfg.ke_scale = atof(v);
         } else if (strcmp(a, "--j-scale") == 0) {
             cfg.j_scale = atof(v);
+        } else if (strcmp(a, "--b-scale") == 0) {
+            cfg.b_scale = atof(v);
+        } else if (strcmp(a, "--j-extra") == 0) {
+            cfg.j_extra_kgm2 = atof(v);
+        } else if (strcmp(a, "--coulomb") == 0) {
+            cfg.coulomb_nm = atof(v);
+        } else if (strcmp(a, "--offsets") == 0) {
+            if (sscanf(v, "%lf,%lf", &cfg.offset_a_codes, &cfg.offset_b_codes) != 2) {
+                fprintf(stderr, "sim: --offsets wants A,B in ADC codes, got '%s'\n", v);
+                return 2;
+            }
+            cfg.offsets_set = true;
+        } else if (strcmp(a, "--inverter") == 0) {
+            if (sim_inverter_model_parse(v, &cfg.inv.model) != 0) {
+                fprintf(stderr, "sim: --inverter is averaged or switching, got '%s'\n", v);
+                return 2;
+            }
+        } else if (strcmp(a, "--deadtime-shape") == 0) {
+            if (sim_inverter_shape_parse(v, &cfg.inv.dt_shape) != 0) {
+                fprintf(stderr, "sim: --deadtime-shape is linear, hard or ripple, got '%s'\n", v);
+                return 2;
+            }
+        } else if (strcmp(a, "--dt-band") == 0) {
+            cfg.inv.i_band_a = atof(v);
+        } else if (strcmp(a, "--r-on") == 0) {
+            cfg.inv.r_on_ohm = atof(v);
+        } else if (strcmp(a, "--v-diode") == 0) {
+            cfg.inv.v_diode_v = atof(v);
 #ifdef SIM_HAVE_PTY
         } else if (strcmp(a, "--realtime") == 0) {
             pty.speed = atof(v);

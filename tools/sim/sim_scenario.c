@@ -1,6 +1,8 @@
 /* sim_scenario.c - scenario text parser. */
 #include "sim_scenario.h"
 
+#include "sim_inverter.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,18 +66,11 @@ static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double
         }
     }
     if (kind == SIM_EV_INVERTER || kind == SIM_EV_DEADTIME_SHAPE) {
-        static const char *const models[] = {"averaged", "switching"};
-        static const char *const shapes[] = {"linear", "hard", "ripple"};
-        const char *const *names = (kind == SIM_EV_INVERTER) ? models : shapes;
-        int n = (kind == SIM_EV_INVERTER) ? 2 : 3;
         int k;
-        for (k = 0; k < n; k++) {
-            if (strcmp(tok, names[k]) == 0) {
-                *out = (double)k;
-                return 0;
-            }
-        }
-        return -1;
+        int bad = (kind == SIM_EV_INVERTER) ? sim_inverter_model_parse(tok, &k)
+                                            : sim_inverter_shape_parse(tok, &k);
+        *out = (double)k;
+        return bad;
     }
     *out = strtod(tok, &endp);
     return (endp == tok || *endp != '\0') ? -1 : 0;
