@@ -13,7 +13,7 @@ HOST_DIR := $(BUILD)/host
 ASAN_DIR := $(BUILD)/asan
 COV_DIR  := $(BUILD)/cov
 
-.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim firmware test clean
+.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim robust firmware test clean
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
@@ -27,6 +27,7 @@ help:
 	@echo "make lint         cppcheck + clang-format check"
 	@echo "make format       clang-format the sources in place"
 	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
+	@echo "make robust       randomized campaign: RUNS= per profile (default 400) on three profiles, report and plots in $(BUILD)/robust/"
 	@echo "make firmware     dsPIC image with XC16 (needs XC16_DIR or xc16-gcc on PATH)"
 	@echo "make clean        remove $(BUILD)/"
 	@echo "variables: BOARD=$(BOARD) MOTOR=$(MOTOR) SCENARIO=$(SCENARIO) JOBS=$(JOBS)"
@@ -75,6 +76,12 @@ bench: build
 # PTY=1: no scenario, the live data monitor on a pseudo-terminal for tools/scope (docs/monitor.md).
 sim: bootstrap build
 	@$(if $(PTY),$(HOST_DIR)/tools/sim/sim --pty --motor $(MOTOR) --board $(BOARD),tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD))
+
+# The randomized campaign (docs/robustness.md); its quick subset runs in make test (robust_quick).
+RUNS ?= 400
+SEED ?= 1
+robust: bootstrap
+	@tools/robust/run $(BUILD)/robust $(RUNS) $(SEED)
 
 firmware:
 	@+FIRMWARE_OUT=$(BUILD)/firmware tools/firmware_build $(if $(findstring n,$(firstword -$(MAKEFLAGS))),--print) $(BOARD) $(MOTOR)

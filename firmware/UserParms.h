@@ -143,6 +143,17 @@
 #ifndef MC_HANDOFF_WAIT_S
 #define MC_HANDOFF_WAIT_S 0.25 /* end speed held at most this long for a valid estimate */
 #endif
+/* The hand-off also needs the rotor to follow: the estimate valid and its
+ * speed within MC_HANDOFF_SPEED_TOL of the forced speed for
+ * MC_HANDOFF_AGREE_S without a break (mc.c note 1). A rotor that slipped
+ * poles, or sits still while the estimator reads its model errors as
+ * back-EMF, is retried from the lock instead of handed to the speed loop. */
+#ifndef MC_HANDOFF_SPEED_TOL
+#define MC_HANDOFF_SPEED_TOL 0.25
+#endif
+#ifndef MC_HANDOFF_AGREE_S
+#define MC_HANDOFF_AGREE_S 0.02
+#endif
 #ifndef MC_RETRY_COAST_S
 #define MC_RETRY_COAST_S 0.5 /* outputs off before a retry, so the rotor stops */
 #endif
@@ -161,13 +172,19 @@
  * driven by a current at a forced angle is an undamped spring and mass:
  * with little friction it swings about the forced angle for the whole ramp,
  * and the hand-off meets it at any phase of the swing. The shift gives a
- * damping ratio zeta = MOTOR_OL_DAMP_S wn / 2, wn = sqrt(1.5 p^2 psi
- * I_ramp / J) the swing's natural frequency (rad/s). Motor profiles set it
- * for zeta 0.7 at their inertia (tools/tune does); without one, 5 ms (zeta
- * 0.7 for wn = 280 rad/s, 0.25 for 100 rad/s). The shift is held to
- * +-MC_OL_DAMP_MAX_DEG. 0 = off. */
+ * damping ratio zeta = MOTOR_OL_DAMP_S wn / 2 to a swing of natural
+ * frequency wn = sqrt(1.5 p^2 psi I_ramp / J) (rad/s) as long as the
+ * estimated speed it acts on is fresh; but that speed lags the rotor's by
+ * several ms at the hand-off speed (the estimator's two back-EMF filters at
+ * the electrical frequency, its speed filter, the window), and a swing
+ * faster than about 1 / (2 x that lag) is pushed, not damped, by any gain.
+ * So profiles aim low, zeta 0.35 at their inertia (tools/tune computes it):
+ * enough for the slow swings of a heavy rotor with little friction, small
+ * harm to the fast ones of a light rotor. Without a profile value, 2.5 ms
+ * (zeta 0.35 for wn = 280 rad/s; the Hurst075: wn = 200 rad/s). The shift
+ * is held to +-MC_OL_DAMP_MAX_DEG. 0 = off. */
 #ifndef MOTOR_OL_DAMP_S
-#define MOTOR_OL_DAMP_S 0.005
+#define MOTOR_OL_DAMP_S 0.0025
 #endif
 #ifndef MC_OL_DAMP_MAX_DEG
 #define MC_OL_DAMP_MAX_DEG 30.0

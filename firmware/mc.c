@@ -316,6 +316,7 @@ static void mc_enter_lock(mc_t *mc)
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
     mc->ol_damp = 0;
+    mc->agree = 0U;
     mc->ol_step = 0U;
     mc->theta = 0;
     mc->theta_offset = 0;
@@ -352,18 +353,21 @@ static void mc_enter_closed_loop(mc_t *mc)
     mc_set_advance(mc);
     mc->speed_ref =
         (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
-    /* Bumpless: the speed PI starts from the torque-producing part of the
-     * ramp's current, i.e. the measured current on the estimated q axis (in
-     * open loop the rotor runs at a load angle, so most of the forced Iq
-     * lies on its d axis and makes no torque). The slow step presets the PI
-     * with it; until its first result arrives, the references are what the
-     * preset PI puts out. */
-    dq_q15_t i_est = park_forward(mc->i_ab, sincos_compute(est));
-    mc->i_ref.q = q15_clamp(i_est.q, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15);
+    /* The speed PI starts from the ramp's current (AN1078: the integral
+     * preset to the start-up Iq), now on the estimated q axis: the rotor has
+     * just followed the ramp with it, so it moves whatever the load, where
+     * the current measured on the estimated q axis (the load's share of the
+     * forced current) fell to zero or below at light load (the rotor swings
+     * about the forced angle) and fell short of a heavy Coulomb load
+     * (stick-slip), and either stopped the rotor within tens of ms. A light
+     * load is accelerated instead, until the speed loop takes it back. The
+     * slow step presets the PI with it; until its first result arrives, the
+     * references are what the preset PI puts out. */
+    mc->i_ref.q = MC_RAMP_CURRENT_Q15;
     mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->preset_pending = true;
-    mc->preset_iq = i_est.q;
+    mc->preset_iq = mc->i_ref.q;
     mc->preset_speed_ref = mc->speed_ref;
     mc_enter(mc, MC_STATE_CLOSED_LOOP);
 }
@@ -678,7 +682,13 @@ static void mc_calibrate_end(mc_t *mc)
 static void mc_ramp_end(mc_t *mc)
 {
     mc->ol_step = MC_RAMP_STEP_END;
-    if (smc_valid(&mc->smc)) {
+    /* the estimated speed within the tolerance of the forced one, counts per period */
+    int32_t step = (int32_t)(uint16_t)(MC_RAMP_STEP_END >> 16);
+    int32_t diff = (int32_t)mc->pred - step;
+    bool agrees = smc_valid(&mc->smc) && diff * 256 <= step * MC_HANDOFF_TOL_Q8 &&
+                  -diff * 256 <= step * MC_HANDOFF_TOL_Q8;
+    mc->agree = agrees ? (uint16_t)(mc->agree + (mc->agree != 0xFFFFU)) : 0U;
+    if (mc->agree > MC_HANDOFF_AGREE_PERIODS) {
         mc_enter_closed_loop(mc);
     } else if (mc->timer < MC_RAMP_PERIODS + MC_HANDOFF_WAIT_PERIODS) {
         /* keep turning at the end speed */
@@ -1019,18 +1029,28 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  * Notes
  *
  * 1. Hand-off. At the end of the ramp the forced speed is held until the
- *    estimator reports a valid angle (its validity flickers on a noisy
- *    window speed near the threshold), at most MC_HANDOFF_WAIT_S; no valid
- *    estimate by then is a failed start, retried after the rotor has
- *    coasted for MC_RETRY_COAST_S, MC_START_RETRIES times, then FAULT
- *    START_FAILED. The estimator has run for the whole
- *    start-up on the measured currents and the applied voltages, so its
- *    angle is already the rotor's; the forced angle is not (the rotor runs
- *    at a load angle behind the current vector). The difference is kept as
- *    theta_offset and bled to zero at MC_HANDOFF_BLEED_DEG_PER_S, so the
- *    current vector turns smoothly onto the estimated rotor axis, and the
- *    speed PI starts with its integral at the ramp's Iq, so the torque
- *    does not step.
+ *    estimator reports a valid angle and the rotor follows: its estimated
+ *    speed within MC_HANDOFF_SPEED_TOL of the forced speed for
+ *    MC_HANDOFF_AGREE_S without a break (a rotor that slipped poles, or sits
+ *    still while the estimator reads its own model errors as back-EMF, can
+ *    flicker valid), at most MC_HANDOFF_WAIT_S; no agreement by then is a
+ *    failed start, retried after the rotor has coasted for MC_RETRY_COAST_S,
+ *    MC_START_RETRIES times, then FAULT START_FAILED. The estimator has run
+ *    for the whole start-up on the measured currents and the applied
+ *    voltages, so its angle is already the rotor's; the forced angle is not
+ *    (the rotor runs at a load angle behind the current vector). The
+ *    difference is kept as theta_offset and bled to zero at
+ *    MC_HANDOFF_BLEED_DEG_PER_S, the references turned so that the current
+ *    vector stays on the estimated axes, and the speed PI starts with its
+ *    integral at the ramp's Iq (mc_enter_closed_loop says why).
+ *    Open-loop damping: a rotor pulled by a current at a forced angle is an
+ *    undamped spring and mass; with little friction it swings about the
+ *    forced angle for the whole ramp (with no friction and three times the
+ *    Hurst's inertia, by +-250 rpm at 500 rpm, and the hand-off met it
+ *    swinging and stalled). Once the estimate is valid, each window moves
+ *    the forced angle back by MOTOR_OL_DAMP_S times the rotor's excess
+ *    speed (mc_ol_damp): the torque then falls as the rotor runs ahead and
+ *    rises as it falls behind, a viscous damping of the swing.
  *
  * 2. Stall detection runs at the speed-loop rate in CLOSED_LOOP; each
  *    condition must hold for consecutive runs: estimated |speed| below

@@ -236,6 +236,7 @@ typedef struct {
     uint16_t fault;
     uint32_t timer;      /* periods spent in the current state (saturates) */
     uint8_t retries;     /* failed starts since START */
+    uint16_t agree;      /* ramp end: periods the estimate has agreed with the rotor (note 1) */
     uint16_t calib_wait; /* CALIBRATE: periods to coast before averaging */
 
     /* current offsets, Q15 */

@@ -276,6 +276,16 @@ MC_CHECK(MC_HANDOFF_WAIT_S,
          MC_HANDOFF_WAIT_S >= 0.0 && MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ <= 1.0e6,
          "must be 0..1e6 PWM periods");
 #define MC_HANDOFF_WAIT_PERIODS ((uint32_t)(MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ + 0.5))
+MC_CHECK(MC_HANDOFF_SPEED_TOL, MC_HANDOFF_SPEED_TOL > 0.0 && MC_HANDOFF_SPEED_TOL <= 1.0,
+         "must be in (0, 1]");
+MC_CHECK(MC_HANDOFF_AGREE_S,
+         MC_HANDOFF_AGREE_S >= 0.0 && MC_HANDOFF_AGREE_S < MC_HANDOFF_WAIT_S &&
+             MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ <= 65535.0,
+         "must be in [0, MC_HANDOFF_WAIT_S) and at most 65535 PWM periods");
+#define MC_HANDOFF_AGREE_PERIODS ((uint16_t)(MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ + 0.5))
+/* The agreement band in angle counts per period at the ramp end (Q8 of the
+ * step's upper half, so the tolerance keeps 1/256 resolution). */
+#define MC_HANDOFF_TOL_Q8 ((int32_t)(MC_HANDOFF_SPEED_TOL * 256.0 + 0.5))
 /* Ramp end speed (mechanical Q15) = step end * fpwm * 60 / (2^32 pp FS). */
 #define MC_RAMP_END_Q15 MC_Q15_RPM(MOTOR_RAMP_END_RPM)
 

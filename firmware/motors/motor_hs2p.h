@@ -85,7 +85,8 @@
 #define MOTOR_LOCK_TIME_S 0.46
 #endif
 /* 0.6 x the continuous current 2.5 A: pulls the rotor to the lock angle against cogging and
- * friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst) */
+ * friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst); no start load given, so the
+ * start is sized for 60% of Kt x that */
 #ifndef MOTOR_LOCK_CURRENT_A
 #define MOTOR_LOCK_CURRENT_A 1.5
 #endif
@@ -104,6 +105,11 @@
 /* Iq during the open-loop ramp: the lock current */
 #ifndef MOTOR_RAMP_CURRENT_A
 #define MOTOR_RAMP_CURRENT_A 1.5
+#endif
+/* open-loop damping (UserParms.h): zeta 0.35 for the rotor's swing about the forced angle, w =
+ * sqrt(p Kt I_ramp / J) = 111 rad/s: 2 zeta / w */
+#ifndef MOTOR_OL_DAMP_S
+#define MOTOR_OL_DAMP_S 0.00628
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------------------------- */
@@ -179,6 +185,11 @@
 /* rotor plus load inertia (from the description) */
 #ifndef MOTOR_INERTIA_KGM2
 #define MOTOR_INERTIA_KGM2 2e-05
+#endif
+/* the load torque the start-up is sized for (data for tools: the robustness campaign draws
+ * loads up to it) */
+#ifndef MOTOR_START_LOAD_NM
+#define MOTOR_START_LOAD_NM 0.07443
 #endif
 
 /* ---- field weakening --------------------------------------------------------------------------

@@ -91,7 +91,8 @@
 #define MOTOR_LOCK_TIME_S 0.25
 #endif
 /* 0.6 x the continuous current 3.56 A: pulls the rotor to the lock angle against cogging and
- * friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst) */
+ * friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst); no start load given, so the
+ * start is sized for 60% of Kt x that */
 #ifndef MOTOR_LOCK_CURRENT_A
 #define MOTOR_LOCK_CURRENT_A 2.14
 #endif
@@ -110,6 +111,11 @@
 /* Iq during the open-loop ramp: the lock current */
 #ifndef MOTOR_RAMP_CURRENT_A
 #define MOTOR_RAMP_CURRENT_A 2.14
+#endif
+/* open-loop damping (UserParms.h): zeta 0.35 for the rotor's swing about the forced angle, w =
+ * sqrt(p Kt I_ramp / J) = 208 rad/s: 2 zeta / w */
+#ifndef MOTOR_OL_DAMP_S
+#define MOTOR_OL_DAMP_S 0.00337
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------------------------- */
@@ -184,6 +190,11 @@
 /* rotor plus load inertia (from the description) */
 #ifndef MOTOR_INERTIA_KGM2
 #define MOTOR_INERTIA_KGM2 1.5e-05
+#endif
+/* the load torque the start-up is sized for (data for tools: the robustness campaign draws
+ * loads up to it) */
+#ifndef MOTOR_START_LOAD_NM
+#define MOTOR_START_LOAD_NM 0.07752
 #endif
 
 /* ---- field weakening --------------------------------------------------------------------------

@@ -25,7 +25,7 @@ from motortune.units import InputError  # noqa: E402
 
 # name of the example -> (profile name, board)
 EXAMPLE_PROFILES = {"hurst075": ("hurst075", "mclv"), "hurst300": ("hurst_long", "mclv"),
-                    "hispeed": ("hs2p", "mchv")}
+                    "hispeed": ("hs2p", "mchv"), "lowl": ("lowl", "mclv")}
 
 HURST_TOML = """\
 name = "hurst_t"
@@ -284,6 +284,54 @@ class WithoutInertia(unittest.TestCase):
             self.assertEqual(cheader.derive_core(cheader.profile_env(h, "mclv")).failures, [])
         finally:
             shutil.rmtree(d, ignore_errors=True)
+
+
+class StartLoad(unittest.TestCase):
+    """application.start_load sizes the start-up current; a load it cannot start is refused."""
+
+    def test_a_start_load_should_size_the_ramp_current_at_60_percent_of_its_torque(self):
+        t = derive.derive(desc_from(HURST_TOML + 'start_load = "0.05 N m"\n'))
+        kt = t.kt
+        i = t["MOTOR_RAMP_CURRENT_A"]
+        measured("start load 50 mN m, Kt %.2f mN m/A: ramp current %.3f A, lock %.3f A", kt * 1e3, i,
+                 t["MOTOR_LOCK_CURRENT_A"])
+        self.assertAlmostEqual(0.6 * kt * i, 0.05, delta=0.002)
+        self.assertEqual(t["MOTOR_LOCK_CURRENT_A"], i)
+        self.assertAlmostEqual(t["MOTOR_START_LOAD_NM"], 0.05, delta=1e-6)
+
+    def test_without_a_start_load_the_claim_should_be_60_percent_of_the_default_current(self):
+        t = derive.derive(desc_from(HURST_TOML))
+        self.assertAlmostEqual(t["MOTOR_START_LOAD_NM"], 0.6 * t.kt * t["MOTOR_RAMP_CURRENT_A"], delta=1e-4)
+
+    def test_a_light_start_load_should_keep_the_default_current(self):
+        light = derive.derive(desc_from(HURST_TOML + 'start_load = "1 mN m"\n'))
+        none = derive.derive(desc_from(HURST_TOML))
+        self.assertEqual(light["MOTOR_RAMP_CURRENT_A"], none["MOTOR_RAMP_CURRENT_A"])
+
+    def test_a_start_load_beyond_the_current_limit_should_be_refused_naming_it(self):
+        d = scratch()
+        try:
+            p = os.path.join(d, "m.toml")
+            with open(p, "w") as f:
+                f.write(HURST_TOML + 'start_load = "0.2 N m"\n')
+            r = run_tune("-o", os.path.join(d, "motor_m.h"), p)
+            measured("error line: %s", r.stderr.strip())
+            self.assertNotEqual(r.returncode, 0)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+            self.assertIn("application.start_load", r.stderr)
+            self.assertIn("cannot start", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "motor_m.h")))
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
+
+    def test_the_damping_should_give_its_ratio_at_the_stated_inertia(self):
+        t = derive.derive(desc_from(HURST_TOML))
+        wn = math.sqrt(5 * t.kt * t["MOTOR_RAMP_CURRENT_A"] / 7.5e-6)
+        zeta = t["MOTOR_OL_DAMP_S"] * wn / 2.0
+        measured("open-loop swing %.0f rad/s, MOTOR_OL_DAMP_S %.4f s: zeta %.3f", wn, t["MOTOR_OL_DAMP_S"], zeta)
+        self.assertAlmostEqual(zeta, derive.OL_DAMP_ZETA, delta=0.01)
+        no_j = derive.derive(desc_from(HURST_TOML.replace('inertia = "7.5e-6 kg m^2"\n', "")))
+        self.assertNotIn("MOTOR_OL_DAMP_S", dict(no_j.by))
 
 
 class BadInput(unittest.TestCase):

@@ -12,7 +12,9 @@
  * coupled load and 0.5 mN m of dry friction. Hurst300: about twice the rotor,
  * assumed. The high-speed motor is defined by us (same numbers as
  * firmware/motors/motor_hispeed.h): the motor behind AN1078's "500 to 17,000
- * rpm" is not documented. See docs/sim.md.
+ * rpm" is not documented. The low-inductance motor is ours too (a tenth of
+ * the Hurst075's R and L, 4 pole pairs, 60 % of its Ke; the numbers of
+ * tools/tune/examples/lowl.toml). See docs/sim.md.
  */
 static const sim_motor_profile_t MOTORS[] = {
     {"hurst", "hurst075", "Hurst DMB0224C10002 (Hurst075, AC300020), 24 V", 2.67, 1.92e-3, 7.3, 5,
@@ -21,6 +23,8 @@ static const sim_motor_profile_t MOTORS[] = {
      7.3, 5, 1.5e-5, 25.0e-6, 1.0e-3, 4.88, 2500.0, 3000.0},
     {"hispeed", "hs2p", "2-pole-pair high-speed PMSM (assumed, see docs/sim.md), 320 V bus", 1.2,
      4.0e-3, 10.0, 2, 2.0e-5, 2.0e-6, 2.0e-3, 2.5, 17000.0, 17000.0},
+    {"lowl", NULL, "low-inductance 4-pole-pair PMSM (assumed, see docs/sim.md), 24 V", 0.267,
+     0.192e-3, 4.38, 4, 5.0e-6, 10.0e-6, 0.5e-3, 3.0, 4000.0, 4000.0},
 };
 
 /* The current amplifiers' time constant: not published for either board
@@ -80,5 +84,6 @@ double sim_motor_rated_torque(const sim_motor_profile_t *mp)
 
 const char *sim_profiles_list(void)
 {
-    return "motors: hurst (hurst075), hurst300 (hurst_long), hispeed (hs2p); boards: mclv, mchv";
+    return "motors: hurst (hurst075), hurst300 (hurst_long), hispeed (hs2p), lowl; boards: mclv, "
+           "mchv";
 }

@@ -248,6 +248,11 @@ def derive_core(env):
     q_amp("total |I| limit in FW", 0.9 * trip, "mc.c MC_I_TOTAL: 90 % of the trip")
     q_amp("MOTOR_LOCK_CURRENT_A", i_lock, "Iq during the lock")
     q_amp("MOTOR_RAMP_CURRENT_A", i_ramp, "Iq during the open-loop ramp")
+    damp, damp_max = g("MOTOR_OL_DAMP_S"), g("MC_OL_DAMP_MAX_DEG")
+    d.check("MOTOR_OL_DAMP_S", 0.0 <= damp and damp * fpwm <= 1000.0, "must be 0..1000 PWM periods")
+    d.check("MC_OL_DAMP_MAX_DEG", 0.0 <= damp_max <= 90.0, "must be 0..90 deg")
+    d.row("MOTOR_OL_DAMP_S", damp, "s", int(damp * fpwm * 16.0 + 0.5), None,
+          "open-loop damping, MC_OL_DAMP_K (Q4 periods)")
 
     # bus
     uv, ov = g("MC_VBUS_UNDERVOLTAGE_V"), g("MC_VBUS_OVERVOLTAGE_V")

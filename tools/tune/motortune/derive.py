@@ -18,6 +18,8 @@ from .units import InputError
 SQRT3 = math.sqrt(3.0)
 TWO_PI = 2.0 * math.pi
 RPM = TWO_PI / 60.0  # rad/s per rpm
+START_LOAD_SHARE = 0.6  # the start load's share of the forced current's torque Kt I_ramp
+OL_DAMP_ZETA = 0.35  # open-loop damping ratio MOTOR_OL_DAMP_S is computed for (UserParms.h: why low)
 
 
 class Infeasible(Exception):
@@ -290,10 +292,30 @@ def derive(desc):
     t.n_emf, t.v_dt = n_emf, v_dt
 
     # ---- start-up -----------------------------------------------------------
-    i_lock = sig(min(0.6 * desc.i_rated, 0.6 * i_qmax), 3)
-    t.add("MOTOR_LOCK_CURRENT_A", i_lock, "A",
-          f"0.6 x the continuous current {min(desc.i_rated, i_qmax):.3g} A: pulls the rotor to the lock angle "
-          f"against cogging and friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst)")
+    # The start-up current: the load must take at most START_LOAD_SHARE of the
+    # forced current's torque Kt I, so the rotor runs at a load angle of at
+    # most 37 deg behind the forced angle (the ramp's acceleration takes 20 %
+    # more, below) and a plant with 15 % less back-EMF constant still starts.
+    i_default = sig(min(0.6 * desc.i_rated, 0.6 * i_qmax), 3)
+    if desc.t_start is not None:
+        i_need = desc.t_start / (START_LOAD_SHARE * kt)
+        if i_need > i_qmax:
+            raise Infeasible("application.start_load",
+                             f"{desc.t_start:g} N m needs {i_need:.3g} A of start-up current (the load at most "
+                             f"{START_LOAD_SHARE:.0%} of Kt I, Kt = {kt * 1000:.2f} mN m/A), above the Iq limit "
+                             f"{i_qmax:.3g} A: the motor cannot start this load")
+        i_lock = max(i_default, sig(i_need * 1.0005, 3))
+        lock_reason = (f"the start load {desc.t_start * 1000:.3g} mN m at {START_LOAD_SHARE:.0%} of Kt I "
+                       f"(Kt = {kt * 1000:.2f} mN m/A) -> {i_need:.3g} A, at least 0.6 x the continuous current "
+                       f"{min(desc.i_rated, i_qmax):.3g} A: the lock pulls the rotor against the same load")
+        t_start = desc.t_start
+    else:
+        i_lock = i_default
+        lock_reason = (f"0.6 x the continuous current {min(desc.i_rated, i_qmax):.3g} A: pulls the rotor to the lock "
+                       f"angle against cogging and friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst); no "
+                       f"start load given, so the start is sized for {START_LOAD_SHARE:.0%} of Kt x that")
+        t_start = START_LOAD_SHARE * kt * i_lock
+    t.add("MOTOR_LOCK_CURRENT_A", i_lock, "A", lock_reason)
     j = desc.j
     if j is not None:
         wn = math.sqrt(pp * kt * i_lock / j)  # rotor swing in the lock torque spring, rad/s
@@ -322,6 +344,13 @@ def derive(desc):
     t.add("MOTOR_RAMP_TIME_S", t_ramp, "s", ramp_reason)
     t.add("MOTOR_RAMP_END_RPM", n_end, "rpm", "hand-off to closed loop at the lowest closed-loop speed", "{:.1f}")
     t.add("MOTOR_RAMP_CURRENT_A", i_ramp, "A", "Iq during the open-loop ramp: the lock current")
+    t.add("MOTOR_START_LOAD_NM", sig(t_start, 4), "N m",
+          "the load torque the start-up is sized for (data for tools: the robustness campaign draws loads up to it)")
+    if j is not None:
+        wn_ol = math.sqrt(pp * kt * i_ramp / j)
+        t.add("MOTOR_OL_DAMP_S", sig(2.0 * OL_DAMP_ZETA / wn_ol, 3), "s",
+              f"open-loop damping (UserParms.h): zeta {OL_DAMP_ZETA} for the rotor's swing about the forced angle, "
+              f"w = sqrt(p Kt I_ramp / J) = {wn_ol:.0f} rad/s: 2 zeta / w")
 
     # ---- observer ------------------------------------------------------------
     e_top = e_per_rpm * n_fw

@@ -21,6 +21,8 @@
     min_speed = "500 rpm"        # lowest closed-loop speed (else derived)
     current_bandwidth = "4000 rad/s"
     fw_load_current = "0.4 A"    # Iq the field-weakening table is computed for
+    start_load = "0.02 N m"      # torque the load needs at start (breakaway, and at the
+                                 # ramp end): the start-up current is sized for it
 
 A bare number is accepted when the key carries the unit ("resistance_ohm =
 2.67"). Every problem raises InputError naming the field.
@@ -53,6 +55,7 @@ MOTOR = {
 APP = {
     "max_speed": ("speed", False), "min_speed": ("speed", False),
     "current_bandwidth": ("angular_rate", False), "fw_load_current": ("current", False),
+    "start_load": ("torque", False),
 }
 SECTIONS = {"": TOP, "motor": MOTOR, "application": APP}
 
@@ -176,6 +179,7 @@ def parse(data):
     d.n_min = g("application", "min_speed")
     d.wc = g("application", "current_bandwidth")
     d.i_fw_load = g("application", "fw_load_current")
+    d.t_start = g("application", "start_load")
     if d.i_fw_load is not None:
         d.i_fw_load *= ck
 
@@ -186,7 +190,8 @@ def parse(data):
                 ("motor.rated_current", d.i_rated), ("motor.rated_speed", d.n_rated),
                 ("motor.peak_current", d.i_peak), ("motor.inertia", d.j),
                 ("application.max_speed", d.n_max), ("application.min_speed", d.n_min),
-                ("application.current_bandwidth", d.wc), ("application.fw_load_current", d.i_fw_load)]
+                ("application.current_bandwidth", d.wc), ("application.fw_load_current", d.i_fw_load),
+                ("application.start_load", d.t_start)]
     for field, v in positive:
         if v is not None and not v > 0.0:
             raise InputError(field, f"must be > 0 (got {v:g})")

@@ -11,12 +11,13 @@ SECTIONS = [
                 "MOTOR_SPEED_FULLSCALE_RPM"]),
     ("currents", ["MOTOR_CURRENT_MAX_A", "MOTOR_OVERCURRENT_A"]),
     ("start-up (AN1078 \"Motor start-up\")", ["MOTOR_LOCK_TIME_S", "MOTOR_LOCK_CURRENT_A", "MOTOR_RAMP_TIME_S",
-                                              "MOTOR_RAMP_END_RPM", "MOTOR_RAMP_CURRENT_A"]),
+                                              "MOTOR_RAMP_END_RPM", "MOTOR_RAMP_CURRENT_A", "MOTOR_OL_DAMP_S"]),
     ("sliding-mode observer", ["MOTOR_SMC_GAIN_V", "MOTOR_SMC_LINEAR_BAND_A", "MC_SPEED_FILTER_HZ"]),
     ("current PI (d and q)", ["MOTOR_CURRENT_LOOP_BW_RAD_S", "MOTOR_CURRENT_KP_V_PER_A",
                               "MOTOR_CURRENT_KI_V_PER_AS"]),
     ("speed PI", ["MOTOR_SPEED_KP_FULL_RPM", "MOTOR_SPEED_KP_A_PER_RPM", "MOTOR_SPEED_KI_A_PER_RPM_S"]),
-    ("data for tools (not used by the core)", ["MOTOR_RATED_CURRENT_A", "MOTOR_INERTIA_KGM2"]),
+    ("data for tools (not used by the core)", ["MOTOR_RATED_CURRENT_A", "MOTOR_INERTIA_KGM2",
+                                                "MOTOR_START_LOAD_NM"]),
 ]
 
 

@@ -38,6 +38,7 @@ _UNITS = {
         "vs/rad": 1000.0 * 2.0 * math.pi / 60.0, "v/rad/s": 1000.0 * 2.0 * math.pi / 60.0,
     },
     "current": {"a": 1.0, "amp": 1.0, "amps": 1.0, "ampere": 1.0, "amperes": 1.0, "ma": 1e-3},
+    "torque": {"nm": 1.0, "mnm": 1e-3, "ncm": 1e-2},
     "speed": {"rpm": 1.0, "krpm": 1000.0, "r/min": 1.0, "rev/min": 1.0},
     "inertia": {
         "kgm^2": 1.0, "kgm2": 1.0, "kgcm^2": 1e-4, "kgcm2": 1e-4,
@@ -57,6 +58,7 @@ _SUFFIX_UNITS = {
     "inductance": {"_h": "h", "_mh": "mh", "_uh": "uh"},
     "back_emf": {"_v_per_krpm": "v/krpm", "_v_per_rpm": "v/rpm"},
     "current": {"_a": "a", "_ma": "ma"},
+    "torque": {"_nm": "nm", "_mnm": "mnm"},
     "speed": {"_rpm": "rpm", "_krpm": "krpm"},
     "inertia": {"_kgm2": "kgm^2", "_kg_m2": "kgm^2", "_kgcm2": "kgcm^2", "_gcm2": "gcm^2"},
     "frequency": {"_hz": "hz", "_khz": "khz"},
@@ -131,5 +133,5 @@ def _example_unit(quantity):
     return {
         "resistance": "ohm", "inductance": "mH", "back_emf": "V/krpm", "current": "A",
         "speed": "rpm", "inertia": "kg m^2", "frequency": "kHz", "angular_rate": "rad/s",
-        "time": "s", "voltage": "V", "ratio": "%",
+        "torque": "N m", "time": "s", "voltage": "V", "ratio": "%",
     }[quantity]
