@@ -1,6 +1,7 @@
 /* cycles.c - AVR clock cycles of mc_step and mc_slow_step over check16's recorded start, per frame.
  */
 /* check16-cflags: -DMOTOR_LOCK_TIME_S=0.02 -DMOTOR_RAMP_TIME_S=0.15 -DMC_HANDOFF_WAIT_S=0.05 */
+/* check16-cflags: -DMC_HANDOFF_AGREE_S=0.005 */
 #include <stdint.h>
 
 #include "emit.h"

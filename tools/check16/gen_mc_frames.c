@@ -10,7 +10,7 @@
  *       tools/sim/sim_scenario.c foc/*.c smc_estimator/*.c firmware/mc.c \
  *       -lm -o /tmp/gen_mc_frames
  *   /tmp/gen_mc_frames > tools/check16/mc_frames.h
- * with MC_CHECK16_FLAGS the check16-cflags line of vec_mc.c. The core is
+ * with MC_CHECK16_FLAGS the check16-cflags lines of vec_mc.c. The core is
  * driven exactly as vec_mc.c replays it (START at frame MC_FRAMES_START,
  * bus and pot from the formulas in mc_frames_bus/pot), so the replay takes
  * the recorded path: calibration, lock, ramp, hand-off, closed loop.

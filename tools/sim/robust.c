@@ -24,12 +24,12 @@
  * step; t_meas..t_stop the second window; t_stop STOP; t_end the end.
  */
 
-#define T_START 0.10
+#define T_START         0.10
 #define T_STEP_AFTER_CL 1.40 /* the hold window ends this long after CLOSED_LOOP */
-#define T_HOLD_LEN 0.50      /* ... and is this long */
-#define T_SETTLE 0.80        /* after the step, the second window starts */
-#define T_MEAS_LEN 0.40
-#define T_STOPPED 0.30 /* STOP to the end of the run */
+#define T_HOLD_LEN      0.50 /* ... and is this long */
+#define T_SETTLE        0.80 /* after the step, the second window starts */
+#define T_MEAS_LEN      0.40
+#define T_STOPPED       0.30 /* STOP to the end of the run */
 /* No CLOSED_LOOP by then: a failed start. Every attempt (calibration,
  * lock, ramp, the longest wait at its end, the coast before a retry) and
  * one second more. */
@@ -43,7 +43,7 @@
 
 /* What the profile claims, the envelope the draws stay inside (docs/robustness.md). */
 #define ENV_SPEED_HI_FRAC 0.8 /* speeds up to this fraction of the nominal speed */
-#define ENV_TORQUE_FRAC 0.6   /* steady load up to this fraction of Kt * MOTOR_CURRENT_MAX_A */
+#define ENV_TORQUE_FRAC   0.6 /* steady load up to this fraction of Kt * MOTOR_CURRENT_MAX_A */
 /* The start the profile claims: its start load (MOTOR_START_LOAD_NM, which
  * tools/tune sizes the ramp current for at 60 % of Kt I_ramp; 60 % when a
  * profile does not say) plus ENV_ACCEL_SHARE of Kt I_ramp to accelerate the
@@ -69,7 +69,7 @@
  * (about ten speed-loop periods, the time the speed loop needs to answer),
  * so the rotor stops before the loop has the current. */
 #define ENV_STEP_REACT_S 0.010
-#define ENV_STEP_DROP 0.5
+#define ENV_STEP_DROP    0.5
 
 typedef enum { LOAD_NONE, LOAD_COULOMB, LOAD_VISCOUS, LOAD_FAN, LOAD_KINDS } load_kind_t;
 typedef enum { STEP_LOAD_UP, STEP_LOAD_DOWN, STEP_LOAD_RAMP, STEP_SPEED, STEP_KINDS } step_kind_t;
@@ -81,9 +81,9 @@ typedef struct {
     uint32_t seed;
     simcore_cfg_t cfg;
     load_kind_t load;
-    double load_nm;  /* coulomb: the brake's torque; viscous/fan: torque at the rated speed */
+    double load_nm; /* coulomb: the brake's torque; viscous/fan: torque at the rated speed */
     step_kind_t step;
-    double step_nm;  /* load steps: the brake's torque after the step */
+    double step_nm; /* load steps: the brake's torque after the step */
     double rpm1, rpm2;
     double start_need_nm, start_have_nm; /* torque the ramp needs vs the profile claims */
     double j_claim;                      /* the inertia scale the profile claims, at most */
@@ -97,9 +97,9 @@ typedef struct {
     double t_cl; /* time to CLOSED_LOOP from START, s; < 0 never */
     int retries;
     unsigned fault;
-    double ang_mean, ang_rms, ang_max;   /* hold window, deg */
-    double spd_err, est_err;             /* hold window: true vs reference, estimate vs true, % */
-    double spd_err2, ang_rms2;           /* second window */
+    double ang_mean, ang_rms, ang_max; /* hold window, deg */
+    double spd_err, est_err;           /* hold window: true vs reference, estimate vs true, % */
+    double spd_err2, ang_rms2;         /* second window */
     double i_peak;
 } run_result_t;
 
@@ -184,7 +184,8 @@ static void draw(uint32_t seed, const char *motor, const char *board, run_draw_t
      * ramp's acceleration; what the plant gives: Kt_plant * I_ramp. */
     j = (mp != NULL) ? mp->j_kgm2 * d->cfg.j_scale : 0.0;
     w_end = (double)MOTOR_RAMP_END_RPM * 2.0 * M_PI / 60.0;
-    d->start_need_nm = d->cfg.coulomb_nm + ((mp != NULL) ? mp->b_nms * d->cfg.b_scale * w_end : 0.0) +
+    d->start_need_nm = d->cfg.coulomb_nm +
+                       ((mp != NULL) ? mp->b_nms * d->cfg.b_scale * w_end : 0.0) +
                        j * w_end / (double)MOTOR_RAMP_TIME_S;
     if (d->load == LOAD_COULOMB) {
         d->start_need_nm += d->load_nm;
@@ -325,8 +326,8 @@ static int run_one(const run_draw_t *d0, run_result_t *res, FILE *csv, bool verb
             break;
         }
         if (t_cl < 0.0 && s.rig.t > T_CL_LIMIT) {
-            snprintf(res->why, sizeof(res->why), "no CLOSED_LOOP by %.1f s (state %s)",
-                     T_CL_LIMIT, simcore_state_name((int)s.st.state));
+            snprintf(res->why, sizeof(res->why), "no CLOSED_LOOP by %.1f s (state %s)", T_CL_LIMIT,
+                     simcore_state_name((int)s.st.state));
             break;
         }
     }
@@ -381,34 +382,37 @@ static void print_header(void)
 {
     printf("seed,motor,result,why,rs_scale,l_scale,ke_scale,j_scale,b_scale,coulomb_nm,deadtime_us,"
            "inverter,dt_shape,r_on,v_diode,off_a,off_b,noise,theta0_deg,load,load_nm,step,step_nm,"
-           "rpm1,rpm2,start_need_nm,start_have_nm,physics_limited,step_limited,t_cl_s,retries,fault,ang_mean,"
+           "rpm1,rpm2,start_need_nm,start_have_nm,physics_limited,step_limited,t_cl_s,retries,"
+           "fault,ang_mean,"
            "ang_rms,ang_max,spd_err_pct,est_err_pct,spd_err2_pct,ang_rms2,i_peak\n");
 }
 
 static void print_row(const char *motor, const run_draw_t *d, const run_result_t *r)
 {
     const simcore_cfg_t *c = &d->cfg;
-    printf("%u,%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.4f,%.5f,%.3f,%s,%d,%.4f,%.3f,%.2f,%.2f,%.2f,%.1f,"
-           "%s,%.5f,%s,%.5f,%.1f,%.1f,%.5f,%.5f,%d,%d,%.4f,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-           "%.3f\n",
-           d->seed, motor, r->result, r->why, c->rs_scale, c->l_scale, c->ke_scale, c->j_scale,
-           c->b_scale, c->coulomb_nm, c->deadtime_s * 1e6,
-           (c->inv.model == SIM_INV_SWITCHING) ? "switching" : "averaged", c->inv.dt_shape,
-           c->inv.r_on_ohm, c->inv.v_diode_v, c->offset_a_codes, c->offset_b_codes,
-           c->noise_codes, c->theta0_rad * 180.0 / M_PI, LOAD_NAMES[d->load], d->load_nm,
-           STEP_NAMES[d->step], d->step_nm, d->rpm1, d->rpm2, d->start_need_nm, d->start_have_nm,
-           d->physics_limited ? 1 : 0, d->step_limited ? 1 : 0, r->t_cl, r->retries, simcore_fault_name(r->fault),
-           r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err, r->spd_err2, r->ang_rms2,
-           r->i_peak);
+    printf(
+        "%u,%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.4f,%.5f,%.3f,%s,%d,%.4f,%.3f,%.2f,%.2f,%.2f,%.1f,"
+        "%s,%.5f,%s,%.5f,%.1f,%.1f,%.5f,%.5f,%d,%d,%.4f,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
+        "%.3f\n",
+        d->seed, motor, r->result, r->why, c->rs_scale, c->l_scale, c->ke_scale, c->j_scale,
+        c->b_scale, c->coulomb_nm, c->deadtime_s * 1e6,
+        (c->inv.model == SIM_INV_SWITCHING) ? "switching" : "averaged", c->inv.dt_shape,
+        c->inv.r_on_ohm, c->inv.v_diode_v, c->offset_a_codes, c->offset_b_codes, c->noise_codes,
+        c->theta0_rad * 180.0 / M_PI, LOAD_NAMES[d->load], d->load_nm, STEP_NAMES[d->step],
+        d->step_nm, d->rpm1, d->rpm2, d->start_need_nm, d->start_have_nm,
+        d->physics_limited ? 1 : 0, d->step_limited ? 1 : 0, r->t_cl, r->retries,
+        simcore_fault_name(r->fault), r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err,
+        r->spd_err2, r->ang_rms2, r->i_peak);
     fflush(stdout);
 }
 
 static void usage(void)
 {
-    fprintf(stderr,
-            "usage: robust [--motor NAME] [--board NAME] (--seed N [--csv FILE] | --from N --count N)\n"
-            "  one CSV row per run on stdout (docs/robustness.md); --seed N runs one seed and\n"
-            "  prints its summary (the reproduce command the campaign prints for a failure)\n");
+    fprintf(
+        stderr,
+        "usage: robust [--motor NAME] [--board NAME] (--seed N [--csv FILE] | --from N --count N)\n"
+        "  one CSV row per run on stdout (docs/robustness.md); --seed N runs one seed and\n"
+        "  prints its summary (the reproduce command the campaign prints for a failure)\n");
 }
 
 int main(int argc, char **argv)

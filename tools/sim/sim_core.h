@@ -38,13 +38,13 @@ typedef struct {
     double amp_tau_s;   /* current amplifiers' time constant, s; < 0: the board's */
     bool offsets_set;   /* false: the board's amplifier offsets; true: the two below */
     double offset_a_codes, offset_b_codes; /* amplifier offsets, ADC codes */
-    double j_extra_kgm2; /* load inertia added to the motor's (after j_scale), kg m^2 */
-    double b_scale;      /* plant viscous friction times this */
-    double coulomb_nm;   /* plant dry friction, N m; < 0: the profile's */
+    double j_extra_kgm2;       /* load inertia added to the motor's (after j_scale), kg m^2 */
+    double b_scale;            /* plant viscous friction times this */
+    double coulomb_nm;         /* plant dry friction, N m; < 0: the profile's */
     sim_inverter_params_t inv; /* model, dt_shape, i_band_a, r_on_ohm, v_diode_v taken from here */
-    int csv_decim;      /* CSV row every N periods */
-    FILE *csv;          /* NULL: no CSV */
-    bool progress;      /* progress line on stderr for long runs */
+    int csv_decim;             /* CSV row every N periods */
+    FILE *csv;                 /* NULL: no CSV */
+    bool progress;             /* progress line on stderr for long runs */
 } simcore_cfg_t;
 
 /* One PWM period as seen by an engineer, physical units. Taken at the
