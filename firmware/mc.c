@@ -317,6 +317,7 @@ static void mc_enter_lock(mc_t *mc)
     mc->ol_angle = 0U;
     mc->ol_damp = 0;
     mc->agree = 0U;
+    mc->ol_iq = 0;
     mc->ol_step = 0U;
     mc->theta = 0;
     mc->theta_offset = 0;
@@ -353,17 +354,19 @@ static void mc_enter_closed_loop(mc_t *mc)
     mc_set_advance(mc);
     mc->speed_ref =
         (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
-    /* The speed PI starts from the ramp's current (AN1078: the integral
-     * preset to the start-up Iq), now on the estimated q axis: the rotor has
-     * just followed the ramp with it, so it moves whatever the load, where
-     * the current measured on the estimated q axis (the load's share of the
-     * forced current) fell to zero or below at light load (the rotor swings
-     * about the forced angle) and fell short of a heavy Coulomb load
-     * (stick-slip), and either stopped the rotor within tens of ms. A light
-     * load is accelerated instead, until the speed loop takes it back. The
-     * slow step presets the PI with it; until its first result arrives, the
-     * references are what the preset PI puts out. */
-    mc->i_ref.q = MC_RAMP_CURRENT_Q15;
+    /* The speed PI starts from the load's share of the ramp current, the
+     * measured current on the estimated q axis low-passed over 32 windows
+     * by the slow step (ol_iq), plus a quarter of the ramp current, within
+     * 0..I_ramp. One sample of that current, the preset before, can be
+     * anything in +-I_ramp under a rotor swinging about the forced angle
+     * (-0.47 A stopped a light rotor within 15 ms); the low-passed one alone
+     * fell short of a stick-slip Coulomb load; the whole ramp current
+     * (AN1078's preset) shot an unloaded Hurst from 500 to 1,217 rpm. The
+     * slow step presets the PI with it; until its first result arrives,
+     * the references are what the preset PI puts out. */
+    int32_t iq0 = (int32_t)mc->ol_iq + (int32_t)(MC_RAMP_CURRENT_Q15 / 4);
+    iq0 = (iq0 < 0) ? 0 : iq0;
+    mc->i_ref.q = (iq0 > (int32_t)MC_RAMP_CURRENT_Q15) ? MC_RAMP_CURRENT_Q15 : (q15_t)iq0;
     mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->preset_pending = true;
@@ -762,6 +765,7 @@ static void mc_slow_apply(mc_t *mc)
     mc_set_advance(mc);
     if (mc->state == MC_STATE_OPEN_LOOP) {
         mc_ol_damp(mc);
+        mc->ol_iq = so->ol_iq;
     }
     mc->speed_target = so->speed_target;
     mc->torque_target = so->torque_target;
@@ -793,6 +797,8 @@ static void mc_window_end(mc_t *mc)
     si->preset = mc->preset_pending;
     si->preset_iq = mc->preset_iq;
     si->preset_speed_ref = mc->preset_speed_ref;
+    si->i_ab = mc->i_ab;
+    si->theta_est = smc_theta(&mc->smc);
     mc->preset_pending = false;
     mc->slow_posted = true;
     MC_BARRIER(); /* every field above is written before the flag hands it over */
@@ -832,6 +838,16 @@ void mc_slow_step(mc_t *mc)
     }
     so->loop = false;
     so->fault = MC_FAULT_NONE;
+    /* OPEN_LOOP: the load's share of the ramp current, the measured current
+     * on the estimated q axis low-passed over 32 windows (the hand-off's
+     * preset, mc_enter_closed_loop). */
+    if (si->state == MC_STATE_OPEN_LOOP) {
+        q15_t iq = park_forward(si->i_ab, sincos_compute(si->theta_est)).q;
+        mc->ol_iq_acc += (int32_t)iq - mc->ol_iq_acc / 32; /* |acc| <= 32 * 32768 */
+    } else {
+        mc->ol_iq_acc = 0;
+    }
+    so->ol_iq = (q15_t)(mc->ol_iq_acc / 32);
     if (si->state == MC_STATE_CLOSED_LOOP) {
         mc_slow_speed_loop(mc, &mc->smc.res, so);
     }
@@ -1042,7 +1058,8 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    difference is kept as theta_offset and bled to zero at
  *    MC_HANDOFF_BLEED_DEG_PER_S, the references turned so that the current
  *    vector stays on the estimated axes, and the speed PI starts with its
- *    integral at the ramp's Iq (mc_enter_closed_loop says why).
+ *    integral at the load's low-passed share of the ramp current plus a
+ *    margin (mc_enter_closed_loop says why).
  *    Open-loop damping: a rotor pulled by a current at a forced angle is an
  *    undamped spring and mass; with little friction it swings about the
  *    forced angle for the whole ramp (with no friction and three times the

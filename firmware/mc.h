@@ -201,6 +201,8 @@ typedef struct {
     bool preset;            /* closed loop entered in this window: */
     q15_t preset_iq;        /* the speed PI's integral, Q15 current */
     q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
+    ab_q15_t i_ab;          /* OPEN_LOOP: the window end's current ... */
+    angle_q15_t theta_est;  /* ... and estimated angle (the load's share, mc.c note 1) */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -212,6 +214,7 @@ typedef struct {
     uint16_t fault;      /* a stall fault, or MC_FAULT_NONE */
     q15_t speed_target;  /* the reference before the ramp (every state) */
     q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
+    q15_t ol_iq;         /* OPEN_LOOP: the torque current, low-passed (mc.c note 1) */
 } mc_slow_out_t;
 
 /* ---- the instance ------------------------------------------------------- *
@@ -267,6 +270,7 @@ typedef struct {
     uint32_t ol_step;       /* open-loop angle increment per period, 32-bit binary angle */
     int16_t theta_offset;   /* theta_forced - theta_est at hand-off, bled to 0 */
     int16_t ol_damp;        /* OPEN_LOOP: the damping shift in ol_angle, angle counts */
+    q15_t ol_iq;            /* OPEN_LOOP: the load's torque current (slow_out.ol_iq), Q15 */
     sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 
     /* estimator and the voltage it is fed (note 2) */
@@ -297,6 +301,7 @@ typedef struct {
     int16_t spd_ref;       /* the ramp's state, Q15 speed */
     uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
     uint8_t slow_epoch;    /* the run the slow step's state belongs to */
+    int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
 } mc_t;
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */

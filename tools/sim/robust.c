@@ -246,10 +246,11 @@ static void window_add(window_t *w, const simcore_sample_t *n)
     w->ref += n->speed_ref_rpm;
 }
 
-static int run_one(const run_draw_t *d0, run_result_t *res, FILE *csv, bool verbose)
+/* Runs one draw; apply_load completes its start need and step class. */
+static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
 {
     static simcore_t s;
-    run_draw_t d = *d0;
+    run_draw_t d = *dp;
     window_t w1, w2;
     double t_cl = -1.0, t_step = 1e9, t_meas = 1e9, t_stop = 1e9, t_end = T_CL_LIMIT + 1.0;
     double ramp_t0 = 0.0, ramp_nm0 = 0.0;
@@ -264,6 +265,7 @@ static int run_one(const run_draw_t *d0, run_result_t *res, FILE *csv, bool verb
         return -1;
     }
     apply_load(&s, &d);
+    *dp = d;
     simcore_set_speed(&s, d.rpm1);
     res->t_cl = -1.0;
     while (s.rig.t < t_end) {
