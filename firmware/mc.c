@@ -318,6 +318,12 @@ static void mc_enter_lock(mc_t *mc)
     mc->ol_damp = 0;
     mc->agree = 0U;
     mc->ol_iq = 0;
+    mc->dtm_phase = 0U; /* MC_DTM_ALIGN */
+    mc->dtm_cnt = 0U;
+    mc->dtm_sum = 0;
+    mc->dtm_slow = false;
+    mc->dtm_lpf = 0;
+    mc->dtm_mean = 0;
     mc->ol_step = 0U;
     mc->theta = 0;
     mc->theta_offset = 0;
@@ -562,9 +568,9 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
 
     /* 16-bit arithmetic: PWM_DUTY_MAX plus the dead-time counts fits int16
      * (mc_derived.h checks it). */
-    int16_t dt0 = mc_deadtime_counts(iph[0]);
-    int16_t dt1 = mc_deadtime_counts(iph[1]);
-    int16_t dt2 = mc_deadtime_counts(iph[2]);
+    int16_t dt0 = mc_deadtime_counts(iph[0], mc->dt_counts, mc->dt_slope);
+    int16_t dt1 = mc_deadtime_counts(iph[1], mc->dt_counts, mc->dt_slope);
+    int16_t dt2 = mc_deadtime_counts(iph[2], mc->dt_counts, mc->dt_slope);
     int16_t d0 = (int16_t)sv.duty[0];
     int16_t d1 = (int16_t)sv.duty[1];
     int16_t d2 = (int16_t)sv.duty[2];
@@ -680,6 +686,141 @@ static void mc_calibrate_end(mc_t *mc)
     mc_enter_lock(mc);
 }
 
+int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
+{
+    if (dv <= 0) {
+        return dt;
+    }
+    /* |avg| <= dv keeps the quotient within +-dt (the clamp below is
+     * narrower anyway); dt * dv < 2^31. */
+    if (avg > dv) {
+        avg = dv;
+    } else if (avg < -dv) {
+        avg = -dv;
+    }
+    int32_t m = (int32_t)dt + (int32_t)q15_dsp_divsd(avg * (int32_t)dt, dv);
+    if (m < MC_DT_COUNTS_MIN) {
+        m = MC_DT_COUNTS_MIN;
+    } else if (m > MC_DT_COUNTS_MAX) {
+        m = MC_DT_COUNTS_MAX;
+    }
+    return (int16_t)m;
+}
+
+/* The dead-time measurement's phases (note 4). */
+enum {
+    MC_DTM_ALIGN, /* the lock proper, MC_LOCK_PERIODS */
+    MC_DTM_WAIT1, /* at the lock current, until the swing reverses */
+    MC_DTM_ACC1,  /* averaging, to a reversal at least MC_DTM_N periods on */
+    MC_DTM_SETTLE2,
+    MC_DTM_WAIT2, /* at 3/4 of it */
+    MC_DTM_ACC2,
+    MC_DTM_DONE /* OPEN_LOOP next */
+};
+
+#if MC_DTM_ON
+/* LOCK, after this period's estimator update (note 4). The rotor's swing
+ * reverses where the estimator's alpha voltage (its back-EMF) crosses its
+ * mean over the lock: low-passed over 16 periods (0.8 ms at 20 kHz), since
+ * phase A's current sits at zero, where an inverter with a sharp dead-time
+ * edge makes that voltage chatter (the lag is the same at every reversal),
+ * against its mean over 2,048 periods (102 ms), the offset phase A's
+ * dead-time loss leaves in it. Each level's window runs between two
+ * reversals, or gives up waiting after MC_DTM_WAIT periods. The level
+ * switch and the result are computed here, after the duties. */
+static void mc_dt_measure(mc_t *mc)
+{
+    mc->dtm_lpf += (int32_t)mc->v_hist[0].alpha - mc->dtm_lpf / 16; /* 16 x, |.| < 2^19 */
+    mc->dtm_mean += mc->dtm_lpf - mc->dtm_mean / 2048;              /* 2048 x that, < 2^30 */
+    bool pos = mc->dtm_lpf >= mc->dtm_mean / 2048;
+    bool rev = pos != mc->dtm_pos;
+    mc->dtm_pos = pos;
+    mc->dtm_cnt++;
+    switch (mc->dtm_phase) {
+        case MC_DTM_ALIGN:
+            /* the first window may start within the lock's last MC_DTM_WAIT periods */
+            if (mc->timer + 1U + MC_DTM_WAIT >= (uint32_t)MC_LOCK_PERIODS) {
+                mc->dtm_phase = MC_DTM_WAIT1;
+                mc->dtm_cnt = 0U;
+            }
+            break;
+        case MC_DTM_WAIT1:
+        case MC_DTM_WAIT2:
+            if (rev || mc->dtm_cnt >= MC_DTM_WAIT) {
+                mc->dtm_slow |= !rev;
+                mc->dtm_phase++;
+                mc->dtm_cnt = 0U;
+                mc->dtm_sum = 0;
+                if (mc->dtm_phase == MC_DTM_ACC1) {
+                    mc->dtm_hi = mc->dtm_lpf;
+                    mc->dtm_lo = mc->dtm_lpf;
+                }
+            }
+            break;
+        case MC_DTM_SETTLE2:
+            if (mc->dtm_cnt >= MC_DTM_SETTLE) {
+                mc->dtm_phase = MC_DTM_WAIT2;
+                mc->dtm_cnt = 0U;
+            }
+            break;
+        case MC_DTM_ACC1:
+        case MC_DTM_ACC2:
+            mc->dtm_sum += mc->v_hist[0].beta;
+            if (mc->dtm_lpf > mc->dtm_hi) {
+                mc->dtm_hi = mc->dtm_lpf;
+            }
+            if (mc->dtm_lpf < mc->dtm_lo) {
+                mc->dtm_lo = mc->dtm_lpf;
+            }
+            /* at least MC_DTM_N periods, and not before the lock's end */
+            if (mc->dtm_cnt >= MC_DTM_N && mc->timer + 1U >= (uint32_t)MC_LOCK_PERIODS &&
+                (rev || mc->dtm_cnt >= MC_DTM_N + 2U * MC_DTM_WAIT)) {
+                mc->dtm_slow |= !rev;
+                /* a mean of <= MC_DTM_N + 2 MC_DTM_WAIT Q15 samples fits div.sd */
+                q15_t u = q15_dsp_divsd(mc->dtm_sum, (int16_t)mc->dtm_cnt);
+                mc->dtm_cnt = 0U;
+                if (mc->dtm_phase == MC_DTM_ACC1) {
+                    mc->dtm_u1 = u;
+                    mc->i_ref.q = MC_DTM_CURRENT_Q15;
+                    mc->dtm_phase = MC_DTM_SETTLE2;
+                } else {
+                    /* The model's dead-time voltage on beta: phase B
+                     * carries +sqrt(3)/2 of the lock current, C -sqrt(3)/2,
+                     * both outside the band (mc_derived.h). */
+                    int16_t dv[3];
+                    dv[0] = 0;
+                    dv[1] = mc->dt_counts;
+                    dv[2] = (int16_t)(-mc->dt_counts);
+                    q15_t d = mc_duty_to_voltage(dv, mc->vbus).beta;
+                    int32_t avg = 4 * (int32_t)u - 3 * (int32_t)mc->dtm_u1;
+                    /* A swing too slow to reverse within the windows
+                     * leaves its back-EMF in them: unless the rotor was
+                     * nearly still (the alpha voltage's range within
+                     * 1/16 of the dead-time voltage: its swing then moves
+                     * the result by well under 1 %), the dead time in use
+                     * is kept. */
+                    bool still =
+                        (mc->dtm_hi - mc->dtm_lo) < (int32_t)d; /* 16 x range < 16 x d/16 */
+                    int16_t dt = (mc->dtm_slow && !still)
+                                     ? mc->dt_counts
+                                     : mc_deadtime_from_lock(mc->dt_counts, avg, d);
+                    mc->dt_counts = dt;
+                    /* dt < MC_DT_BAND_Q15: the quotient is below 2^15 */
+                    mc->dt_slope =
+                        q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+                    mc->dtm_phase = MC_DTM_DONE;
+                }
+            }
+            break;
+        default:
+            break;
+    }
+}
+#define MC_LOCK_DONE(mc) ((mc)->dtm_phase == MC_DTM_DONE)
+#else
+#define MC_LOCK_DONE(mc) ((mc)->timer >= MC_LOCK_PERIODS)
+#endif
+
 /* OPEN_LOOP at the end speed: hold it until the estimate is valid, for at
  * most MC_HANDOFF_WAIT_PERIODS (note 1), then retry or fault. */
 static void mc_ramp_end(mc_t *mc)
@@ -723,6 +864,8 @@ void mc_init(mc_t *mc)
     mc->speed_target = MC_SPEED_REF_MIN_Q15;
     mc->spd_ref = MC_SPEED_REF_MIN_Q15;
     mc->ripple_gain = RIPPLE_ONE;
+    mc->dt_counts = MC_DT_COUNTS;
+    mc->dt_slope = MC_DT_SLOPE;
     mc_outputs_off(mc);
     mc->slow_epoch = mc->epoch;
     mc->fault = MC_FAULT_NONE;
@@ -952,7 +1095,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     bool control = false;
     if (mc->state == MC_STATE_CALIBRATE) {
         mc_calibrate(mc, in);
-    } else if (mc->state == MC_STATE_LOCK && mc->timer >= MC_LOCK_PERIODS) {
+    } else if (mc->state == MC_STATE_LOCK && MC_LOCK_DONE(mc)) {
         mc->i_ref.q = MC_RAMP_CURRENT_Q15;
         mc_enter(mc, MC_STATE_OPEN_LOOP); /* this period still at the lock angle */
         control = true;
@@ -978,6 +1121,11 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
+#if MC_DTM_ON
+        if (mc->state == MC_STATE_LOCK) {
+            mc_dt_measure(mc);
+        }
+#endif
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
 
@@ -1039,6 +1187,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->duty[1] = mc->duty[1];
     st->duty[2] = mc->duty[2];
     st->outputs_on = mc->outputs_on;
+    st->deadtime = mc->dt_counts;
 }
 
 /*
@@ -1095,4 +1244,33 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    The redo costs a second q PI run and the square root before the write;
  *    running at the circle (field weakening, the top speed) costs the
  *    square root alone (docs/board.md "Timing" has the write instants).
+ *
+ * 4. The dead time, measured at every lock (MC_DEADTIME_MEASURE). The
+ *    inverter's voltage loss in a phase is the dead time's share of the bus
+ *    by the sign of its current, plus the switches' delays and the diodes'
+ *    drop; the core adds back what it believes (MC_DEADTIME_COMP) and feeds
+ *    the estimator the duty less that loss, so an error in it is an
+ *    applied-voltage error the estimator reads as back-EMF, at every speed
+ *    and load. PWM_DEADTIME_NS is only what the PWM module is told: 1 us
+ *    off on the 320 V bus is 6.4 V against 33 V of back-EMF at a high-speed
+ *    motor's lowest closed-loop speed, and the motor ran up to 40 % off its
+ *    speed. At the lock the rotor is at rest and its current I is on beta,
+ *    +-sqrt(3)/2 I in phases B and C, both outside the band, so the real
+ *    voltage on beta is R I exactly, and the estimator's voltage u (what
+ *    the duties less the modelled loss give) misses it by (g - 1) D, D the
+ *    model's dead-time voltage on beta and g the real loss over the
+ *    modelled one: u = R I + (g - 1) D. At I and at 3/4 I, R drops out:
+ *    (g - 1) D = 4 u2 - 3 u1, each u averaged over MC_DTM_N periods (the
+ *    last of the lock, and after MC_DTM_SETTLE periods at 3/4 I). The
+ *    diodes' drop and the switches' delays are part of g, the switches'
+ *    on-resistance part of R; the rotor does not move when the current
+ *    falls to 3/4 (it rests where the torque is zero at any current, and a
+ *    passive load holds no torque at rest), and a rotor still swinging
+ *    about the lock angle puts its back-EMF on alpha, not on beta (its q
+ *    axis points along alpha there). The result, within a quarter to
+ *    twice the programmed dead time, is compensated and modelled from the
+ *    next period on (dt_counts, dt_slope; reported in mc_status_t). Not
+ *    covered: a loss that changes with temperature while running (the
+ *    next start measures it again), and a real loss whose shape near zero
+ *    current differs from the band's.
  */

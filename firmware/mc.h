@@ -161,6 +161,8 @@ typedef struct {
     int16_t ia, ib;         /* offset-corrected phase currents, Q15 of BOARD_I_FULLSCALE_A */
     uint16_t duty[3];       /* duties of the last step (what the next period applies) */
     bool outputs_on;        /* as in the last mc_pwm_out_t */
+    int16_t deadtime;       /* the dead time compensated and modelled, Tcy (duty counts):
+                               PWM_DEADTIME_NS's until a lock measured it (MC_DEADTIME_MEASURE) */
 } mc_status_t;
 
 /* ---- run-time gains -------------------------------------------------------- *
@@ -275,8 +277,21 @@ typedef struct {
 
     /* estimator and the voltage it is fed (note 2) */
     smc_t smc;
-    ab_q15_t v_hist[2];   /* applied voltage: [0] for the next step, [1] for this one */
-    int16_t eff[3];       /* this period's effective duties (dead-time loss off), counts */
+    ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
+    int16_t eff[3];     /* this period's effective duties (dead-time loss off), counts */
+    int16_t dt_counts;  /* the dead time compensated and modelled, duty counts (mc.c note 4) */
+    q15_t dt_slope;     /* its in-band slope, dt_counts * 2^15 / MC_DT_BAND_Q15 */
+    /* LOCK: the dead-time measurement (mc.c note 4) */
+    int32_t dtm_sum;  /* the estimator's beta voltage summed over the window, Q15 of V_FS */
+    int32_t dtm_lpf;  /* 16 x its alpha voltage, low-passed over 16 periods */
+    int32_t dtm_mean; /* 2048 x dtm_lpf, low-passed over 2048 periods */
+    int32_t dtm_hi;   /* dtm_lpf's largest and smallest in the windows */
+    int32_t dtm_lo;
+    uint16_t dtm_cnt;     /* periods in the phase */
+    q15_t dtm_u1;         /* the first level's mean voltage, Q15 of V_FS */
+    uint8_t dtm_phase;    /* MC_DTM_* phase (mc.c) */
+    bool dtm_pos;         /* the estimator's alpha voltage was >= 0 last period */
+    bool dtm_slow;        /* a window waited MC_DTM_WAIT for a reversal: not measured */
     uint16_t ripple_gain; /* bus ripple gain for the next period (foc/ripple.h), Q15 */
     int16_t pred;         /* one period of the estimated speed, angle counts (note 2) */
 

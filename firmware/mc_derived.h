@@ -351,6 +351,43 @@ MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
          "too narrow for the dead-time counts (slope >= 1)");
 #define MC_DT_SLOPE ((q15_t)(MC_DT_SLOPE_ + 0.5))
 
+/* The dead-time measurement at the lock (mc.c note 4). The lock's current
+ * (on the forced q axis at angle 0, i.e. along beta) puts +-sqrt(3)/2 of it
+ * into phases B and C; at the second level, 3/4 of the lock current, that
+ * must still be 1.5 band widths (the peak of the PWM ripple the band is
+ * two thirds of), so that both the inverter's loss and the core's model of
+ * it depend on the currents' signs only: I_lock >= 1.5 band / (3/4
+ * sqrt(3)/2) = 2.31 band. Each level's average runs from one reversal of
+ * the rotor's swing to another at least MC_DTM_N periods later: a reversal
+ * is waited for at most MC_DTM_WAIT periods (from the lock's last
+ * MC_DTM_WAIT periods on for the first level), which covers swings of up
+ * to 2 MC_DTM_WAIT periods (205 ms at 20 kHz). */
+#define MC_DTM_N      512L  /* periods averaged at each level, at least (25.6 ms at 20 kHz) */
+#define MC_DTM_WAIT   2048L /* periods a window waits for the swing to reverse, at most */
+#define MC_DTM_SETTLE 100L  /* periods for the current to settle at the second level */
+#define MC_DTM_ON     (MC_DEADTIME_MEASURE && PWM_DEADTIME_NS > 0)
+/* The longest the measurement adds to the lock, periods: the first
+ * window's end, the settling, the second window's wait and length. */
+#define MC_DTM_MAX_PERIODS (MC_DTM_ON ? 2L * MC_DTM_N + 5L * MC_DTM_WAIT + MC_DTM_SETTLE : 0L)
+MC_CHECK(MC_DEADTIME_MEASURE, MC_DEADTIME_MEASURE == 0 || MC_DEADTIME_MEASURE == 1,
+         "must be 0 or 1");
+MC_CHECK(MOTOR_LOCK_CURRENT_A,
+         MC_DEADTIME_MEASURE == 0 ||
+             MOTOR_LOCK_CURRENT_A >= 1.5 * MC_DEADTIME_BAND_A / (0.75 * 0.8660254037844386),
+         "must be at least 2.31 dead-time bands (MC_DEADTIME_BAND_A) to measure the dead time "
+         "at the lock (mc.c note 4); raise it or set MC_DEADTIME_MEASURE 0");
+#define MC_DTM_CURRENT_Q15 ((q15_t)((3L * (long)MC_LOCK_CURRENT_Q15) / 4L)) /* the second level */
+/* What a measurement may set: a quarter to twice the programmed dead time,
+ * and below one band's counts so that the in-band slope fits Q15. */
+#define MC_DT_COUNTS_MIN ((int16_t)((MC_DT_COUNTS + 3) / 4))
+#define MC_DT_COUNTS_MAX_                                                                          \
+    ((2.0 * MC_DT_COUNTS < (double)MC_DT_BAND_Q15 - 1.0) ? 2.0 * MC_DT_COUNTS                      \
+                                                         : (double)MC_DT_BAND_Q15 - 1.0)
+#define MC_DT_COUNTS_MAX ((int16_t)MC_DT_COUNTS_MAX_)
+MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_MAX_ + 1.0 <= 32767.0,
+         "duty full scale plus twice the dead-time counts must fit 16 bits (the compensated "
+         "duty is formed in int16 with the measured dead time)");
+
 /* Applied voltage from duties (mc_internal.h): MC_VAPP_K = sqrt(3) / (3
  * PWM_DUTY_MAX) * VBUS_FS / VBUS_NOMINAL * 2^25, so that (2 da - db - dc) *
  * vbus * MC_VAPP_K / 2^25 is v_alpha in Q15 of V_FS; MC_VAPP_KB is beta's,

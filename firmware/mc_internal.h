@@ -5,24 +5,36 @@
 #include "mc.h"
 
 /*
- * Dead-time correction of one phase, in duty counts: +MC_DT_COUNTS for a
- * current at or above +MC_DT_BAND_Q15 (into the motor: during the dead time
- * the low-side diode conducts and the phase sits at the negative rail, so
- * the inverter applies less than commanded), -MC_DT_COUNTS at or below
- * -MC_DT_BAND_Q15, and linear in between: (i * MC_DT_SLOPE) >> 15 (rounded),
- * so the correction does not chatter around a zero crossing.
- * i: Q15 of BOARD_I_FULLSCALE_A. Result in [-MC_DT_COUNTS, MC_DT_COUNTS].
+ * Dead-time correction of one phase, in duty counts: +dt for a current at
+ * or above +MC_DT_BAND_Q15 (into the motor: during the dead time the
+ * low-side diode conducts and the phase sits at the negative rail, so the
+ * inverter applies less than commanded), -dt at or below -MC_DT_BAND_Q15,
+ * and linear in between: (i * slope) >> 15 (rounded), so the correction
+ * does not chatter around a zero crossing. dt: the dead time in use, duty
+ * counts (MC_DT_COUNTS, or what the lock measured); slope: dt * 2^15 /
+ * MC_DT_BAND_Q15, rounded, below 2^15.
+ * i: Q15 of BOARD_I_FULLSCALE_A. Result in [-dt, dt].
  */
-Q15_INLINE int16_t mc_deadtime_counts(q15_t i)
+Q15_INLINE int16_t mc_deadtime_counts(q15_t i, int16_t dt, q15_t slope)
 {
     if (i >= MC_DT_BAND_Q15) {
-        return MC_DT_COUNTS;
+        return dt;
     }
     if (i <= (q15_t)(-MC_DT_BAND_Q15)) {
-        return (int16_t)(-MC_DT_COUNTS);
+        return (int16_t)(-dt);
     }
-    return q15_mul(i, MC_DT_SLOPE); /* round(i slope / 2^15), |.| < MC_DT_COUNTS + 1 */
+    return q15_mul(i, slope); /* round(i slope / 2^15), |.| < dt + 1 */
 }
+
+/*
+ * The dead time (duty counts) a lock's measurement gives (mc.c note 4):
+ * dt + dt * avg / dv, within [MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX]. dt: the
+ * dead time in use while measuring; avg: the mean of 4 u2 - 3 u1 (u1, u2:
+ * the estimator's voltage on the lock's axis at the lock current and at
+ * 3/4 of it, Q15 of V_FS), the voltage the model missed; dv: the model's
+ * dead-time voltage on that axis at dt, Q15 of V_FS (> 0, else dt is kept).
+ */
+int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv);
 
 /*
  * The alpha/beta voltage three phase duties produce on a bus vbus:

@@ -179,20 +179,33 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
     run_to(MC_STATE_LOCK);
     assert_off(); /* the period that ended CALIBRATE; the lock's first is the next */
     long n = 0;   /* periods that end in LOCK with the outputs on */
+    long level2 = 0;
     for (;;) {
         step_with(nominal());
         if (st.state != MC_STATE_LOCK) {
             break;
         }
         assert_int_equal(st.theta_est, 0);
-        assert_int_equal(st.iq_ref, MC_LOCK_CURRENT_Q15);
+        /* the lock current, then (from at least MC_LOCK_PERIODS + MC_DTM_N
+         * on) the dead-time measurement's second level, never back */
+        if (st.iq_ref != MC_LOCK_CURRENT_Q15) {
+            assert_int_equal(st.iq_ref, MC_DTM_CURRENT_Q15);
+            assert_true(n + 1 >= (long)MC_LOCK_PERIODS + MC_DTM_N);
+            level2++;
+        } else {
+            assert_int_equal(level2, 0);
+        }
         assert_int_equal(st.id_ref, 0);
         assert_true(out.outputs_on);
         n++;
     }
-    printf("measured: lock lasted %ld periods (MC_LOCK_PERIODS = %u)\n", n,
-           (unsigned)MC_LOCK_PERIODS);
-    assert_int_equal(n, (long)MC_LOCK_PERIODS);
+    printf("measured: lock lasted %ld periods (MC_LOCK_PERIODS = %u, the dead-time measurement "
+           "%ld of them, at most %ld), %ld at the second level\n",
+           n, (unsigned)MC_LOCK_PERIODS, n - (long)MC_LOCK_PERIODS, (long)MC_DTM_MAX_PERIODS,
+           level2);
+    assert_true(n >= (long)MC_LOCK_PERIODS + 2L * MC_DTM_N + MC_DTM_SETTLE);
+    assert_true(n <= (long)MC_LOCK_PERIODS + MC_DTM_MAX_PERIODS);
+    assert_true(level2 >= MC_DTM_SETTLE + MC_DTM_N);
     assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
 }
 
@@ -617,29 +630,67 @@ static void test_speed_target_should_follow_the_pot_then_the_remote_reference(vo
 static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band(void **state)
 {
     (void)state;
-    err_stats_t e;
-    err_stats_init(&e);
-    for (int32_t i = -32768; i <= 32767; i++) {
-        double ref;
-        if (i >= MC_DT_BAND_Q15) {
-            ref = MC_DT_COUNTS;
-        } else if (i <= -MC_DT_BAND_Q15) {
-            ref = -MC_DT_COUNTS;
-        } else {
-            ref = (double)MC_DT_COUNTS * i / MC_DT_BAND_Q15;
+    /* At the programmed dead time and at the ends of what a lock may
+     * measure, with the slope the measurement sets (mc.c note 4). */
+    const int16_t dts[3] = {MC_DT_COUNTS, MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX};
+    for (int k = 0; k < 3; k++) {
+        int16_t dt = dts[k];
+        q15_t slope = (k == 0)
+                          ? MC_DT_SLOPE
+                          : q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+        err_stats_t e;
+        err_stats_init(&e);
+        for (int32_t i = -32768; i <= 32767; i++) {
+            double ref;
+            if (i >= MC_DT_BAND_Q15) {
+                ref = dt;
+            } else if (i <= -MC_DT_BAND_Q15) {
+                ref = -dt;
+            } else {
+                ref = (double)dt * i / MC_DT_BAND_Q15;
+            }
+            int16_t got = mc_deadtime_counts((q15_t)i, dt, slope);
+            assert_true(got >= -dt && got <= dt);
+            err_stats_add(&e, got - ref, (double)i);
         }
-        int16_t got = mc_deadtime_counts((q15_t)i);
-        assert_true(got >= -MC_DT_COUNTS && got <= MC_DT_COUNTS);
-        err_stats_add(&e, got - ref, (double)i);
+        err_stats_print("dead-time correction vs sign with linear band", &e, "counts");
+        assert_true(e.max_abs <= 0.51);
+        assert_int_equal(mc_deadtime_counts(0, dt, slope), 0);
+        assert_int_equal(mc_deadtime_counts(32767, dt, slope), dt);
+        assert_int_equal(mc_deadtime_counts(-32768, dt, slope), -dt);
     }
-    err_stats_print("dead-time correction vs sign with linear band", &e, "counts");
-    assert_true(e.max_abs <= 0.51);
-    printf("measured: dead time %d counts = %.2f %% of the period, band %d LSB = %.3f A\n",
-           MC_DT_COUNTS, 100.0 * MC_DT_COUNTS / PWM_DUTY_MAX, MC_DT_BAND_Q15,
-           MC_DT_BAND_Q15 * BOARD_I_FULLSCALE_A / 32768.0);
-    assert_int_equal(mc_deadtime_counts(0), 0);
-    assert_int_equal(mc_deadtime_counts(32767), MC_DT_COUNTS);
-    assert_int_equal(mc_deadtime_counts(-32768), -MC_DT_COUNTS);
+    printf("measured: dead time %d counts = %.2f %% of the period (a lock may set %d..%d), band %d "
+           "LSB = %.3f A\n",
+           MC_DT_COUNTS, 100.0 * MC_DT_COUNTS / PWM_DUTY_MAX, MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX,
+           MC_DT_BAND_Q15, MC_DT_BAND_Q15 * BOARD_I_FULLSCALE_A / 32768.0);
+}
+
+static void test_deadtime_from_lock_should_scale_the_dead_time_by_the_missed_voltage(void **state)
+{
+    (void)state;
+    /* dt' = dt (1 + avg / dv), the quotient truncated, within
+     * [MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX]; dv <= 0 keeps dt. */
+    const q15_t dvs[4] = {1, 37, 1200, 32767};
+    long n = 0;
+    for (int k = 0; k < 4; k++) {
+        q15_t dv = dvs[k];
+        for (int16_t dt = MC_DT_COUNTS_MIN; dt <= MC_DT_COUNTS_MAX; dt = (int16_t)(dt + 7)) {
+            for (int32_t avg = -3 * (int32_t)dv; avg <= 3 * (int32_t)dv;
+                 avg += (dv > 100) ? dv / 50 : 1) {
+                double a = (avg > dv) ? dv : (avg < -dv) ? -dv : avg;
+                double ref = dt + trunc(a * dt / dv);
+                ref = (ref < MC_DT_COUNTS_MIN) ? MC_DT_COUNTS_MIN : ref;
+                ref = (ref > MC_DT_COUNTS_MAX) ? MC_DT_COUNTS_MAX : ref;
+                assert_int_equal(mc_deadtime_from_lock(dt, avg, dv), (int16_t)ref);
+                n++;
+            }
+        }
+    }
+    assert_int_equal(mc_deadtime_from_lock(MC_DT_COUNTS, 5000, 0), MC_DT_COUNTS);
+    assert_int_equal(mc_deadtime_from_lock(MC_DT_COUNTS, -5000, -3), MC_DT_COUNTS);
+    assert_int_equal(mc_deadtime_from_lock(MC_DT_COUNTS, INT32_MAX, 100), MC_DT_COUNTS_MAX);
+    assert_int_equal(mc_deadtime_from_lock(MC_DT_COUNTS, INT32_MIN, 100), MC_DT_COUNTS_MIN);
+    printf("measured: %ld cases of mc_deadtime_from_lock exact\n", n);
 }
 
 static void test_duty_to_voltage_should_match_the_double_precision_reconstruction(void **state)
@@ -816,6 +867,7 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(
             test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band, setup),
+        cmocka_unit_test(test_deadtime_from_lock_should_scale_the_dead_time_by_the_missed_voltage),
         cmocka_unit_test_setup(
             test_duty_to_voltage_should_match_the_double_precision_reconstruction, setup),
         cmocka_unit_test(

@@ -14,12 +14,13 @@
  *   mc_constants  every derived constant mc_step uses, as each compiler
  *                 folded it (a 32-bit double on the AVR): a difference here
  *                 names the constant before any step does;
- *   mc_helpers    the pure helpers (dead-time counts, duty -> voltage, pot
+ *   mc_helpers    the pure helpers (dead-time counts at any dead time a
+ *                 lock may measure, the lock's result, duty -> voltage, pot
  *                 maps) over edges and random inputs;
  *   mc_step       the recorded frames of a simulated Hurst start
  *                 (tools/check16/mc_frames.h, gen_mc_frames.c): START at
  *                 frame 10, calibration, lock, ramp, hand-off, closed loop,
- *                 the pot to full travel at frame 5000; duties, state and
+ *                 the pot to full travel at frame 7000; duties, state and
  *                 the main internal values after every step;
  *   mc_protect    synthetic frames through each protection and request.
  * The start-up is shortened by the check16-cflags above (the same flags
@@ -80,6 +81,9 @@ static void constants(void)
     emit_i16(MC_SPD_KI);
     emit_end();
     emit_u16(MC_LOCK_PERIODS);
+    emit_i16(MC_DT_COUNTS_MIN);
+    emit_i16(MC_DT_COUNTS_MAX);
+    emit_i16(MC_DTM_CURRENT_Q15);
     emit_u16(MC_CALIB_PERIODS);
     emit_u16(MC_COAST_PERIODS);
     emit_u32(MC_RAMP_STEP_INC);
@@ -127,19 +131,26 @@ static void helpers(void)
         int16_t i = vec_edge_or_rand(n);
         int16_t d[3];
         int16_t vb;
+        int16_t dt;
+        q15_t slope;
         ab_q15_t v;
         d[0] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
         d[1] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
         d[2] = vec_rand_between(-(int16_t)(PWM_DUTY_MAX / 2U), (int16_t)(3U * PWM_DUTY_MAX / 2U));
         vb = (n < VEC_N_EDGES) ? vec_edges[n] : vec_rand_between(0, 32767);
         v = mc_duty_to_voltage(d, vb);
+        /* a dead time a lock may measure, and its slope as mc.c forms it */
+        dt = (n == 0U) ? MC_DT_COUNTS : vec_rand_between(MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX);
+        slope = q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
         emit_i16(i);
         emit_i16(d[0]);
         emit_i16(d[1]);
         emit_i16(d[2]);
         emit_i16(vb);
+        emit_i16(dt);
         emit_sep();
-        emit_i16(mc_deadtime_counts(i));
+        emit_i16(mc_deadtime_counts(i, dt, slope));
+        emit_i16(mc_deadtime_from_lock(dt, 3 * (int32_t)i, vb));
         emit_i16(v.alpha);
         emit_i16(v.beta);
         emit_i16(mc_pot_to_speed(i));

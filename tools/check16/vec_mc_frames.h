@@ -7,7 +7,7 @@
 #include "mc.h"
 
 /* Frames replayed, and the frame at which START is requested. */
-#define MC_FRAMES_N     6000U
+#define MC_FRAMES_N     8000U
 #define MC_FRAMES_START 10U
 
 /* The bus: nominal with a small deterministic triangle ripple (+-16 LSB),
@@ -21,10 +21,11 @@ static inline int16_t mc_frames_bus(uint32_t n)
     return (int16_t)(MC_VBUS_NOMINAL_Q15 - 16 + tri);
 }
 
-/* The pot: 30 % of travel, then full travel from frame 5000 on. */
+/* The pot: 30 % of travel, then full travel from frame 7000 on (the
+ * start reaches CLOSED_LOOP at frame 5525, after the dead-time measurement). */
 static inline int16_t mc_frames_pot(uint32_t n)
 {
-    return (n < 5000U) ? (int16_t)9830 : (int16_t)32767;
+    return (n < 7000U) ? (int16_t)9830 : (int16_t)32767;
 }
 
 /* Frame n of the recording as the core takes it, with START requested at

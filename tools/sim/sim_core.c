@@ -545,6 +545,9 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     fprintf(f,
             "   peak phase current        %.2f A at %.3f s (rated %.2f A, ADC full scale %.2f A)\n",
             s->i_peak_a, s->t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
+    fprintf(f, "   dead time compensated     %.2f us (the inverter's: %.2f us)\n",
+            (double)s->st.deadtime / (double)BOARD_FCY_HZ * 1e6,
+            (s->cfg.deadtime_s < 0.0) ? s->bp->deadtime_s * 1e6 : s->cfg.deadtime_s * 1e6);
     if (s->rig.amp_tau_s > 0.0) {
         fprintf(f,
                 "   shunt window              %ld samples short of the amplifiers' settling "
