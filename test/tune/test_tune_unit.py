@@ -324,6 +324,20 @@ class StartLoad(unittest.TestCase):
         finally:
             shutil.rmtree(d, ignore_errors=True)
 
+    def test_a_small_inductance_should_raise_the_lock_current_to_what_the_dead_time_measurement_needs(self):
+        # 0.17 mH per phase on 24 V: the dead-time band Vbus / (12 L fpwm) is
+        # 0.59 A, the lock's measurement (mc_derived.h) needs 2.31 of it.
+        low_l = HURST_TOML.replace('"3.84 mH"', '"0.34 mH"').replace('"5300 rpm"', '"2500 rpm"')
+        t = derive.derive(desc_from(low_l))
+        band = 24.0 / (12.0 * 0.17e-3 * 20000.0)
+        measured("L 0.17 mH: band %.3f A, lock current %.3f A (default 0.984 A)", band, t["MOTOR_LOCK_CURRENT_A"])
+        self.assertGreaterEqual(t["MOTOR_LOCK_CURRENT_A"], derive.DTM_LOCK_BANDS * band)
+        self.assertLess(t["MOTOR_LOCK_CURRENT_A"], derive.DTM_LOCK_BANDS * band * 1.01)
+        with self.assertRaises(derive.Infeasible) as e:
+            derive.derive(desc_from(low_l.replace('rated_current = "1.64 A"', 'rated_current = "1.2 A"')))
+        measured("error: %s", e.exception)
+        self.assertIn("MC_DEADTIME_MEASURE", str(e.exception))
+
     def test_the_damping_should_give_its_ratio_at_the_stated_inertia(self):
         t = derive.derive(desc_from(HURST_TOML))
         wn = math.sqrt(5 * t.kt * t["MOTOR_RAMP_CURRENT_A"] / 7.5e-6)

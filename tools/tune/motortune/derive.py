@@ -19,6 +19,9 @@ SQRT3 = math.sqrt(3.0)
 TWO_PI = 2.0 * math.pi
 RPM = TWO_PI / 60.0  # rad/s per rpm
 START_LOAD_SHARE = 0.6  # the start load's share of the forced current's torque Kt I_ramp
+# Lock current, in dead-time bands, the lock's dead-time measurement needs
+# (mc_derived.h: 1.5 bands at 3/4 of the lock current times sqrt(3)/2).
+DTM_LOCK_BANDS = 1.5 / (0.75 * math.sqrt(3.0) / 2.0)
 OL_DAMP_ZETA = 0.35  # open-loop damping ratio MOTOR_OL_DAMP_S is computed for (UserParms.h: why low)
 
 
@@ -315,6 +318,20 @@ def derive(desc):
                        f"angle against cogging and friction (AN1078 INITIALTORQUE 1.0 A for the 1.64 A Hurst); no "
                        f"start load given, so the start is sized for {START_LOAD_SHARE:.0%} of Kt x that")
         t_start = START_LOAD_SHARE * kt * i_lock
+    # The firmware measures the inverter's dead time at the lock (mc.c note 4,
+    # MC_DEADTIME_MEASURE): 3/4 of the lock current must put 1.5 dead-time
+    # bands (UserParms.h MC_DEADTIME_BAND_A = Vbus / (12 L fpwm)) into phases
+    # B and C, I_lock >= 2.31 bands; mc_derived.h refuses less.
+    i_dtm = DTM_LOCK_BANDS * vbus / (12.0 * l * fpwm)
+    if i_lock < i_dtm:
+        if i_dtm > i_qmax:
+            raise Infeasible("motor.inductance",
+                             f"measuring the dead time at the lock needs {i_dtm:.3g} A of lock current "
+                             f"({DTM_LOCK_BANDS:.2f} x Vbus / (12 L fpwm)), above the Iq limit {i_qmax:.3g} A: "
+                             f"L is too small for this bus (or build with MC_DEADTIME_MEASURE 0)")
+        i_lock = sig(i_dtm * 1.0005, 3)
+        lock_reason += (f"; raised to {i_lock:.3g} A, {DTM_LOCK_BANDS:.2f} dead-time bands (Vbus / (12 L fpwm) = "
+                        f"{i_dtm / DTM_LOCK_BANDS:.3g} A), the least the lock's dead-time measurement needs")
     t.add("MOTOR_LOCK_CURRENT_A", i_lock, "A", lock_reason)
     j = desc.j
     if j is not None:
