@@ -69,8 +69,9 @@
  * the programmed dead time by the switches' delays and the diodes' drop: a
  * 1 us error is 6.4 V on a 320 V bus, against 33 V of back-EMF at a
  * high-speed motor's lowest closed-loop speed. Needs MOTOR_LOCK_CURRENT_A
- * of at least 2.31 dead-time bands (MC_DEADTIME_BAND_A); adds 56 to 159 ms
- * to the lock at 20 kHz (mc_derived.h MC_DTM_*). */
+ * of at least 2.31 dead-time bands (MC_DEADTIME_BAND_A); adds 57 ms or more
+ * to the lock, at most 0.57 s with a slowly swinging rotor (mc_derived.h
+ * MC_DTM_*). */
 #ifndef MC_DEADTIME_MEASURE
 #define MC_DEADTIME_MEASURE 1
 #endif

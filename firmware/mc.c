@@ -318,12 +318,9 @@ static void mc_enter_lock(mc_t *mc)
     mc->ol_damp = 0;
     mc->agree = 0U;
     mc->ol_iq = 0;
-    mc->dtm_phase = 0U; /* MC_DTM_ALIGN */
-    mc->dtm_cnt = 0U;
-    mc->dtm_sum = 0;
-    mc->dtm_slow = false;
-    mc->dtm_lpf = 0;
-    mc->dtm_mean = 0;
+    mc->lock_done = false;
+    mc->lock_va = 0;
+    mc->lock_vb = 0;
     mc->ol_step = 0U;
     mc->theta = 0;
     mc->theta_offset = 0;
@@ -719,27 +716,27 @@ enum {
 };
 
 #if MC_DTM_ON
-/* LOCK, after this period's estimator update (note 4). The rotor's swing
- * reverses where the estimator's alpha voltage (its back-EMF) crosses its
- * mean over the lock: low-passed over 16 periods (0.8 ms at 20 kHz), since
- * phase A's current sits at zero, where an inverter with a sharp dead-time
- * edge makes that voltage chatter (the lag is the same at every reversal),
- * against its mean over 2,048 periods (102 ms), the offset phase A's
- * dead-time loss leaves in it. Each level's window runs between two
- * reversals, or gives up waiting after MC_DTM_WAIT periods. The level
- * switch and the result are computed here, after the duties. */
-static void mc_dt_measure(mc_t *mc)
+/* LOCK, once per window in the slow step (note 4). The rotor's swing
+ * reverses where the estimator's alpha voltage (its back-EMF), summed over
+ * the window (a 1 ms mean, which also smooths the chatter an inverter with
+ * a sharp dead-time edge puts on phase A, whose current sits at zero),
+ * crosses its mean over MC_DTM_MEAN windows (the offset phase A's loss
+ * leaves in it). Each level's average runs between two reversals, or gives
+ * up waiting after MC_DTM_WAIT windows. so->lock_iq is the lock's current
+ * reference; so->lock_done, with the dead time, ends the lock. */
+static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
 {
-    mc->dtm_lpf += (int32_t)mc->v_hist[0].alpha - mc->dtm_lpf / 16; /* 16 x, |.| < 2^19 */
-    mc->dtm_mean += mc->dtm_lpf - mc->dtm_mean / 2048;              /* 2048 x that, < 2^30 */
-    bool pos = mc->dtm_lpf >= mc->dtm_mean / 2048;
+    int32_t a = si->lock_va; /* |.| <= MC_SLOW_STEP_PERIODS x 2^15 */
+    mc->dtm_mean += a - mc->dtm_mean / MC_DTM_MEAN;
+    bool pos = a >= mc->dtm_mean / MC_DTM_MEAN;
     bool rev = pos != mc->dtm_pos;
     mc->dtm_pos = pos;
     mc->dtm_cnt++;
     switch (mc->dtm_phase) {
         case MC_DTM_ALIGN:
-            /* the first window may start within the lock's last MC_DTM_WAIT periods */
-            if (mc->timer + 1U + MC_DTM_WAIT >= (uint32_t)MC_LOCK_PERIODS) {
+            /* the first window may start within the lock's last MC_DTM_WAIT windows */
+            if (si->timer + (uint32_t)MC_DTM_WAIT * MC_SLOW_STEP_PERIODS >=
+                (uint32_t)MC_LOCK_PERIODS) {
                 mc->dtm_phase = MC_DTM_WAIT1;
                 mc->dtm_cnt = 0U;
             }
@@ -752,8 +749,8 @@ static void mc_dt_measure(mc_t *mc)
                 mc->dtm_cnt = 0U;
                 mc->dtm_sum = 0;
                 if (mc->dtm_phase == MC_DTM_ACC1) {
-                    mc->dtm_hi = mc->dtm_lpf;
-                    mc->dtm_lo = mc->dtm_lpf;
+                    mc->dtm_hi = a;
+                    mc->dtm_lo = a;
                 }
             }
             break;
@@ -765,23 +762,19 @@ static void mc_dt_measure(mc_t *mc)
             break;
         case MC_DTM_ACC1:
         case MC_DTM_ACC2:
-            mc->dtm_sum += mc->v_hist[0].beta;
-            if (mc->dtm_lpf > mc->dtm_hi) {
-                mc->dtm_hi = mc->dtm_lpf;
-            }
-            if (mc->dtm_lpf < mc->dtm_lo) {
-                mc->dtm_lo = mc->dtm_lpf;
-            }
-            /* at least MC_DTM_N periods, and not before the lock's end */
-            if (mc->dtm_cnt >= MC_DTM_N && mc->timer + 1U >= (uint32_t)MC_LOCK_PERIODS &&
+            mc->dtm_sum += si->lock_vb;
+            mc->dtm_hi = (a > mc->dtm_hi) ? a : mc->dtm_hi;
+            mc->dtm_lo = (a < mc->dtm_lo) ? a : mc->dtm_lo;
+            /* at least MC_DTM_N windows, and not before the lock's end */
+            if (mc->dtm_cnt >= MC_DTM_N && si->timer >= (uint32_t)MC_LOCK_PERIODS &&
                 (rev || mc->dtm_cnt >= MC_DTM_N + 2U * MC_DTM_WAIT)) {
                 mc->dtm_slow |= !rev;
-                /* a mean of <= MC_DTM_N + 2 MC_DTM_WAIT Q15 samples fits div.sd */
-                q15_t u = q15_dsp_divsd(mc->dtm_sum, (int16_t)mc->dtm_cnt);
+                /* the mean of <= 32767 Q15 samples (mc_derived.h) fits div.sd */
+                q15_t u = q15_dsp_divsd(mc->dtm_sum, (int16_t)(mc->dtm_cnt * MC_SLOW_STEP_PERIODS));
                 mc->dtm_cnt = 0U;
                 if (mc->dtm_phase == MC_DTM_ACC1) {
                     mc->dtm_u1 = u;
-                    mc->i_ref.q = MC_DTM_CURRENT_Q15;
+                    so->lock_iq = MC_DTM_CURRENT_Q15;
                     mc->dtm_phase = MC_DTM_SETTLE2;
                 } else {
                     /* The model's dead-time voltage on beta: phase B
@@ -789,25 +782,25 @@ static void mc_dt_measure(mc_t *mc)
                      * both outside the band (mc_derived.h). */
                     int16_t dv[3];
                     dv[0] = 0;
-                    dv[1] = mc->dt_counts;
-                    dv[2] = (int16_t)(-mc->dt_counts);
-                    q15_t d = mc_duty_to_voltage(dv, mc->vbus).beta;
+                    dv[1] = si->dt_counts;
+                    dv[2] = (int16_t)(-si->dt_counts);
+                    q15_t d = mc_duty_to_voltage(dv, si->vbus).beta;
                     int32_t avg = 4 * (int32_t)u - 3 * (int32_t)mc->dtm_u1;
                     /* A swing too slow to reverse within the windows
                      * leaves its back-EMF in them: unless the rotor was
-                     * nearly still (the alpha voltage's range within
-                     * 1/16 of the dead-time voltage: its swing then moves
-                     * the result by well under 1 %), the dead time in use
-                     * is kept. */
+                     * nearly still (the alpha voltage's range within 1/16
+                     * of the dead-time voltage, i.e. the sums' within
+                     * MC_SLOW_STEP_PERIODS / 16 of it: its swing then
+                     * moves the result by well under 1 %), the dead time
+                     * in use is kept. */
                     bool still =
-                        (mc->dtm_hi - mc->dtm_lo) < (int32_t)d; /* 16 x range < 16 x d/16 */
+                        (mc->dtm_hi - mc->dtm_lo) * 16 < (int32_t)d * (int32_t)MC_SLOW_STEP_PERIODS;
                     int16_t dt = (mc->dtm_slow && !still)
-                                     ? mc->dt_counts
-                                     : mc_deadtime_from_lock(mc->dt_counts, avg, d);
-                    mc->dt_counts = dt;
-                    /* dt < MC_DT_BAND_Q15: the quotient is below 2^15 */
-                    mc->dt_slope =
-                        q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+                                     ? si->dt_counts
+                                     : mc_deadtime_from_lock(si->dt_counts, avg, d);
+                    so->dt_counts = dt;
+                    so->dt_slope = mc_deadtime_slope(dt); /* dt < MC_DT_BAND_Q15 */
+                    so->lock_done = true;
                     mc->dtm_phase = MC_DTM_DONE;
                 }
             }
@@ -816,7 +809,7 @@ static void mc_dt_measure(mc_t *mc)
             break;
     }
 }
-#define MC_LOCK_DONE(mc) ((mc)->dtm_phase == MC_DTM_DONE)
+#define MC_LOCK_DONE(mc) ((mc)->lock_done)
 #else
 #define MC_LOCK_DONE(mc) ((mc)->timer >= MC_LOCK_PERIODS)
 #endif
@@ -912,6 +905,16 @@ static void mc_slow_apply(mc_t *mc)
     }
     mc->speed_target = so->speed_target;
     mc->torque_target = so->torque_target;
+#if MC_DTM_ON
+    if (mc->state == MC_STATE_LOCK && so->epoch == mc->epoch) {
+        mc->i_ref.q = so->lock_iq;
+        if (so->lock_done) {
+            mc->dt_counts = so->dt_counts;
+            mc->dt_slope = so->dt_slope;
+            mc->lock_done = true; /* OPEN_LOOP from the next period */
+        }
+    }
+#endif
     if (so->loop && so->epoch == mc->epoch && mc->state == MC_STATE_CLOSED_LOOP) {
         mc->i_ref = so->i_ref;
         mc->speed_ref = so->speed_ref;
@@ -942,6 +945,15 @@ static void mc_window_end(mc_t *mc)
     si->preset_speed_ref = mc->preset_speed_ref;
     si->i_ab = mc->i_ab;
     si->theta_est = smc_theta(&mc->smc);
+#if MC_DTM_ON
+    si->lock_va = mc->lock_va;
+    si->lock_vb = mc->lock_vb;
+    si->timer = mc->timer;
+    si->dt_counts = mc->dt_counts;
+    si->vbus = mc->vbus;
+    mc->lock_va = 0;
+    mc->lock_vb = 0;
+#endif
     mc->preset_pending = false;
     mc->slow_posted = true;
     MC_BARRIER(); /* every field above is written before the flag hands it over */
@@ -969,6 +981,14 @@ void mc_slow_step(mc_t *mc)
 #endif
     if (si->epoch != mc->slow_epoch) {
         mc->slow_epoch = si->epoch;
+        /* a new run, or the hand-off: the dead-time measurement starts over */
+        mc->dtm_phase = MC_DTM_ALIGN;
+        mc->dtm_cnt = 0U;
+        mc->dtm_sum = 0;
+        mc->dtm_mean = 0;
+        mc->dtm_slow = false;
+        so->lock_iq = MC_LOCK_CURRENT_Q15;
+        so->lock_done = false;
         if (si->preset) {
             /* Closed loop entered in this window: the speed loop starts from
              * the hand-off (mc_enter_closed_loop). */
@@ -991,6 +1011,11 @@ void mc_slow_step(mc_t *mc)
         mc->ol_iq_acc = 0;
     }
     so->ol_iq = (q15_t)(mc->ol_iq_acc / 32);
+#if MC_DTM_ON
+    if (si->state == MC_STATE_LOCK) {
+        mc_slow_deadtime(mc, si, so);
+    }
+#endif
     if (si->state == MC_STATE_CLOSED_LOOP) {
         mc_slow_speed_loop(mc, &mc->smc.res, so);
     }
@@ -1122,8 +1147,9 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
             mc_ramp_end(mc);
         }
 #if MC_DTM_ON
-        if (mc->state == MC_STATE_LOCK) {
-            mc_dt_measure(mc);
+        if (mc->state == MC_STATE_LOCK) { /* the dead-time measurement's sums (note 4) */
+            mc->lock_va += mc->v_hist[0].alpha;
+            mc->lock_vb += mc->v_hist[0].beta;
         }
 #endif
     }
@@ -1267,9 +1293,13 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    falls to 3/4 (it rests where the torque is zero at any current, and a
  *    passive load holds no torque at rest), and a rotor still swinging
  *    about the lock angle puts its back-EMF on alpha, not on beta (its q
- *    axis points along alpha there). The result, within a quarter to
- *    twice the programmed dead time, is compensated and modelled from the
- *    next period on (dt_counts, dt_slope; reported in mc_status_t). Not
+ *    axis points along alpha there). The interrupt only sums the
+ *    estimator's voltage over each window (lock_va, lock_vb); the slow step
+ *    finds the reversals, switches the level (slow_out.lock_iq) and forms
+ *    the result (mc_slow_deadtime), which, within a quarter to twice the
+ *    programmed dead time, is compensated and modelled from its window's
+ *    apply on (dt_counts, dt_slope; reported in mc_status_t), and ends the
+ *    lock (lock_done). Not
  *    covered: a loss that changes with temperature while running (the
  *    next start measures it again), and a real loss whose shape near zero
  *    current differs from the band's.

@@ -205,6 +205,11 @@ typedef struct {
     q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
     ab_q15_t i_ab;          /* OPEN_LOOP: the window end's current ... */
     angle_q15_t theta_est;  /* ... and estimated angle (the load's share, mc.c note 1) */
+    int32_t lock_va;        /* LOCK: the window's sums of the estimator's alpha and beta */
+    int32_t lock_vb;        /* voltage, Q15 of V_FS (mc.c note 4) */
+    uint32_t timer;         /* periods in the state at the window end */
+    int16_t dt_counts;      /* the dead time in use, duty counts */
+    q15_t vbus;             /* the window end's bus, Q15 */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -217,6 +222,10 @@ typedef struct {
     q15_t speed_target;  /* the reference before the ramp (every state) */
     q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
     q15_t ol_iq;         /* OPEN_LOOP: the torque current, low-passed (mc.c note 1) */
+    q15_t lock_iq;       /* LOCK: the lock's current reference (mc.c note 4) */
+    bool lock_done;      /* LOCK: the dead-time measurement is done: */
+    int16_t dt_counts;   /* its dead time, duty counts, */
+    q15_t dt_slope;      /* and in-band slope */
 } mc_slow_out_t;
 
 /* ---- the instance ------------------------------------------------------- *
@@ -281,19 +290,10 @@ typedef struct {
     int16_t eff[3];     /* this period's effective duties (dead-time loss off), counts */
     int16_t dt_counts;  /* the dead time compensated and modelled, duty counts (mc.c note 4) */
     q15_t dt_slope;     /* its in-band slope, dt_counts * 2^15 / MC_DT_BAND_Q15 */
-    /* LOCK: the dead-time measurement (mc.c note 4) */
-    int32_t dtm_sum;  /* the estimator's beta voltage summed over the window, Q15 of V_FS */
-    int32_t dtm_lpf;  /* 16 x its alpha voltage, low-passed over 16 periods */
-    int32_t dtm_mean; /* 2048 x dtm_lpf, low-passed over 2048 periods */
-    int32_t dtm_hi;   /* dtm_lpf's largest and smallest in the windows */
-    int32_t dtm_lo;
-    uint16_t dtm_cnt;     /* periods in the phase */
-    q15_t dtm_u1;         /* the first level's mean voltage, Q15 of V_FS */
-    uint8_t dtm_phase;    /* MC_DTM_* phase (mc.c) */
-    bool dtm_pos;         /* the estimator's alpha voltage was >= 0 last period */
-    bool dtm_slow;        /* a window waited MC_DTM_WAIT for a reversal: not measured */
-    uint16_t ripple_gain; /* bus ripple gain for the next period (foc/ripple.h), Q15 */
-    int16_t pred;         /* one period of the estimated speed, angle counts (note 2) */
+    int32_t lock_va, lock_vb; /* LOCK: this window's sums of v_hist[0] (mc.c note 4) */
+    bool lock_done;           /* LOCK: the dead-time measurement has its result */
+    uint16_t ripple_gain;     /* bus ripple gain for the next period (foc/ripple.h), Q15 */
+    int16_t pred;             /* one period of the estimated speed, angle counts (note 2) */
 
     /* outputs */
     uint16_t duty[3];
@@ -317,6 +317,16 @@ typedef struct {
     uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
     uint8_t slow_epoch;    /* the run the slow step's state belongs to */
     int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
+    /* LOCK: the dead-time measurement (mc.c note 4), per window */
+    int32_t dtm_sum;  /* the windows' beta sums (lock_vb), Q15 of V_FS */
+    int32_t dtm_mean; /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
+    int32_t dtm_hi;   /* the largest and smallest alpha sum in the windows */
+    int32_t dtm_lo;
+    uint16_t dtm_cnt;  /* windows in the phase */
+    q15_t dtm_u1;      /* the first level's mean voltage, Q15 of V_FS */
+    uint8_t dtm_phase; /* MC_DTM_* phase (mc.c) */
+    bool dtm_pos;      /* the alpha sum was above its mean last window */
+    bool dtm_slow;     /* a window waited MC_DTM_WAIT for a reversal */
 } mc_t;
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */

@@ -357,18 +357,27 @@ MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
  * must still be 1.5 band widths (the peak of the PWM ripple the band is
  * two thirds of), so that both the inverter's loss and the core's model of
  * it depend on the currents' signs only: I_lock >= 1.5 band / (3/4
- * sqrt(3)/2) = 2.31 band. Each level's average runs from one reversal of
- * the rotor's swing to another at least MC_DTM_N periods later: a reversal
- * is waited for at most MC_DTM_WAIT periods (from the lock's last
- * MC_DTM_WAIT periods on for the first level), which covers swings of up
- * to 2 MC_DTM_WAIT periods (205 ms at 20 kHz). */
-#define MC_DTM_N      512L  /* periods averaged at each level, at least (25.6 ms at 20 kHz) */
-#define MC_DTM_WAIT   2048L /* periods a window waits for the swing to reverse, at most */
-#define MC_DTM_SETTLE 100L  /* periods for the current to settle at the second level */
+ * sqrt(3)/2) = 2.31 band. The slow step runs it on speed-loop windows
+ * (MC_SLOW_STEP_PERIODS each; 1 ms at the default rate). Each level's
+ * average runs from one reversal of the rotor's swing to another at least
+ * MC_DTM_N windows later: a reversal is waited for at most MC_DTM_WAIT
+ * windows (from the lock's last MC_DTM_WAIT windows on for the first
+ * level), which covers swings of up to 2 MC_DTM_WAIT windows (about 205
+ * ms). MC_DTM_MEAN windows (about 128 ms) make the mean the swing is
+ * measured against. */
+#define MC_DTM_N      ((uint16_t)(0.0256 * MC_SPEED_LOOP_HZ + 0.999)) /* windows, at least */
+#define MC_DTM_WAIT   ((uint16_t)(0.1024 * MC_SPEED_LOOP_HZ + 0.999)) /* windows, at most */
+#define MC_DTM_SETTLE ((uint16_t)(0.005 * MC_SPEED_LOOP_HZ + 0.999))  /* windows at level 2 */
+#define MC_DTM_MEAN   128
 #define MC_DTM_ON     (MC_DEADTIME_MEASURE && PWM_DEADTIME_NS > 0)
 /* The longest the measurement adds to the lock, periods: the first
- * window's end, the settling, the second window's wait and length. */
-#define MC_DTM_MAX_PERIODS (MC_DTM_ON ? 2L * MC_DTM_N + 5L * MC_DTM_WAIT + MC_DTM_SETTLE : 0L)
+ * window's end, the settling, the second window's wait and length, and a
+ * window for the slow step's results to come back. */
+#define MC_DTM_MAX_PERIODS                                                                         \
+    (MC_DTM_ON ? (2L * MC_DTM_N + 5L * MC_DTM_WAIT + MC_DTM_SETTLE + 1L) * IRP_PERCALC : 0L)
+MC_CHECK(MC_SPEED_LOOP_HZ,
+         MC_DEADTIME_MEASURE == 0 || (MC_DTM_N + 2.0 * MC_DTM_WAIT) * IRP_PERCALC <= 32767.0,
+         "too slow for the dead-time measurement's averages (mc.c note 4)");
 MC_CHECK(MC_DEADTIME_MEASURE, MC_DEADTIME_MEASURE == 0 || MC_DEADTIME_MEASURE == 1,
          "must be 0 or 1");
 MC_CHECK(MOTOR_LOCK_CURRENT_A,

@@ -26,6 +26,13 @@ Q15_INLINE int16_t mc_deadtime_counts(q15_t i, int16_t dt, q15_t slope)
     return q15_mul(i, slope); /* round(i slope / 2^15), |.| < dt + 1 */
 }
 
+/* The in-band slope of a dead time dt (duty counts, below MC_DT_BAND_Q15):
+ * dt * 2^15 / MC_DT_BAND_Q15, rounded; below 2^15. */
+Q15_INLINE q15_t mc_deadtime_slope(int16_t dt)
+{
+    return q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+}
+
 /*
  * The dead time (duty counts) a lock's measurement gives (mc.c note 4):
  * dt + dt * avg / dv, within [MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX]. dt: the

@@ -187,10 +187,10 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
         }
         assert_int_equal(st.theta_est, 0);
         /* the lock current, then (from at least MC_LOCK_PERIODS + MC_DTM_N
-         * on) the dead-time measurement's second level, never back */
+         * windows on) the dead-time measurement's second level, never back */
         if (st.iq_ref != MC_LOCK_CURRENT_Q15) {
             assert_int_equal(st.iq_ref, MC_DTM_CURRENT_Q15);
-            assert_true(n + 1 >= (long)MC_LOCK_PERIODS + MC_DTM_N);
+            assert_true(n + 1 >= (long)MC_LOCK_PERIODS + (long)MC_DTM_N * MC_SLOW_STEP_PERIODS);
             level2++;
         } else {
             assert_int_equal(level2, 0);
@@ -203,9 +203,10 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
            "%ld of them, at most %ld), %ld at the second level\n",
            n, (unsigned)MC_LOCK_PERIODS, n - (long)MC_LOCK_PERIODS, (long)MC_DTM_MAX_PERIODS,
            level2);
-    assert_true(n >= (long)MC_LOCK_PERIODS + 2L * MC_DTM_N + MC_DTM_SETTLE);
+    assert_true(n >= (long)MC_LOCK_PERIODS +
+                         (2L * MC_DTM_N + MC_DTM_SETTLE) * (long)MC_SLOW_STEP_PERIODS);
     assert_true(n <= (long)MC_LOCK_PERIODS + MC_DTM_MAX_PERIODS);
-    assert_true(level2 >= MC_DTM_SETTLE + MC_DTM_N);
+    assert_true(level2 >= (long)(MC_DTM_SETTLE + MC_DTM_N) * MC_SLOW_STEP_PERIODS);
     assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
 }
 
@@ -635,9 +636,10 @@ static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_ba
     const int16_t dts[3] = {MC_DT_COUNTS, MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX};
     for (int k = 0; k < 3; k++) {
         int16_t dt = dts[k];
-        q15_t slope = (k == 0)
-                          ? MC_DT_SLOPE
-                          : q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+        q15_t slope = (k == 0) ? MC_DT_SLOPE : mc_deadtime_slope(dt);
+        if (k == 0) { /* the run-time slope of the programmed dead time is the constant */
+            assert_int_equal(mc_deadtime_slope(dt), MC_DT_SLOPE);
+        }
         err_stats_t e;
         err_stats_init(&e);
         for (int32_t i = -32768; i <= 32767; i++) {
