@@ -24,6 +24,8 @@ DIST = [
     ("spd_err_pct", "speed error, true vs reference (%)", True),
     ("est_err_pct", "speed estimate vs true (%)", True),
     ("spd_err2_pct", "speed error after the step (%)", True),
+    ("spd_rip_pct", "speed ripple, rms (%)", False),
+    ("spd_rip2_pct", "speed ripple after the step (%)", False),
     ("t_cl_s", "START to CLOSED_LOOP (s)", False),
     ("i_peak", "peak phase current (A)", False),
 ]

@@ -100,6 +100,7 @@ typedef struct {
     double ang_mean, ang_rms, ang_max; /* hold window, deg */
     double spd_err, est_err;           /* hold window: true vs reference, estimate vs true, % */
     double spd_err2, ang_rms2;         /* second window */
+    double spd_rip, spd_rip2;          /* speed error's RMS about its mean, % of the reference */
     double i_peak;
 } run_result_t;
 
@@ -229,7 +230,7 @@ static void apply_load(simcore_t *s, run_draw_t *d)
 
 typedef struct {
     long n;
-    double ang, ang2, ang_max, spd, est, ref;
+    double ang, ang2, ang_max, spd, est, ref, err, err2;
 } window_t;
 
 static void window_add(window_t *w, const simcore_sample_t *n)
@@ -242,8 +243,20 @@ static void window_add(window_t *w, const simcore_sample_t *n)
         w->ang_max = fabs(a);
     }
     w->spd += n->speed_rpm;
+    w->err += n->speed_rpm - n->speed_ref_rpm;
+    w->err2 += (n->speed_rpm - n->speed_ref_rpm) * (n->speed_rpm - n->speed_ref_rpm);
     w->est += n->speed_est_rpm;
     w->ref += n->speed_ref_rpm;
+}
+
+/* The speed error's RMS about its mean over a window (true speed minus the
+ * ramped reference), % of the mean reference: a speed loop that rings or
+ * limit-cycles shows here, not in the mean error. */
+static double window_ripple(const window_t *w)
+{
+    double m = w->err / (double)w->n;
+    double var = w->err2 / (double)w->n - m * m;
+    return 100.0 * sqrt((var > 0.0) ? var : 0.0) / (w->ref / (double)w->n);
 }
 
 /* Runs one draw; apply_load completes its start need and step class. */
@@ -340,10 +353,12 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
         res->ang_max = w1.ang_max;
         res->spd_err = 100.0 * (w1.spd - w1.ref) / w1.ref;
         res->est_err = 100.0 * (w1.est - w1.spd) / w1.spd;
+        res->spd_rip = window_ripple(&w1);
     }
     if (w2.n > 0) {
         res->spd_err2 = 100.0 * (w2.spd - w2.ref) / w2.ref;
         res->ang_rms2 = sqrt(w2.ang2 / (double)w2.n);
+        res->spd_rip2 = window_ripple(&w2);
     }
     if (saw_fault) {
         snprintf(res->why, sizeof(res->why), "fault %s at %.3f s", simcore_fault_name(res->fault),
@@ -386,7 +401,8 @@ static void print_header(void)
            "inverter,dt_shape,r_on,v_diode,off_a,off_b,noise,theta0_deg,load,load_nm,step,step_nm,"
            "rpm1,rpm2,start_need_nm,start_have_nm,physics_limited,step_limited,t_cl_s,retries,"
            "fault,ang_mean,"
-           "ang_rms,ang_max,spd_err_pct,est_err_pct,spd_err2_pct,ang_rms2,i_peak\n");
+           "ang_rms,ang_max,spd_err_pct,est_err_pct,spd_err2_pct,ang_rms2,i_peak,spd_rip_pct,"
+           "spd_rip2_pct\n");
 }
 
 static void print_row(const char *motor, const run_draw_t *d, const run_result_t *r)
@@ -395,7 +411,7 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
     printf(
         "%u,%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.4f,%.5f,%.3f,%s,%d,%.4f,%.3f,%.2f,%.2f,%.2f,%.1f,"
         "%s,%.5f,%s,%.5f,%.1f,%.1f,%.5f,%.5f,%d,%d,%.4f,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-        "%.3f\n",
+        "%.3f,%.3f,%.3f\n",
         d->seed, motor, r->result, r->why, c->rs_scale, c->l_scale, c->ke_scale, c->j_scale,
         c->b_scale, c->coulomb_nm, c->deadtime_s * 1e6,
         (c->inv.model == SIM_INV_SWITCHING) ? "switching" : "averaged", c->inv.dt_shape,
@@ -404,7 +420,7 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
         d->step_nm, d->rpm1, d->rpm2, d->start_need_nm, d->start_have_nm,
         d->physics_limited ? 1 : 0, d->step_limited ? 1 : 0, r->t_cl, r->retries,
         simcore_fault_name(r->fault), r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err,
-        r->spd_err2, r->ang_rms2, r->i_peak);
+        r->spd_err2, r->ang_rms2, r->i_peak, r->spd_rip, r->spd_rip2);
     fflush(stdout);
 }
 
