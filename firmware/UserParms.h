@@ -202,6 +202,15 @@
 #ifndef MC_OL_DAMP_MAX_DEG
 #define MC_OL_DAMP_MAX_DEG 30.0
 #endif
+/* The damping acts on the swing: forced minus estimated speed less its
+ * mean over about this many speed-loop windows (a high-pass, corner
+ * loop rate / (2 pi N) = 5 Hz at 1 kHz and 32, below the swings it damps).
+ * A steady difference is the estimate's bias under a mismatched model, not
+ * a swing, and damping it moves the forced angle back by a steady amount:
+ * torque a loaded start needs. */
+#ifndef MC_OL_DAMP_MEAN_WINDOWS
+#define MC_OL_DAMP_MEAN_WINDOWS 32
+#endif
 
 /* ---- estimator ------------------------------------------------------------------ */
 /* Lowest speed the estimator is trusted at (its filter floor and validity

@@ -316,6 +316,8 @@ static void mc_enter_lock(mc_t *mc)
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
     mc->ol_damp = 0;
+    mc->ol_dlive = false;
+    mc->ol_dmean = 0;
     mc->agree = 0U;
     mc->ol_iq = 0;
     mc->lock_done = false;
@@ -748,10 +750,8 @@ static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so
                 mc->dtm_phase++;
                 mc->dtm_cnt = 0U;
                 mc->dtm_sum = 0;
-                if (mc->dtm_phase == MC_DTM_ACC1) {
-                    mc->dtm_hi = a;
-                    mc->dtm_lo = a;
-                }
+                mc->dtm_hi = a; /* each level's own range: its alpha level differs */
+                mc->dtm_lo = a;
             }
             break;
         case MC_DTM_SETTLE2:
@@ -774,6 +774,7 @@ static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so
                 mc->dtm_cnt = 0U;
                 if (mc->dtm_phase == MC_DTM_ACC1) {
                     mc->dtm_u1 = u;
+                    mc->dtm_range1 = mc->dtm_hi - mc->dtm_lo;
                     so->lock_iq = MC_DTM_CURRENT_Q15;
                     mc->dtm_phase = MC_DTM_SETTLE2;
                 } else {
@@ -788,13 +789,14 @@ static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so
                     int32_t avg = 4 * (int32_t)u - 3 * (int32_t)mc->dtm_u1;
                     /* A swing too slow to reverse within the windows
                      * leaves its back-EMF in them: unless the rotor was
-                     * nearly still (the alpha voltage's range within 1/16
-                     * of the dead-time voltage, i.e. the sums' within
-                     * MC_SLOW_STEP_PERIODS / 16 of it: its swing then
-                     * moves the result by well under 1 %), the dead time
-                     * in use is kept. */
-                    bool still =
-                        (mc->dtm_hi - mc->dtm_lo) * 16 < (int32_t)d * (int32_t)MC_SLOW_STEP_PERIODS;
+                     * nearly still (at each level, the alpha voltage's
+                     * range within 1/16 of the dead-time voltage, i.e.
+                     * the sums' within MC_SLOW_STEP_PERIODS / 16 of it:
+                     * its swing then moves the result by well under 1 %),
+                     * the dead time in use is kept. */
+                    int32_t range = mc->dtm_hi - mc->dtm_lo;
+                    range = (range > mc->dtm_range1) ? range : mc->dtm_range1;
+                    bool still = range * 16 < (int32_t)d * (int32_t)MC_SLOW_STEP_PERIODS;
                     int16_t dt = (mc->dtm_slow && !still)
                                      ? si->dt_counts
                                      : mc_deadtime_from_lock(si->dt_counts, avg, d);
@@ -866,20 +868,38 @@ void mc_init(mc_t *mc)
 }
 
 /* OPEN_LOOP, with the estimator's speed fresh (mc_slow_apply): the forced
- * angle moved back by MOTOR_OL_DAMP_S times the rotor's excess speed while
- * the estimate is valid (note 1), the previous shift taken out. */
+ * angle moved back by MOTOR_OL_DAMP_S times the rotor's swing speed while
+ * the estimate is valid (note 1), the previous shift taken out. The swing
+ * speed is forced minus estimated speed less its slow mean (a high-pass,
+ * seeded at the first valid window): a steady difference, the estimate's
+ * bias under a model mismatch, is no swing, and damping it takes torque
+ * the load needs. */
 static void mc_ol_damp(mc_t *mc)
 {
     int32_t shift = 0;
     if (smc_valid(&mc->smc)) {
-        /* forced minus estimated speed, angle counts per period (< 2^16) */
+        /* forced minus estimated speed, angle counts per period (< 2^17) */
         int32_t d = (int32_t)(uint16_t)(mc->ol_step >> 16) - (int32_t)mc->pred;
-        shift = d * MC_OL_DAMP_K / 16; /* |d| < 2^17, K <= 16000: no overflow */
+        int32_t d16 = d * 16; /* Q4, < 2^21 */
+        if (!mc->ol_dlive) {
+            mc->ol_dmean = d16;
+            mc->ol_dlive = true;
+        }
+        mc->ol_dmean += (d16 - mc->ol_dmean) / MC_OL_DAMP_MEAN_N;
+        d = (d16 - mc->ol_dmean) / 16; /* |d| < 2^18: held to 2^17 so d K fits */
+        if (d > 131071L) {
+            d = 131071L;
+        } else if (d < -131071L) {
+            d = -131071L;
+        }
+        shift = d * MC_OL_DAMP_K / 16; /* K <= 16000: |d K| < 2^31 */
         if (shift > MC_OL_DAMP_MAX) {
             shift = MC_OL_DAMP_MAX;
         } else if (shift < -MC_OL_DAMP_MAX) {
             shift = -MC_OL_DAMP_MAX;
         }
+    } else {
+        mc->ol_dlive = false;
     }
     mc->ol_angle += (uint32_t)(shift - (int32_t)mc->ol_damp) << 16;
     mc->ol_damp = (int16_t)shift;
@@ -1242,7 +1262,11 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    swinging and stalled). Once the estimate is valid, each window moves
  *    the forced angle back by MOTOR_OL_DAMP_S times the rotor's excess
  *    speed (mc_ol_damp): the torque then falls as the rotor runs ahead and
- *    rises as it falls behind, a viscous damping of the swing.
+ *    rises as it falls behind, a viscous damping of the swing. The excess
+ *    is taken less its mean over MC_OL_DAMP_MEAN_WINDOWS: under a model
+ *    mismatch the estimate reads steadily high or low, and damping that
+ *    bias held the forced angle back by a steady amount, the torque a
+ *    loaded start needed.
  *
  * 2. Stall detection runs at the speed-loop rate in CLOSED_LOOP; each
  *    condition must hold for consecutive runs: estimated |speed| below

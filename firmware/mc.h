@@ -281,6 +281,8 @@ typedef struct {
     uint32_t ol_step;       /* open-loop angle increment per period, 32-bit binary angle */
     int16_t theta_offset;   /* theta_forced - theta_est at hand-off, bled to 0 */
     int16_t ol_damp;        /* OPEN_LOOP: the damping shift in ol_angle, angle counts */
+    bool ol_dlive;          /* OPEN_LOOP: ol_dmean holds a valid estimate's history */
+    int32_t ol_dmean;       /* OPEN_LOOP: forced - estimated step, mean, Q4 counts/period */
     q15_t ol_iq;            /* OPEN_LOOP: the load's torque current (slow_out.ol_iq), Q15 */
     sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 
@@ -322,11 +324,12 @@ typedef struct {
     int32_t dtm_mean; /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
     int32_t dtm_hi;   /* the largest and smallest alpha sum in the windows */
     int32_t dtm_lo;
-    uint16_t dtm_cnt;  /* windows in the phase */
-    q15_t dtm_u1;      /* the first level's mean voltage, Q15 of V_FS */
-    uint8_t dtm_phase; /* MC_DTM_* phase (mc.c) */
-    bool dtm_pos;      /* the alpha sum was above its mean last window */
-    bool dtm_slow;     /* a window waited MC_DTM_WAIT for a reversal */
+    int32_t dtm_range1; /* the first level's alpha range (dtm_hi - dtm_lo) */
+    uint16_t dtm_cnt;   /* windows in the phase */
+    q15_t dtm_u1;       /* the first level's mean voltage, Q15 of V_FS */
+    uint8_t dtm_phase;  /* MC_DTM_* phase (mc.c) */
+    bool dtm_pos;       /* the alpha sum was above its mean last window */
+    bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
 } mc_t;
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */

@@ -303,8 +303,11 @@ MC_CHECK(MOTOR_OL_DAMP_S, MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUE
          "must be 0..1000 PWM periods");
 MC_CHECK(MC_OL_DAMP_MAX_DEG, MC_OL_DAMP_MAX_DEG >= 0.0 && MC_OL_DAMP_MAX_DEG <= 90.0,
          "must be 0..90 deg");
-#define MC_OL_DAMP_K   ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * 16.0 + 0.5))
-#define MC_OL_DAMP_MAX ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
+MC_CHECK(MC_OL_DAMP_MEAN_WINDOWS, MC_OL_DAMP_MEAN_WINDOWS >= 1 && MC_OL_DAMP_MEAN_WINDOWS <= 1024,
+         "must be 1..1024 speed-loop windows");
+#define MC_OL_DAMP_MEAN_N ((int32_t)(MC_OL_DAMP_MEAN_WINDOWS))
+#define MC_OL_DAMP_K      ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * 16.0 + 0.5))
+#define MC_OL_DAMP_MAX    ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
 
 /* ---- dead time ---------------------------------------------------------------------- */
 
@@ -363,12 +366,15 @@ MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
  * MC_DTM_N windows later: a reversal is waited for at most MC_DTM_WAIT
  * windows (from the lock's last MC_DTM_WAIT windows on for the first
  * level), which covers swings of up to 2 MC_DTM_WAIT windows (about 205
- * ms). MC_DTM_MEAN windows (about 128 ms) make the mean the swing is
- * measured against. */
+ * ms). The swing is measured against the alpha sums' mean over about
+ * MC_DTM_MEAN windows (32 ms): slow enough to hold still through a swing
+ * of the lock's usual 20 to 50 ms, quick enough to follow the alpha level
+ * as the lock's first large swing dies away (at 128 windows it still lagged
+ * by more than a small remaining swing's amplitude, and no reversal came). */
 #define MC_DTM_N      ((uint16_t)(0.0256 * MC_SPEED_LOOP_HZ + 0.999)) /* windows, at least */
 #define MC_DTM_WAIT   ((uint16_t)(0.1024 * MC_SPEED_LOOP_HZ + 0.999)) /* windows, at most */
 #define MC_DTM_SETTLE ((uint16_t)(0.005 * MC_SPEED_LOOP_HZ + 0.999))  /* windows at level 2 */
-#define MC_DTM_MEAN   128
+#define MC_DTM_MEAN   32
 #define MC_DTM_ON     (MC_DEADTIME_MEASURE && PWM_DEADTIME_NS > 0)
 /* The longest the measurement adds to the lock, periods: the first
  * window's end, the settling, the second window's wait and length, and a

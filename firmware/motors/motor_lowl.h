@@ -158,21 +158,19 @@
 #ifndef MOTOR_SPEED_KP_FULL_RPM
 #define MOTOR_SPEED_KP_FULL_RPM 3000.0
 #endif
-/* Kp = J ws / Kt with the speed-loop crossover ws = 314 rad/s, J = 5e-06 kg m^2, Kt = 1.5 p
- * psi = 36.22 mN m/A. ws = 2 pi x 1000 Hz / 20 = 314 rad/s: a twentieth of the speed-loop
- * sampling rate, the usual rule for a sampled loop (the 1.5-period delay costs 27 deg).
- * Counting the 100 Hz speed-feedback filter as a first-order lag too, the phase margin would
- * be only 32 deg; the simulator does not show that (216 starts over angle and +-30 % R, L,
- * +-20 % Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that
- * count, 53 at 45 deg: the loop must catch the rotor's swing at the hand-off from open loop).
- * A larger real J lowers ws; a smaller one raises it. */
+/* Kp = J ws / Kt with the speed-loop crossover ws = 198 rad/s, J = 5e-06 kg m^2, Kt = 1.5 p
+ * psi = 36.22 mN m/A. ws = 40 deg of phase margin at 2 x this crossover, where a rotor of 0.5
+ * x the stated J puts it; the margin counts the PI zero, the 100 Hz speed filter and the
+ * 1.5-period delay (59 deg at the stated J; docs/tune.md). A larger real J lowers the
+ * crossover; a smaller one raises it. */
 #ifndef MOTOR_SPEED_KP_A_PER_RPM
-#define MOTOR_SPEED_KP_A_PER_RPM 0.00454
+#define MOTOR_SPEED_KP_A_PER_RPM 0.00287
 #endif
-/* Ki = Kp ws / 12: PI zero about a decade below the crossover (integral action against load, 5
- * deg of phase) */
+/* Ki = Kp ws / 8: the PI zero 8 x below the crossover, integral action quick enough to recover
+ * a half-rated load step within 100 ms, slow enough to keep the margin at 20 x the stated J
+ * (docs/tune.md) */
 #ifndef MOTOR_SPEED_KI_A_PER_RPM_S
-#define MOTOR_SPEED_KI_A_PER_RPM_S 0.119
+#define MOTOR_SPEED_KI_A_PER_RPM_S 0.0711
 #endif
 
 /* ---- data for tools (not used by the core) --------------------------------------------------- */

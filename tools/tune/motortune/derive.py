@@ -10,6 +10,7 @@ Each derived value is stored as a Value(macro, number, unit, reason) so the
 header writer can put the reason next to the number.
 """
 
+import cmath
 import math
 
 from . import cheader
@@ -18,6 +19,9 @@ from .units import InputError
 SQRT3 = math.sqrt(3.0)
 TWO_PI = 2.0 * math.pi
 RPM = TWO_PI / 60.0  # rad/s per rpm
+SPEED_PM_DEG = 40.0  # the speed loop's phase margin at the lightest claimed rotor
+SPEED_ZERO_RATIO = 8.0  # the speed PI's zero at the crossover / this
+SPEED_J_MIN_SCALE = 0.5  # the lightest rotor the profile claims, x the stated inertia (make robust draws 0.5..20)
 START_LOAD_SHARE = 0.6  # the start load's share of the forced current's torque Kt I_ramp
 # Lock current, in dead-time bands, the lock's dead-time measurement needs
 # (mc_derived.h: 1.5 bands at 3/4 of the lock current times sqrt(3)/2).
@@ -98,6 +102,23 @@ def bisect_last(pred, lo, hi, steps):
         else:
             hi = mid
     return lo
+
+
+def speed_margin(w, ws, zr, fc, loop_hz):
+    """Phase margin (deg) of the speed loop crossing over at w (rad/s) when it was designed for
+    ws: the PI zero at ws / zr; the speed filter as the core runs it, y += a (x - y) once a loop
+    period T with a = 2 pi fc T; a delay of 1.5 T (the window's mean age, the hold of the Iq
+    reference, the current loop)."""
+    t = 1.0 / loop_hz
+    a = TWO_PI * fc * t
+    filt = a / (1.0 - (1.0 - a) * cmath.exp(-1j * w * t))
+    return 90.0 - math.degrees(math.atan(ws / zr / w) - cmath.phase(filt) + 1.5 * w * t)
+
+
+def speed_crossover(pm_deg, k, zr, fc, loop_hz):
+    """The design crossover ws (rad/s) whose loop, crossing over at k x ws (a rotor of 1/k times
+    the inertia), keeps pm_deg of phase margin there (the margin falls as w rises)."""
+    return bisect_last(lambda ws: speed_margin(k * ws, ws, zr, fc, loop_hz) >= pm_deg, 1.0, 1e5, 60)
 
 
 def id_for_voltage(w, r, l, psi, iq, vmax):
@@ -433,37 +454,38 @@ def derive(desc):
           "clean enough for the full gain (the hand-tuned profiles use the same ratio)", "{:.1f}")
     kp_si_to_rpm = RPM  # A per (rad/s) -> A per rpm
     if j is not None:
-        # Crossover a twentieth of the speed-loop sampling rate (rad/s): the usual rule for a
-        # sampled loop; the 1.5-period delay costs 27 deg there. PI zero at ws/12.
-        zr = 12.0
-        ws_pm = TWO_PI * loop_hz / 20.0
-        td_spd = 1.5 / loop_hz
-        wf = TWO_PI * spd_fc
-        pm_est = 90.0 - math.degrees(math.atan(1.0 / zr) + math.atan(ws_pm / wf) + ws_pm * td_spd)
-        ws = min(ws_pm, wc / 8.0)
+        # The crossover is chosen for the lightest rotor the profile claims (SPEED_J_MIN_SCALE of
+        # the stated J: the real crossover scales as 1/J): there the phase margin, counting the
+        # PI zero (ws/8), the speed filter (the core's one-pole filter run at the loop rate) and
+        # the loop's 1.5-period delay, is SPEED_PM_DEG. The sampled-loop rule, loop rate / 20, caps it.
+        zr = SPEED_ZERO_RATIO
+        ws_pm = speed_crossover(SPEED_PM_DEG, 1.0 / SPEED_J_MIN_SCALE, zr, spd_fc, loop_hz)
+        ws_cap = TWO_PI * loop_hz / 20.0
+        ws = min(ws_pm, ws_cap, wc / 8.0)
         # the core's Q15 ranges: Ki / loop * FS / I_FS < 1 and Kp * FS / I_FS < 128 (keep 10 % margin)
         kp_per_ws = j / kt * kp_si_to_rpm  # A/rpm per rad/s of crossover
         ws_q = min(math.sqrt(0.9 * zr * loop_hz * i_fs / fs / kp_per_ws), 100.0 * i_fs / fs / kp_per_ws)
-        ws_reason = f"2 pi x {loop_hz} Hz / 20 = {ws_pm:.0f} rad/s"
+        ws_reason = (f"{SPEED_PM_DEG:.0f} deg of phase margin at {1.0 / SPEED_J_MIN_SCALE:g} x this crossover, "
+                     f"where a rotor of {SPEED_J_MIN_SCALE:g} x the stated J puts it")
+        if ws_cap < ws_pm:
+            ws_reason = f"2 pi x {loop_hz} Hz / 20 = {ws_cap:.0f} rad/s (the sampled-loop cap)"
         if ws_q < ws:
             ws = ws_q
             ws_reason += f", lowered to {ws:.0f} rad/s so Ki fits the core's Q15 range (large J)"
-        if wc / 8.0 < ws_pm:
+        if wc / 8.0 < min(ws_pm, ws_cap):
             ws_reason += f", capped at wc/8 = {wc / 8.0:.0f} rad/s (cascade: the current loop 8 x faster)"
+        pm_nom = speed_margin(ws, ws, zr, spd_fc, loop_hz)
         kp = j * ws / kt
         ki = kp * ws / zr
         t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp * kp_si_to_rpm, 3), "A/rpm",
               f"Kp = J ws / Kt with the speed-loop crossover ws = {ws:.0f} rad/s, J = {j:.3g} kg m^2, Kt = 1.5 p psi "
-              f"= {kt * 1000:.2f} mN m/A. ws = {ws_reason}: a twentieth of the speed-loop sampling rate, the usual "
-              f"rule for a sampled loop (the 1.5-period delay costs {math.degrees(ws_pm * td_spd):.0f} deg). Counting "
-              f"the {spd_fc:g} Hz speed-feedback filter as a first-order lag too, the phase margin would be only "
-              f"{pm_est:.0f} deg; the simulator does not show that (216 starts over angle and +-30 % R, L, +-20 % "
-              f"Ke: 1 lost with this ws on the Hurst, 25 with ws lowered to give 35 deg by that count, 53 at 45 deg: "
-              f"the loop must catch the rotor's swing at the hand-off from open loop). A larger real J lowers ws; "
-              f"a smaller one raises it.")
+              f"= {kt * 1000:.2f} mN m/A. ws = {ws_reason}; the margin counts the PI zero, the {spd_fc:g} Hz "
+              f"speed filter and the 1.5-period delay ({pm_nom:.0f} deg at the stated J; docs/tune.md). A "
+              f"larger real J lowers the crossover; a smaller one raises it.")
         t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(ki * kp_si_to_rpm, 3), "A/(rpm s)",
-              "Ki = Kp ws / 12: PI zero about a decade below the crossover (integral action against load, 5 deg of "
-              "phase)")
+              f"Ki = Kp ws / {zr:g}: the PI zero {zr:g} x below the crossover, integral action quick enough to "
+              f"recover a half-rated load step within 100 ms, slow enough to keep the margin at 20 x the stated J "
+              f"(docs/tune.md)")
         t.ws = ws
     else:
         kp_rpm = i_qmax / (0.4 * n_fw)
