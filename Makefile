@@ -9,17 +9,36 @@ CMAKE_DEFS := -DBOARD=$(BOARD) -DMOTOR=$(MOTOR)
 CTEST      := ctest --output-on-failure -j $(JOBS)
 PY         := .venv/bin/python
 
-HOST_DIR := $(BUILD)/host
-ASAN_DIR := $(BUILD)/asan
-COV_DIR  := $(BUILD)/cov
+HOST_DIR  := $(BUILD)/host
+ASAN_DIR  := $(BUILD)/asan
+COV_DIR   := $(BUILD)/cov
+CLANG_DIR := $(BUILD)/clang
+# Coverage is gcc's (gcov data, and the gates count gcc's branches) whatever CC
+# says; the second compiler of make test is clang.
+COV_CC   ?= gcc
+CLANG_CC ?= clang
 
-.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim robust firmware test clean
+# BOARD and MOTOR name headers; without this, a misspelt name would build and
+# check the defaults (UserParms.h's #else) and report success. One line, before
+# anything runs, for every goal that uses them.
+PROFILE_GOALS := build unit asan coverage check-16bit lint format bench sim firmware test test-clang
+ifneq ($(filter $(PROFILE_GOALS),$(MAKECMDGOALS)),)
+ifeq ($(wildcard firmware/boards/board_$(BOARD).h),)
+$(error BOARD=$(BOARD): no firmware/boards/board_$(BOARD).h (boards: $(patsubst firmware/boards/board_%.h,%,$(wildcard firmware/boards/board_*.h))))
+endif
+ifeq ($(wildcard firmware/motors/motor_$(MOTOR).h),)
+$(error MOTOR=$(MOTOR): no firmware/motors/motor_$(MOTOR).h (motors: $(patsubst firmware/motors/motor_%.h,%,$(wildcard firmware/motors/motor_*.h))))
+endif
+endif
+
+.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim robust firmware test test-clang clean
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
 	@echo "make sim PTY=1    the same motor behind the monitor protocol on a pty, for tools/scope"
-	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, coverage, sanitized and plain tests"
+	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, coverage, sanitized, clang and plain tests"
 	@echo "make unit         build and run the host tests (plain build)"
+	@echo "make test-clang   build with clang in $(CLANG_DIR) and run the unit tests"
 	@echo "make asan         build and run the host tests under ASan + UBSan"
 	@echo "make coverage     gcovr HTML report in $(COV_DIR)/coverage/, fails below the gates"
 	@echo "make check-16bit  core built with avr-gcc (16-bit int), run in simavr, compared bit for bit with the PC"
@@ -52,11 +71,18 @@ asan:
 	cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 $(CTEST) -LE slow
 
 coverage:
-	cmake -S . -B $(COV_DIR) -DCMAKE_BUILD_TYPE=Debug -DFOC_COVERAGE=ON $(CMAKE_DEFS) >/dev/null
+	cmake -S . -B $(COV_DIR) -DCMAKE_C_COMPILER=$(COV_CC) -DCMAKE_BUILD_TYPE=Debug -DFOC_COVERAGE=ON $(CMAKE_DEFS) >/dev/null
 	cmake --build $(COV_DIR) -j $(JOBS)
 	find $(COV_DIR) -name '*.gcda' -delete
 	@# The report and the gates run even when a test fails; the target fails either way.
 	(cd $(COV_DIR) && $(CTEST) -LE slow); status=$$?; tools/coverage_gate $(COV_DIR) && exit $$status
+
+# The second compiler: the same strict flags (CMakeLists.txt), the unit tests
+# (the closed-loop ones, label slow, run in the plain build).
+test-clang:
+	cmake -S . -B $(CLANG_DIR) -DCMAKE_C_COMPILER=$(CLANG_CC) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_DEFS) >/dev/null
+	cmake --build $(CLANG_DIR) -j $(JOBS)
+	cd $(CLANG_DIR) && $(CTEST) -L unit
 
 check-16bit:
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/check16/run $(BUILD)/check16
@@ -93,6 +119,7 @@ test: bootstrap
 	@$(MAKE) --no-print-directory cycles
 	@$(MAKE) --no-print-directory coverage
 	@$(MAKE) --no-print-directory asan
+	@$(MAKE) --no-print-directory test-clang
 	@$(MAKE) --no-print-directory unit
 
 clean:

@@ -241,6 +241,27 @@
 #ifndef MC_OFFSET_MAX_A
 #define MC_OFFSET_MAX_A 0.5 /* current offset at calibration above this: amplifier fault */
 #endif
+/* Current-sensor plausibility (mc.c note 5): with the outputs on, the
+ * measured current must follow the current loops' reference. A speed-loop
+ * window fails when the mean error on either axis exceeds half the
+ * reference plus MC_SENSOR_ERR_FLOOR_FRACTION of MOTOR_CURRENT_MAX_A (half
+ * of that in LOCK and OPEN_LOOP, whose errors are low-passed further; 0.1
+ * in CLOSED_LOOP tripped on a low-inductance motor's current ringing; in
+ * CLOSED_LOOP from 90 % of the nominal speed on, the q axis counts only
+ * while its PI is inside the voltage circle: there the bus legitimately
+ * leaves q short). MC_SENSOR_TIME_S of failing windows, net of passing
+ * ones at half weight, is a MC_FAULT_CURRENT_SENSOR. */
+#ifndef MC_SENSOR_TIME_S
+#define MC_SENSOR_TIME_S 0.007
+#endif
+/* 1: the check trips. 0: it only runs (a unit test without a plant, whose
+ * currents never follow the loops). */
+#ifndef MC_SENSOR_CHECK
+#define MC_SENSOR_CHECK 1
+#endif
+#ifndef MC_SENSOR_ERR_FLOOR_FRACTION
+#define MC_SENSOR_ERR_FLOOR_FRACTION 0.2
+#endif
 /* Stall / loss of synchronisation in closed loop. Each condition must
  * persist for MC_STALL_TIME_S (checked at the speed-loop rate). */
 #ifndef MC_STALL_TIME_S

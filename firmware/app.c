@@ -17,6 +17,7 @@ void app_init(app_t *app)
     app->s2.steady = 0;
     app->s3 = app->s2;
     app->double_speed = false;
+    app->ref_seq_mine = 0;
     app->fault_reported = false;
     app->status_ms = 0;
     app->telemetry_ms = 0;
@@ -102,16 +103,43 @@ static bool button_pressed_edge(app_button_t *b, bool raw)
     return raw;
 }
 
-static void on_s2(app_t *app)
+bool app_start_allowed(app_t *app)
 {
     if (hal_fault_latched()) {
         if (!hal_fault_clear()) {
-            return; /* the fault pin is still asserted: nothing may start */
+            return false; /* the fault pin is still asserted: nothing may start */
         }
         app->fault_reported = false;
     }
-    hal_motor_request(MC_REQUEST_START_STOP);
+    return true;
 }
+
+static void on_s2(app_t *app)
+{
+    if (app_start_allowed(app)) {
+        hal_motor_request(MC_REQUEST_START_STOP);
+    }
+}
+
+/*
+ * The speed reference has one owner at a time: the pot, the board (S3's
+ * doubled pot) or whoever else calls mc_set_reference (the monitor). The
+ * last explicit choice wins and the core's status shows it to every side:
+ * ref_remote (a set reference, not the pot) and ref_seq (counts the set
+ * references). S3 takes the reference for the board; while doubling, the
+ * app writes the doubled pot every status period, but only if the status
+ * still shows its own last write (ref_seq unchanged, ref_remote still set):
+ * otherwise another side has taken the reference (or handed it back to the
+ * pot) and S3's mode ends.
+ */
+#if !defined(TORQUEMODE)
+static void board_reference(app_t *app)
+{
+    hal_motor_status(&app->status);
+    hal_motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
+    app->ref_seq_mine = (uint8_t)(app->status.ref_seq + 1U);
+}
+#endif
 
 static void on_s3(app_t *app)
 {
@@ -120,7 +148,7 @@ static void on_s3(app_t *app)
 #else
     app->double_speed = !app->double_speed;
     if (app->double_speed) {
-        hal_motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
+        board_reference(app);
     } else {
         hal_motor_request(MC_REQUEST_REF_POT);
     }
@@ -229,7 +257,9 @@ void app_service_uart(app_t *app)
     }
     while (hal_uart_get(&c)) {
         if (c == 'g') {
-            hal_motor_request(MC_REQUEST_START);
+            if (app_start_allowed(app)) {
+                hal_motor_request(MC_REQUEST_START);
+            }
         } else if (c == 's') {
             hal_motor_request(MC_REQUEST_STOP);
         } else if (c == 'p') {
@@ -285,9 +315,15 @@ void app_tick_1ms(app_t *app)
         app->status_ms = 0;
         hal_motor_status(&app->status);
         update_leds(app);
+#if !defined(TORQUEMODE)
         if (app->double_speed) {
-            hal_motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
+            if (app->status.ref_seq == app->ref_seq_mine && app->status.ref_remote) {
+                board_reference(app);
+            } else {
+                app->double_speed = false; /* another side took the reference */
+            }
         }
+#endif
     }
 
     if (app->uart_client != NULL) {

@@ -72,7 +72,8 @@ typedef struct {
 
 typedef struct {
     app_button_t s2, s3;
-    bool double_speed;     /* S3 mode */
+    bool double_speed;     /* S3 mode: the board owns the reference (app.c note) */
+    uint8_t ref_seq_mine;  /* mc_status_t.ref_seq after the app's own last reference */
     bool fault_reported;   /* the current FLTA latch was posted to the core */
     uint16_t status_ms;    /* counts to APP_STATUS_PERIOD_MS */
     uint16_t telemetry_ms; /* counts to APP_TELEMETRY_PERIOD_MS */
@@ -92,6 +93,11 @@ void app_init(app_t *app);
 
 /* Hands the UART to a client (NULL: back to the text protocol). */
 void app_set_uart_client(app_t *app, const app_uart_client_t *client);
+
+/* May the motor start? The rule S2 and every other START source share: a
+ * latched hardware fault is cleared first, and while the fault pin still
+ * holds it nothing starts (false). */
+bool app_start_allowed(app_t *app);
 
 /* One main-loop pass: the 1 ms work if a tick elapsed, then the UART. */
 void app_poll(app_t *app);

@@ -33,6 +33,14 @@ static void monitor_observer(void *ctx, const mc_t *mc)
 
 static app_t app;
 
+#if !defined(APP_NO_MONITOR)
+/* The monitor's START follows the board's rule (app_start_allowed). */
+static bool monitor_may_start(void *ctx)
+{
+    return app_start_allowed((app_t *)ctx);
+}
+#endif
+
 int main(void)
 {
     hal_init();
@@ -40,6 +48,7 @@ int main(void)
     hal_motor_start();
 #if !defined(APP_NO_MONITOR)
     monitor_init(&monitor, hal_motor_core());
+    monitor_set_start_guard(&monitor, monitor_may_start, &app);
     monitor_app_client(&monitor, &monitor_client);
     app_set_uart_client(&app, &monitor_client);
     hal_motor_observe(monitor_observer, &monitor);

@@ -520,6 +520,7 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
         r.beta = mc->i_ref.q;
         ref = park_forward(r, sincos_compute(mc->theta_offset));
     }
+    mc->i_ref_frame = ref;
 
     /* d first, then q gets what is left of the voltage circle (AN1078):
      * |Vq| <= sqrt(Vmax^2 - Vd^2). If the previous period's vector was near
@@ -726,6 +727,60 @@ enum {
  * leaves in it). Each level's average runs between two reversals, or gives
  * up waiting after MC_DTM_WAIT windows. so->lock_iq is the lock's current
  * reference; so->lock_done, with the dead time, ends the lock. */
+/* Current-sensor plausibility, once per window (note 5): did the measured
+ * current follow the current loops? */
+static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
+{
+    int32_t ed = si->sens_d; /* window sums: |.| < MC_SLOW_STEP_PERIODS x 2^16 */
+    int32_t eq = si->sens_q;
+    q15_t rd = q15_abs_sat(si->sens_ref.d);
+    q15_t rq = q15_abs_sat(si->sens_ref.q);
+    /* half the reference's larger component plus the floor (half of it at
+     * the start, whose errors are low-passed further), per period, as a
+     * window sum (< 2^15 x MC_SLOW_STEP_PERIODS) */
+    int32_t floor = (si->state == MC_STATE_CLOSED_LOOP) ? (int32_t)MC_SENSOR_FLOOR_Q15
+                                                        : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
+    int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + floor) * (int32_t)MC_SLOW_STEP_PERIODS;
+    bool bad;
+    if (si->state != MC_STATE_LOCK && si->state != MC_STATE_OPEN_LOOP &&
+        si->state != MC_STATE_CLOSED_LOOP) {
+        mc->sens_cnt = 0U;
+        so->sensor_fault = false;
+        return;
+    }
+    if (si->state != MC_STATE_CLOSED_LOOP) {
+        /* at the start, over MC_SENSOR_START_WINDOWS windows too */
+        mc->sens_fd += (ed - mc->sens_fd) / MC_SENSOR_START_WINDOWS;
+        mc->sens_fq += (eq - mc->sens_fq) / MC_SENSOR_START_WINDOWS;
+        ed = mc->sens_fd;
+        eq = mc->sens_fq;
+    }
+    ed = (ed < 0) ? -ed : ed;
+    eq = (eq < 0) ? -eq : eq;
+    if (si->state == MC_STATE_CLOSED_LOOP) {
+        /* near and above the nominal speed the circle legitimately leaves q
+         * short of its reference; below it a q PI at the voltage limit for
+         * most of the window fails it once the reference's ramp is done
+         * (accelerating near the bus limit legitimately saturates q; holding
+         * a speed below 90 % of nominal does not) */
+        bool high = mc->spd_ref >= MC_SENSOR_Q_SHORT_Q15 || mc->spd_ref <= -MC_SENSOR_Q_SHORT_Q15;
+        bool q_sat = 2U * si->sens_qsat > MC_SLOW_STEP_PERIODS;
+        /* the reference's ramp done (within MC_SENSOR_STEADY_Q15: the pot's
+         * noise keeps it moving by a few counts) */
+        int32_t ramp = (int32_t)so->speed_target - (int32_t)mc->spd_ref;
+        bool steady = ramp <= MC_SENSOR_STEADY_Q15 && ramp >= -MC_SENSOR_STEADY_Q15;
+        bad = ed > thr || (q_sat ? (!high && steady) : eq > thr);
+    } else {
+        bad = ed > thr || eq > thr;
+    }
+    if (bad && MC_SENSOR_CHECK) {
+        mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
+    } else if (mc->sens_cnt > 0U) {
+        mc->sens_cnt--;
+    }
+    so->sensor_fault = mc->sens_cnt >= MC_SENSOR_TRIP;
+}
+
 static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
 {
     int32_t a = si->lock_va; /* |.| <= MC_SLOW_STEP_PERIODS x 2^15 */
@@ -905,6 +960,18 @@ static void mc_ol_damp(mc_t *mc)
     mc->ol_damp = (int16_t)shift;
 }
 
+/* Current-sensor plausibility (note 5), every period with the outputs
+ * on: the window's sums of the current error and of the periods with the
+ * q PI at its voltage limit, for the slow step (mc_slow_sensor). */
+Q15_INLINE void mc_sensor_sum(mc_t *mc)
+{
+    mc->sens_d += (int32_t)mc->i_ref_frame.d - (int32_t)mc->i_dq.d;
+    mc->sens_q += (int32_t)mc->i_ref_frame.q - (int32_t)mc->i_dq.q;
+    if (mc->pi_q.out >= mc->pi_q.p.out_max || mc->pi_q.out <= mc->pi_q.p.out_min) {
+        mc->sens_qsat++;
+    }
+}
+
 /* MC_SLOW_APPLY_PERIODS after a window end (mc.h note 4): the slow step's
  * results in. */
 static void mc_slow_apply(mc_t *mc)
@@ -935,6 +1002,10 @@ static void mc_slow_apply(mc_t *mc)
         }
     }
 #endif
+    if (so->sensor_fault && so->epoch == mc->epoch && mc->outputs_on) {
+        mc_fault(mc, MC_FAULT_CURRENT_SENSOR);
+        return;
+    }
     if (so->loop && so->epoch == mc->epoch && mc->state == MC_STATE_CLOSED_LOOP) {
         mc->i_ref = so->i_ref;
         mc->speed_ref = so->speed_ref;
@@ -965,6 +1036,13 @@ static void mc_window_end(mc_t *mc)
     si->preset_speed_ref = mc->preset_speed_ref;
     si->i_ab = mc->i_ab;
     si->theta_est = smc_theta(&mc->smc);
+    si->sens_d = mc->sens_d;
+    si->sens_q = mc->sens_q;
+    si->sens_qsat = mc->sens_qsat;
+    si->sens_ref = mc->i_ref_frame;
+    mc->sens_d = 0;
+    mc->sens_q = 0;
+    mc->sens_qsat = 0U;
 #if MC_DTM_ON
     si->lock_va = mc->lock_va;
     si->lock_vb = mc->lock_vb;
@@ -1007,6 +1085,9 @@ void mc_slow_step(mc_t *mc)
         mc->dtm_sum = 0;
         mc->dtm_mean = 0;
         mc->dtm_slow = false;
+        mc->sens_fd = 0;
+        mc->sens_fq = 0;
+        mc->sens_cnt = 0U;
         so->lock_iq = MC_LOCK_CURRENT_Q15;
         so->lock_done = false;
         if (si->preset) {
@@ -1021,6 +1102,7 @@ void mc_slow_step(mc_t *mc)
     }
     so->loop = false;
     so->fault = MC_FAULT_NONE;
+    mc_slow_sensor(mc, si, so);
     /* OPEN_LOOP: the load's share of the ramp current, the measured current
      * on the estimated q axis low-passed over 32 windows (the hand-off's
      * preset, mc_enter_closed_loop). */
@@ -1163,6 +1245,7 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     /* The outputs are on exactly when mc_step_control ran the loops. */
     if (mc->outputs_on) {
         mc_estimate(mc);
+        mc_sensor_sum(mc);
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
@@ -1234,6 +1317,8 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->duty[2] = mc->duty[2];
     st->outputs_on = mc->outputs_on;
     st->deadtime = mc->dt_counts;
+    st->ref_remote = mc->ref_from_remote;
+    st->ref_seq = mc->ref_remote_seq;
 }
 
 /*
@@ -1327,4 +1412,33 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    covered: a loss that changes with temperature while running (the
  *    next start measures it again), and a real loss whose shape near zero
  *    current differs from the band's.
+ *
+ * 5. Current-sensor plausibility. The overcurrent check reads the
+ *    sensors, so a sensor that stops following its current (a dead
+ *    amplifier frozen at one code, an open input reading its bias) hides
+ *    the current it should limit: the current PI winds up to the voltage
+ *    limit and the real current runs to Vmax / R (about 5 A on the Hurst,
+ *    against a 3.5 A trip). A live sensor lets the current loops make the
+ *    measured current follow the reference within a few periods (their
+ *    bandwidth is 2000 to 4600 rad/s); a failed one does not. Every period
+ *    with the outputs on, the interrupt adds the error on d and q to the
+ *    window's sums and counts the periods with the q PI at its voltage
+ *    limit (mc_sensor_sum: two 32-bit adds and a compare); once per window
+ *    the slow step judges them (mc_slow_sensor). A window fails when the
+ *    mean error on either axis exceeds half the reference's larger
+ *    component plus MC_SENSOR_FLOOR_Q15 (the 1 ms mean averages out a
+ *    low-inductance motor's current noise; at the start the means are
+ *    low-passed over MC_SENSOR_START_WINDOWS too, so that a rotor still
+ *    spinning from a failed attempt, whose back-EMF the lock's loop cannot
+ *    hold, does not count). In CLOSED_LOOP from 90 % of the nominal speed
+ *    the circle legitimately leaves q short (field weakening, heavy load at
+ *    the top), so there q counts only while its PI is inside it; below,
+ *    a q PI at its limit for most of the window fails the window. Failing
+ *    windows count 2, passing ones -1: MC_SENSOR_TIME_S of failure net sets
+ *    slow_out.sensor_fault, applied as MC_FAULT_CURRENT_SENSOR. A phase-A
+ *    sensor failed during LOCK reads what the phase carries there (the
+ *    lock's current is on beta: none in phase A), so it shows, and trips,
+ *    once the ramp turns the current. Not covered: a gain error or a
+ *    slowly drifting offset (the loop then regulates the wrong current,
+ *    consistently).
  */

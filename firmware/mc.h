@@ -130,6 +130,8 @@ typedef enum {
 #define MC_FAULT_STALL_TRACK  8U  /* closed loop: speed error with the speed PI saturated */
 #define MC_FAULT_OFFSET       9U  /* current offset out of range at calibration (amplifier) */
 #define MC_FAULT_OVERRUN      10U /* mc_slow_step of a window not finished at the next window end */
+#define MC_FAULT_CURRENT_SENSOR                                                                    \
+    11U /* measured currents do not follow the current loops (mc.c note 5) */
 
 /* ---- status ---------------------------------------------------------------- */
 
@@ -163,6 +165,9 @@ typedef struct {
     bool outputs_on;        /* as in the last mc_pwm_out_t */
     int16_t deadtime;       /* the dead time compensated and modelled, Tcy (duty counts):
                                PWM_DEADTIME_NS's until a lock measured it (MC_DEADTIME_MEASURE) */
+    bool ref_remote;        /* the reference is a set one (mc_set_reference), not the pot */
+    uint8_t ref_seq;        /* mc_set_reference calls so far, mod 256: a writer that finds it
+                               moved since its own last call has lost the reference */
 } mc_status_t;
 
 /* ---- run-time gains -------------------------------------------------------- *
@@ -210,6 +215,9 @@ typedef struct {
     uint32_t timer;         /* periods in the state at the window end */
     int16_t dt_counts;      /* the dead time in use, duty counts */
     q15_t vbus;             /* the window end's bus, Q15 */
+    int32_t sens_d, sens_q; /* the window's current-error sums (mc.c note 5) ... */
+    uint8_t sens_qsat;      /* ... periods with the q PI at its limit ... */
+    dq_q15_t sens_ref;      /* ... and the current reference at the window end */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -223,6 +231,7 @@ typedef struct {
     q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
     q15_t ol_iq;         /* OPEN_LOOP: the torque current, low-passed (mc.c note 1) */
     q15_t lock_iq;       /* LOCK: the lock's current reference (mc.c note 4) */
+    bool sensor_fault;   /* the current-sensor check failed (mc.c note 5) */
     bool lock_done;      /* LOCK: the dead-time measurement is done: */
     int16_t dt_counts;   /* its dead time, duty counts, */
     q15_t dt_slope;      /* and in-band slope */
@@ -265,12 +274,16 @@ typedef struct {
     /* current control */
     pi_t pi_d, pi_q;
     dq_q15_t i_ref;
-    dq_q15_t v_dq;         /* after the circle limit and ripple compensation */
-    uint16_t circle_redos; /* periods the q step was redone at the circle (mc.c note 3),
-                              saturates */
-    int16_t speed_target;  /* unramped reference, Q15 speed (from the slow step) */
-    int16_t speed_ref;     /* ramped reference, Q15 speed (from the slow step) */
-    int16_t torque_target; /* Iq from the pot or remote, TORQUEMODE (from the slow step) */
+    dq_q15_t i_ref_frame;   /* i_ref in the transforms' frame this period (theta_offset) */
+    int32_t sens_d, sens_q; /* current-sensor plausibility (mc.c note 5): this window's sums of
+                               the current error on d and q, Q15 of I_FS */
+    uint8_t sens_qsat;      /* ... and of periods with the q PI at its voltage limit */
+    dq_q15_t v_dq;          /* after the circle limit and ripple compensation */
+    uint16_t circle_redos;  /* periods the q step was redone at the circle (mc.c note 3),
+                               saturates */
+    int16_t speed_target;   /* unramped reference, Q15 speed (from the slow step) */
+    int16_t speed_ref;      /* ramped reference, Q15 speed (from the slow step) */
+    int16_t torque_target;  /* Iq from the pot or remote, TORQUEMODE (from the slow step) */
 
     /* angle */
     angle_q15_t theta;      /* angle the transforms use this period */
@@ -320,9 +333,11 @@ typedef struct {
     uint8_t slow_epoch;    /* the run the slow step's state belongs to */
     int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
     /* LOCK: the dead-time measurement (mc.c note 4), per window */
-    int32_t dtm_sum;  /* the windows' beta sums (lock_vb), Q15 of V_FS */
-    int32_t dtm_mean; /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
-    int32_t dtm_hi;   /* the largest and smallest alpha sum in the windows */
+    int32_t sens_fd, sens_fq; /* current-sensor check: the error sums low-passed over windows */
+    uint8_t sens_cnt;         /* ... failing windows x 2, less passing ones */
+    int32_t dtm_sum;          /* the windows' beta sums (lock_vb), Q15 of V_FS */
+    int32_t dtm_mean;         /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
+    int32_t dtm_hi;           /* the largest and smallest alpha sum in the windows */
     int32_t dtm_lo;
     int32_t dtm_range1; /* the first level's alpha range (dtm_hi - dtm_lo) */
     uint16_t dtm_cnt;   /* windows in the phase */

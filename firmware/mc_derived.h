@@ -5,8 +5,8 @@
 
 /*
  * Nothing here is tuned: every constant is computed from UserParms.h and the
- * board and motor profiles. Each check stops the build with a message that
- * starts with the parameter to change (MC_CHECK below); the Q15()
+ * board and motor profiles. Each check stops the build with a first error
+ * line that names the parameter to change (MC_CHECK below); the Q15()
  * conversions that follow carry their own range check.
  *
  * Scales used by the core (DESIGN.md):
@@ -28,32 +28,82 @@
 #include "smc.h"
 #include "UserParms.h"
 
-/* MC_CHECK(PARAM, cond, "why"): stops the build when cond is false, naming
- * PARAM. With a C11-capable compiler: "static assertion failed: "PARAM: why"".
- * Where _Static_assert is unavailable or hidden (glibc's <sys/cdefs.h>
- * redefines it as a macro in C99 mode, losing the message): "negative width
- * in bit-field 'PARAM__out_of_range'" (__COUNTER__, gcc >= 4.3, keeps the
- * struct tags of two checks apart even on the same line of two files). */
-#if defined(_Static_assert) || !defined(__GNUC__) ||                                               \
-    (__GNUC__ < 4 || (__GNUC__ == 4 && __GNUC_MINOR__ < 6))
+/* MC_CHECK(PARAM, cond, "why"): stops the build when cond is false, the
+ * first error line naming PARAM (q15.h, "compile-time checks"):
+ *   gcc, avr-gcc, XC16:  error: negative width in bit-field 'PARAM__out_of_range'
+ *   clang:               error: bit-field 'PARAM__out_of_range' has negative width (-1)
+ * and the check's line, with "why", beside it. MC_CHECK_FOR(PARAM, OTHER,
+ * cond, "why") names a second parameter the check involves, the one a user
+ * may have changed instead ('PARAM__out_of_range_for__OTHER'): a bound
+ * between two parameters, or a UserParms.h default computed from OTHER.
+ * Each parameter is checked on its own before anything derived from it
+ * (and before any Q15() of it, whose own range check names no parameter),
+ * so the first error names the value to change. Both are q15.h's
+ * Q15_CHECK_DECL written out: a pasted name passed on as a macro argument
+ * is misread by cppcheck's preprocessor (make lint). */
 #define MC_CHECK(param, cond, msg)                                                                 \
-    struct Q15_CAT(mc_check_, __COUNTER__) {                                                       \
-        unsigned param##__out_of_range : Q15_CHECK_WIDTH_(cond);                                   \
-    }
-#else
-#define MC_CHECK(param, cond, msg) _Static_assert((int)(cond), #param ": " msg)
-#endif
+    extern char q15_check_[1 + (int)(0 * sizeof(struct {                                           \
+                                         unsigned param##__out_of_range : Q15_CHECK_WIDTH_(cond);  \
+                                     }))]
+#define MC_CHECK_FOR(param, other, cond, msg)                                                      \
+    extern char q15_check_[1 + (int)(0 * sizeof(struct {                                           \
+                                         unsigned param##__out_of_range_for__##other               \
+                                             : Q15_CHECK_WIDTH_(cond);                             \
+                                     }))]
+
+/* 1 when x has an integer type: 3 / 2 is 1 only in integer arithmetic (a
+ * floating x gives 1.5). Counts, switches and the rates that must divide
+ * each other are integers: they meet %, #if and integer code. */
+#define MC_IS_INTEGER_(x) (((x)*0 + 3) / 2 == 1)
+/* 1 when a ratio x >= 0 is 0 or does not round to 0 at `scale` counts per
+ * unit (32768 for Q15): a small positive gain or fraction that rounds to 0
+ * would switch its function off without a word. */
+#define MC_ZERO_OR_COUNTS_(x, scale) ((x) == 0.0 || (double)(x) * (double)(scale) >= 0.5)
+
+/* ---- integer parameters ---------------------------------------------------- */
+
+MC_CHECK(BOARD_FCY_HZ, MC_IS_INTEGER_(BOARD_FCY_HZ) && BOARD_FCY_HZ > 0,
+         "must be a positive integer (Hz)");
+MC_CHECK(PWM_FREQUENCY_HZ, MC_IS_INTEGER_(PWM_FREQUENCY_HZ),
+         "must be an integer (Hz): it divides BOARD_FCY_HZ");
+MC_CHECK(MC_SPEED_LOOP_HZ, MC_IS_INTEGER_(MC_SPEED_LOOP_HZ),
+         "must be an integer (Hz): it divides PWM_FREQUENCY_HZ");
+MC_CHECK(PWM_ADC_TRIGGER_TCY, MC_IS_INTEGER_(PWM_ADC_TRIGGER_TCY),
+         "must be an integer (instruction cycles)");
+MC_CHECK(BOARD_DEADTIME_NS, MC_IS_INTEGER_(BOARD_DEADTIME_NS),
+         "must be an integer (ns; the HAL and #if use it)");
+MC_CHECK(PWM_DEADTIME_NS, MC_IS_INTEGER_(PWM_DEADTIME_NS),
+         "must be an integer (ns; the HAL and #if use it)");
+MC_CHECK(BOARD_I_SIGN, MC_IS_INTEGER_(BOARD_I_SIGN) && (BOARD_I_SIGN == 1 || BOARD_I_SIGN == -1),
+         "must be the integer +1 or -1 (the HAL's #if tests it)");
+MC_CHECK(MOTOR_POLE_PAIRS,
+         MC_IS_INTEGER_(MOTOR_POLE_PAIRS) && MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32,
+         "must be an integer in 1..32");
+MC_CHECK(MC_START_RETRIES,
+         MC_IS_INTEGER_(MC_START_RETRIES) && MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250,
+         "must be an integer in 0..250");
+MC_CHECK(MC_OL_DAMP_MEAN_WINDOWS,
+         MC_IS_INTEGER_(MC_OL_DAMP_MEAN_WINDOWS) && MC_OL_DAMP_MEAN_WINDOWS >= 1 &&
+             MC_OL_DAMP_MEAN_WINDOWS <= 1024,
+         "must be an integer in 1..1024 speed-loop windows");
+MC_CHECK(MC_DEADTIME_MEASURE,
+         MC_IS_INTEGER_(MC_DEADTIME_MEASURE) &&
+             (MC_DEADTIME_MEASURE == 0 || MC_DEADTIME_MEASURE == 1),
+         "must be 0 or 1");
+MC_CHECK(MC_DEADTIME_COMP,
+         MC_IS_INTEGER_(MC_DEADTIME_COMP) && (MC_DEADTIME_COMP == 0 || MC_DEADTIME_COMP == 1),
+         "must be 0 or 1");
 
 /* ---- timing ------------------------------------------------------------- */
 
 MC_CHECK(PWM_FREQUENCY_HZ, PWM_FREQUENCY_HZ >= 4000L && PWM_FREQUENCY_HZ <= 40000L,
          "must be in 4000..40000 Hz");
-MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ % PWM_FREQUENCY_HZ == 0,
-         "BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be an integer "
-         "(it is the duty full scale)");
-MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
-         "duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
-         "<= 32767 counts");
+MC_CHECK_FOR(PWM_FREQUENCY_HZ, BOARD_FCY_HZ, (long)BOARD_FCY_HZ % (long)PWM_FREQUENCY_HZ == 0,
+             "BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be an integer "
+             "(it is the duty full scale)");
+MC_CHECK_FOR(PWM_FREQUENCY_HZ, BOARD_FCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 32767L,
+             "duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
+             "<= 32767 counts");
 
 /* Duty counts for 100 % (AN1078 LOOPINTCY, PDCx units: 2000 at 40 MIPS, 20 kHz). */
 #define PWM_DUTY_MAX ((uint16_t)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ))
@@ -68,7 +118,8 @@ MC_CHECK(PWM_ADC_TRIGGER_TCY,
          PWM_ADC_TRIGGER_TCY >= 0L && PWM_ADC_TRIGGER_TCY * 2L * PWM_FREQUENCY_HZ < BOARD_FCY_HZ,
          "the trigger must fall in the second half of the period");
 
-MC_CHECK(MC_SPEED_LOOP_HZ, MC_SPEED_LOOP_HZ > 0 && PWM_FREQUENCY_HZ % MC_SPEED_LOOP_HZ == 0,
+MC_CHECK(MC_SPEED_LOOP_HZ,
+         MC_SPEED_LOOP_HZ > 0 && (long)PWM_FREQUENCY_HZ % (long)MC_SPEED_LOOP_HZ == 0,
          "must divide PWM_FREQUENCY_HZ");
 MC_CHECK(MC_SPEED_LOOP_HZ,
          PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ >= 1 && PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ <= 256,
@@ -85,15 +136,27 @@ MC_CHECK(MC_SPEED_LOOP_HZ, PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ > MC_SLOW_APPLY_P
          "IRP_PERCALC = PWM_FREQUENCY_HZ / MC_SPEED_LOOP_HZ must exceed "
          "MC_SLOW_APPLY_PERIODS (5): the slow step's results come back inside the window");
 
-/* ---- scales -------------------------------------------------------------- */
+/* ---- board scales and limits ----------------------------------------------- */
 
 MC_CHECK(BOARD_I_FULLSCALE_A, BOARD_I_FULLSCALE_A > 0.0, "must be > 0");
 MC_CHECK(BOARD_VBUS_FULLSCALE_V, BOARD_VBUS_FULLSCALE_V > 0.0, "must be > 0");
-MC_CHECK(BOARD_VBUS_NOMINAL_V,
-         BOARD_VBUS_NOMINAL_V > 0.0 && BOARD_VBUS_NOMINAL_V < BOARD_VBUS_FULLSCALE_V,
-         "must be in (0, BOARD_VBUS_FULLSCALE_V)");
-MC_CHECK(MOTOR_POLE_PAIRS, MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32, "must be in 1..32");
-MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_SPEED_FULLSCALE_RPM > 0.0, "must be > 0");
+MC_CHECK_FOR(BOARD_VBUS_NOMINAL_V, BOARD_VBUS_FULLSCALE_V,
+             BOARD_VBUS_NOMINAL_V > 0.0 && BOARD_VBUS_NOMINAL_V < BOARD_VBUS_FULLSCALE_V,
+             "must be in (0, BOARD_VBUS_FULLSCALE_V)");
+/* The board's default bus window (UserParms.h copies it into MC_VBUS_*),
+ * checked as the board's own fact before the application's. */
+MC_CHECK_FOR(BOARD_VBUS_UNDERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
+             BOARD_VBUS_UNDERVOLTAGE_V > 0.0 && BOARD_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
+             "must be in (0, BOARD_VBUS_NOMINAL_V)");
+MC_CHECK_FOR(BOARD_VBUS_OVERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
+             BOARD_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V, "must be above BOARD_VBUS_NOMINAL_V");
+MC_CHECK_FOR(BOARD_VBUS_OVERVOLTAGE_V, BOARD_VBUS_FULLSCALE_V,
+             BOARD_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
+             "must be below BOARD_VBUS_FULLSCALE_V");
+MC_CHECK_FOR(BOARD_DEADTIME_NS, PWM_FREQUENCY_HZ,
+             BOARD_DEADTIME_NS >= 0L && (double)BOARD_DEADTIME_NS * 1e-9 * (double)BOARD_FCY_HZ <
+                                            0.1 * (double)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
+             "must be below 10 % of the PWM period");
 
 /* SVGen full scale: the largest linear phase amplitude at the nominal bus. */
 #define MC_VOLTAGE_FULLSCALE_V (BOARD_VBUS_NOMINAL_V / 1.7320508075688772)
@@ -109,24 +172,72 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_SPEED_FULLSCALE_RPM > 0.0, "must be > 0");
 #define MC_SHIFT_OF(x) Q15_SHIFT7_OF(x)
 #define MC_MANT_OF(x)  Q15_MANT7_OF(x)
 
+/* ---- motor model ------------------------------------------------------------- */
+
+/* The motor's electrical data first: the observer, the current gains, the
+ * dead-time band and the speed limits below are all computed from them. */
+MC_CHECK(MOTOR_RS_OHM, MOTOR_RS_OHM > 0.0, "must be > 0");
+MC_CHECK(MOTOR_LS_H, MOTOR_LS_H > 0.0, "must be > 0");
+MC_CHECK_FOR(MOTOR_RS_OHM, MOTOR_LS_H, MC_TS_S *MOTOR_RS_OHM / MOTOR_LS_H < 1.0,
+             "F = 1 - Ts R / L must be > 0 (R too large for MOTOR_LS_H)");
+MC_CHECK(MOTOR_LS_H, MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A < 1.0,
+         "G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
+         "scales)");
+/* The observer's G (smc.h) in its Q15 mantissa: at least 1e-4. */
+MC_CHECK(MOTOR_LS_H,
+         SMC_GE_(MOTOR_RS_OHM, MOTOR_LS_H, MC_TS_S, MC_VOLTAGE_FULLSCALE_V, BOARD_I_FULLSCALE_A) >=
+             1e-4,
+         "G = (1 - F) / R * 2 V_FS / I_FS must be >= 1e-4 (L too large for the board scales)");
+MC_CHECK(MOTOR_KE_VPK_LL_PER_KRPM, MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "must be > 0");
+
+/* ---- speed scale ---------------------------------------------------------------- */
+
+MC_CHECK(MOTOR_SPEED_NOMINAL_RPM, MOTOR_SPEED_NOMINAL_RPM > 0.0, "must be > 0");
+MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_SPEED_NOMINAL_RPM,
+             MOTOR_SPEED_FW_MAX_RPM >= MOTOR_SPEED_NOMINAL_RPM,
+             "must be >= MOTOR_SPEED_NOMINAL_RPM (equal: no field "
+             "weakening)");
+/* The profile's speed scale (UserParms.h's default MC_SPEED_FULLSCALE_RPM),
+ * checked as the profile's own fact, then the one the core uses. Above
+ * the top speed by 5 % (room for overshoot); the electrical frequency at
+ * full scale below fpwm / (2 pi) (the observer's speed-to-angle gain, smc.h,
+ * and the core's one-period angle steps, mc.c) and high enough for the
+ * observer's speed scale (smc.h); at most 8 times the top speed, so that
+ * the speed keeps 4096 counts of resolution. */
+#define MC_FS_RPM_OK_(fs)                                                                          \
+    ((fs) > 0.0 && MOTOR_SPEED_FW_MAX_RPM <= 0.95 * (fs) &&                                        \
+     (fs) <= 8.0 * MOTOR_SPEED_FW_MAX_RPM &&                                                       \
+     6.283185307179586 * (double)(fs) * (double)MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 1.0 &&         \
+     SMC_KSPEED_(MC_TS_S, (double)(fs) * (double)MOTOR_POLE_PAIRS / 60.0, IRP_PERCALC) < 32768.0)
+MC_CHECK_FOR(MOTOR_SPEED_FULLSCALE_RPM, MOTOR_SPEED_FW_MAX_RPM,
+             MC_FS_RPM_OK_(MOTOR_SPEED_FULLSCALE_RPM),
+             "must be in [MOTOR_SPEED_FW_MAX_RPM / 0.95, 8 MOTOR_SPEED_FW_MAX_RPM] and "
+             "below 60 PWM_FREQUENCY_HZ / (2 pi MOTOR_POLE_PAIRS) rpm");
+MC_CHECK_FOR(MC_SPEED_FULLSCALE_RPM, MOTOR_SPEED_FW_MAX_RPM, MC_FS_RPM_OK_(MC_SPEED_FULLSCALE_RPM),
+             "must be in [MOTOR_SPEED_FW_MAX_RPM / 0.95, 8 MOTOR_SPEED_FW_MAX_RPM] and "
+             "below 60 PWM_FREQUENCY_HZ / (2 pi MOTOR_POLE_PAIRS) rpm");
+
 /* ---- speeds --------------------------------------------------------------- */
 
-MC_CHECK(MOTOR_SPEED_MIN_RPM,
-         MOTOR_SPEED_MIN_RPM > 0.0 && MOTOR_SPEED_MIN_RPM < MOTOR_SPEED_NOMINAL_RPM,
-         "must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
-MC_CHECK(MOTOR_SPEED_FW_MAX_RPM, MOTOR_SPEED_FW_MAX_RPM >= MOTOR_SPEED_NOMINAL_RPM,
-         "must be >= MOTOR_SPEED_NOMINAL_RPM (equal: no field "
-         "weakening)");
-MC_CHECK(MC_SPEED_FULLSCALE_RPM, MOTOR_SPEED_FW_MAX_RPM <= 0.95 * MC_SPEED_FULLSCALE_RPM,
-         "must be >= MOTOR_SPEED_FW_MAX_RPM / 0.95 "
-         "(room for overshoot)");
-MC_CHECK(SPEED_REF_MIN_RPM, SPEED_REF_MIN_RPM > 0.0 && SPEED_REF_MIN_RPM < SPEED_REF_MAX_RPM,
-         "must be in (0, SPEED_REF_MAX_RPM)");
-MC_CHECK(SPEED_REF_MAX_RPM, SPEED_REF_MAX_RPM <= MOTOR_SPEED_FW_MAX_RPM,
-         "must be <= MOTOR_SPEED_FW_MAX_RPM");
-MC_CHECK(MC_ESTIMATOR_MIN_RPM,
-         MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RAMP_END_RPM,
-         "must be in (0, MOTOR_RAMP_END_RPM]");
+MC_CHECK_FOR(MOTOR_SPEED_MIN_RPM, MOTOR_SPEED_NOMINAL_RPM,
+             MOTOR_SPEED_MIN_RPM > 0.0 && MOTOR_SPEED_MIN_RPM < MOTOR_SPEED_NOMINAL_RPM,
+             "must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
+MC_CHECK_FOR(MOTOR_RAMP_END_RPM, MOTOR_SPEED_NOMINAL_RPM,
+             MOTOR_RAMP_END_RPM > 0.0 && MOTOR_RAMP_END_RPM < MOTOR_SPEED_NOMINAL_RPM,
+             "must be in (0, MOTOR_SPEED_NOMINAL_RPM)");
+MC_CHECK_FOR(SPEED_REF_MIN_RPM, SPEED_REF_MAX_RPM,
+             SPEED_REF_MIN_RPM > 0.0 && SPEED_REF_MIN_RPM < SPEED_REF_MAX_RPM,
+             "must be in (0, SPEED_REF_MAX_RPM)");
+MC_CHECK_FOR(SPEED_REF_MAX_RPM, MOTOR_SPEED_FW_MAX_RPM, SPEED_REF_MAX_RPM <= MOTOR_SPEED_FW_MAX_RPM,
+             "must be <= MOTOR_SPEED_FW_MAX_RPM");
+/* The observer's floor (smc.h): its angle step at this speed at least one
+ * Q15 count per period. */
+MC_CHECK_FOR(MC_ESTIMATOR_MIN_RPM, MOTOR_RAMP_END_RPM,
+             MC_ESTIMATOR_MIN_RPM > 0.0 && MC_ESTIMATOR_MIN_RPM <= MOTOR_RAMP_END_RPM &&
+                 SMC_KPW_(MC_TS_S, (double)MC_ESTIMATOR_MIN_RPM *MOTOR_POLE_PAIRS / 60.0) >=
+                     1.0 / 32768.0,
+             "must be in (0, MOTOR_RAMP_END_RPM], at least 1/32768 of an electrical radian per "
+             "period");
 
 #define MC_SPEED_REF_MIN_Q15 MC_Q15_RPM(SPEED_REF_MIN_RPM)
 #define MC_SPEED_REF_MAX_Q15 MC_Q15_RPM(SPEED_REF_MAX_RPM)
@@ -134,31 +245,34 @@ MC_CHECK(MC_ESTIMATOR_MIN_RPM,
 #define MC_SPEED_RAMP_STEP_                                                                        \
     ((double)MC_SPEED_RAMP_RPM_PER_S / (double)MC_SPEED_LOOP_HZ / (double)MC_SPEED_FULLSCALE_RPM * \
      32768.0)
-MC_CHECK(MC_SPEED_RAMP_RPM_PER_S, MC_SPEED_RAMP_STEP_ >= 1.0 && MC_SPEED_RAMP_STEP_ < 32767.0,
-         "must give 1..32767 Q15 counts per speed-loop run");
+MC_CHECK_FOR(MC_SPEED_RAMP_RPM_PER_S, MC_SPEED_FULLSCALE_RPM,
+             MC_SPEED_RAMP_STEP_ >= 1.0 && MC_SPEED_RAMP_STEP_ < 32767.0,
+             "must give 1..32767 Q15 counts per speed-loop run");
 #define MC_SPEED_RAMP_STEP ((q15_t)(MC_SPEED_RAMP_STEP_ + 0.5))
 
 /* ---- currents -------------------------------------------------------------- */
 
-MC_CHECK(MOTOR_CURRENT_MAX_A,
-         MOTOR_CURRENT_MAX_A > 0.0 && MOTOR_CURRENT_MAX_A < BOARD_I_FULLSCALE_A,
-         "must be in (0, BOARD_I_FULLSCALE_A)");
-MC_CHECK(MC_OVERCURRENT_A,
-         MC_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MC_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
-         "must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
-MC_CHECK(MOTOR_LOCK_CURRENT_A,
-         MOTOR_LOCK_CURRENT_A > 0.0 && MOTOR_LOCK_CURRENT_A < MC_OVERCURRENT_A,
-         "must be in (0, MC_OVERCURRENT_A)");
-MC_CHECK(MOTOR_RAMP_CURRENT_A,
-         MOTOR_RAMP_CURRENT_A > 0.0 && MOTOR_RAMP_CURRENT_A <= MOTOR_CURRENT_MAX_A,
-         "must be in (0, MOTOR_CURRENT_MAX_A]");
+MC_CHECK_FOR(MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A,
+             MOTOR_CURRENT_MAX_A > 0.0 && MOTOR_CURRENT_MAX_A < BOARD_I_FULLSCALE_A,
+             "must be in (0, BOARD_I_FULLSCALE_A)");
+/* The profile's trip (UserParms.h's default MC_OVERCURRENT_A) as the
+ * profile's own fact, then the one the core uses. */
+MC_CHECK_FOR(MOTOR_OVERCURRENT_A, MOTOR_CURRENT_MAX_A,
+             MOTOR_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MOTOR_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
+             "must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
+MC_CHECK_FOR(MC_OVERCURRENT_A, MOTOR_CURRENT_MAX_A,
+             MC_OVERCURRENT_A > MOTOR_CURRENT_MAX_A && MC_OVERCURRENT_A < BOARD_I_FULLSCALE_A,
+             "must be in (MOTOR_CURRENT_MAX_A, BOARD_I_FULLSCALE_A)");
+MC_CHECK_FOR(MOTOR_LOCK_CURRENT_A, MC_OVERCURRENT_A,
+             MOTOR_LOCK_CURRENT_A > 0.0 && MOTOR_LOCK_CURRENT_A < MC_OVERCURRENT_A,
+             "must be in (0, MC_OVERCURRENT_A)");
+MC_CHECK_FOR(MOTOR_RAMP_CURRENT_A, MOTOR_CURRENT_MAX_A,
+             MOTOR_RAMP_CURRENT_A > 0.0 && MOTOR_RAMP_CURRENT_A <= MOTOR_CURRENT_MAX_A,
+             "must be in (0, MOTOR_CURRENT_MAX_A]");
 MC_CHECK(MC_OFFSET_MAX_A, MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A,
          "must be in (0, BOARD_I_FULLSCALE_A)");
 
-#define MC_IQ_MAX_Q15 MC_Q15_AMPS(MOTOR_CURRENT_MAX_A)
-MC_CHECK(MC_ID_MIN_A, MC_ID_MIN_A >= 0.0 && MC_ID_MIN_A <= 0.5 * MOTOR_CURRENT_MAX_A,
-         "must be in [0, MOTOR_CURRENT_MAX_A / 2]");
-#define MC_ID_MIN_Q15       MC_Q15_AMPS(MC_ID_MIN_A)
+#define MC_IQ_MAX_Q15       MC_Q15_AMPS(MOTOR_CURRENT_MAX_A)
 #define MC_OVERCURRENT_Q15  MC_Q15_AMPS(MC_OVERCURRENT_A)
 #define MC_LOCK_CURRENT_Q15 MC_Q15_AMPS(MOTOR_LOCK_CURRENT_A)
 #define MC_RAMP_CURRENT_Q15 MC_Q15_AMPS(MOTOR_RAMP_CURRENT_A)
@@ -166,14 +280,14 @@ MC_CHECK(MC_ID_MIN_A, MC_ID_MIN_A >= 0.0 && MC_ID_MIN_A <= 0.5 * MOTOR_CURRENT_M
 
 /* ---- DC bus ---------------------------------------------------------------- */
 
-MC_CHECK(MC_VBUS_UNDERVOLTAGE_V,
-         MC_VBUS_UNDERVOLTAGE_V > 0.0 && MC_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
-         "must be in (0, BOARD_VBUS_NOMINAL_V)");
-MC_CHECK(MC_VBUS_OVERVOLTAGE_V,
-         MC_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V &&
+MC_CHECK_FOR(MC_VBUS_UNDERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
+             MC_VBUS_UNDERVOLTAGE_V > 0.0 && MC_VBUS_UNDERVOLTAGE_V < BOARD_VBUS_NOMINAL_V,
+             "must be in (0, BOARD_VBUS_NOMINAL_V)");
+MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
+             MC_VBUS_OVERVOLTAGE_V > BOARD_VBUS_NOMINAL_V, "must be above BOARD_VBUS_NOMINAL_V");
+MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_FULLSCALE_V,
              MC_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
-         "must be in (BOARD_VBUS_NOMINAL_V, "
-         "BOARD_VBUS_FULLSCALE_V)");
+             "must be below BOARD_VBUS_FULLSCALE_V");
 #define MC_VBUS_UV_Q15      MC_Q15_VBUS(MC_VBUS_UNDERVOLTAGE_V)
 #define MC_VBUS_OV_Q15      MC_Q15_VBUS(MC_VBUS_OVERVOLTAGE_V)
 #define MC_VBUS_NOMINAL_Q15 MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V)
@@ -190,10 +304,22 @@ MC_CHECK(MC_VOLTAGE_LIMIT_FRACTION,
 #define MC_CUR_KP_ ((double)MOTOR_CURRENT_KP_V_PER_A * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
 #define MC_CUR_KI_                                                                                 \
     ((double)MOTOR_CURRENT_KI_V_PER_AS * MC_TS_S * BOARD_I_FULLSCALE_A / MC_VOLTAGE_FULLSCALE_V)
-MC_CHECK(MOTOR_CURRENT_KP_V_PER_A, MC_CUR_KP_ >= 0.0 && MC_CUR_KP_ < 128.0,
-         "Kp * I_FS / V_FS must be in [0, 128)");
-MC_CHECK(MOTOR_CURRENT_KI_V_PER_AS, MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
-         "Ki * Ts * I_FS / V_FS must be in [0, 1)");
+/* The profiles' default gains come from a loop bandwidth: Kp = L wc,
+ * Ki = R wc. The loop acts about 1.5 periods after its sample (mc.h note
+ * 2), which takes 1.5 wc Ts rad of phase at the crossover: none is left of
+ * the integrator's 90 deg at wc Ts = pi / 3, so wc Ts must stay below 1. */
+#ifdef MOTOR_CURRENT_LOOP_BW_RAD_S
+MC_CHECK(MOTOR_CURRENT_LOOP_BW_RAD_S,
+         MOTOR_CURRENT_LOOP_BW_RAD_S > 0.0 && MOTOR_CURRENT_LOOP_BW_RAD_S * MC_TS_S < 1.0,
+         "must be in (0, PWM_FREQUENCY_HZ) rad/s");
+#endif
+/* A gain that rounds to 0 leaves the loop without that term. */
+MC_CHECK_FOR(MOTOR_CURRENT_KP_V_PER_A, BOARD_I_FULLSCALE_A,
+             MC_CUR_KP_ * 32768.0 >= 0.5 && MC_CUR_KP_ < 128.0,
+             "Kp * I_FS / V_FS must be in [1 Q15 count, 128): > 0 and not rounding to 0");
+MC_CHECK_FOR(MOTOR_CURRENT_KI_V_PER_AS, BOARD_I_FULLSCALE_A,
+             MC_CUR_KI_ * 32768.0 >= 0.5 && MC_CUR_KI_ < 1.0,
+             "Ki * Ts * I_FS / V_FS must be in [1 Q15 count, 1): > 0 and not rounding to 0");
 #define MC_CUR_KP       MC_MANT_OF(MC_CUR_KP_)
 #define MC_CUR_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_CUR_KP_))
 #define MC_CUR_KI       Q15(MC_CUR_KI_)
@@ -204,16 +330,20 @@ MC_CHECK(MOTOR_CURRENT_KI_V_PER_AS, MC_CUR_KI_ >= 0.0 && MC_CUR_KI_ < 1.0,
 #define MC_SPD_KI_                                                                                 \
     ((double)MOTOR_SPEED_KI_A_PER_RPM_S / (double)MC_SPEED_LOOP_HZ * MC_SPEED_FULLSCALE_RPM /      \
      BOARD_I_FULLSCALE_A)
-MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_SPD_KP_ >= 0.0 && MC_SPD_KP_ < 128.0,
-         "Kp * speed FS / I_FS must be in [0, 128)");
-MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_SPD_KI_ >= 0.0 && MC_SPD_KI_ < 1.0,
-         "Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be "
-         "in [0, 1)");
-MC_CHECK(MOTOR_SPEED_KP_FULL_RPM,
-         MOTOR_SPEED_KP_FULL_RPM > 0.0 && MOTOR_SPEED_KP_FULL_RPM <= MOTOR_SPEED_FW_MAX_RPM,
-         "must be in (0, MOTOR_SPEED_FW_MAX_RPM]");
+MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_SPD_KP_ * 32768.0 >= 0.5 && MC_SPD_KP_ < 128.0,
+         "Kp * speed FS / I_FS must be in [1 Q15 count, 128): > 0 and not rounding to 0");
+MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_SPD_KI_ * 32768.0 >= 0.5 && MC_SPD_KI_ < 1.0,
+         "Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be in [1 Q15 count, 1): > 0 and not "
+         "rounding to 0");
+/* Kp's low-speed schedule divides by this speed in Q15 (mc.c): at least 16
+ * counts. */
+MC_CHECK_FOR(MOTOR_SPEED_KP_FULL_RPM, MOTOR_SPEED_FW_MAX_RPM,
+             MOTOR_SPEED_KP_FULL_RPM <= MOTOR_SPEED_FW_MAX_RPM &&
+                 MOTOR_SPEED_KP_FULL_RPM / MC_SPEED_FULLSCALE_RPM * 32768.0 >= 16.0,
+             "must be in [16 Q15 counts of speed, MOTOR_SPEED_FW_MAX_RPM]");
 MC_CHECK(MC_SPEED_KP_MIN_FRACTION,
-         MC_SPEED_KP_MIN_FRACTION > 0.0 && MC_SPEED_KP_MIN_FRACTION <= 1.0, "must be in (0, 1]");
+         MC_SPEED_KP_MIN_FRACTION * 32768.0 >= 0.5 && MC_SPEED_KP_MIN_FRACTION <= 1.0,
+         "must be in [1 Q15 count, 1]");
 #define MC_SPD_KP       MC_MANT_OF(MC_SPD_KP_)
 #define MC_SPD_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_SPD_KP_))
 #define MC_SPD_KI       Q15(MC_SPD_KI_)
@@ -252,8 +382,6 @@ MC_CHECK(MC_RETRY_COAST_S,
     ((uint16_t)(MC_COAST_PERIODS > MC_CALIB_SKIP_PERIODS ? MC_COAST_PERIODS                        \
                                                          : MC_CALIB_SKIP_PERIODS))
 
-MC_CHECK(MC_START_RETRIES, MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250, "must be in 0..250");
-
 /* Open-loop ramp, constant acceleration: the 32-bit angle step grows by
  * MC_RAMP_STEP_INC each period; the ramp ends when the step reaches
  * MC_RAMP_STEP_END = MC_RAMP_STEP_INC * ramp periods (built from integers so
@@ -262,9 +390,6 @@ MC_CHECK(MC_START_RETRIES, MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250, "mu
 #define MC_RAMP_STEP_INC_                                                                          \
     ((double)MOTOR_RAMP_END_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0 /               \
      MC_RAMP_PERIODS_)
-MC_CHECK(MOTOR_RAMP_END_RPM,
-         MOTOR_RAMP_END_RPM >= MC_ESTIMATOR_MIN_RPM && MOTOR_RAMP_END_RPM < MOTOR_SPEED_NOMINAL_RPM,
-         "must be in [MC_ESTIMATOR_MIN_RPM, MOTOR_SPEED_NOMINAL_RPM)");
 MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_PERIODS_ >= 100.0 && MC_RAMP_PERIODS_ <= 4.0e6,
          "must be 100..4e6 PWM periods");
 MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_STEP_INC_ >= 8.0,
@@ -276,12 +401,13 @@ MC_CHECK(MC_HANDOFF_WAIT_S,
          MC_HANDOFF_WAIT_S >= 0.0 && MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ <= 1.0e6,
          "must be 0..1e6 PWM periods");
 #define MC_HANDOFF_WAIT_PERIODS ((uint32_t)(MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ + 0.5))
-MC_CHECK(MC_HANDOFF_SPEED_TOL, MC_HANDOFF_SPEED_TOL > 0.0 && MC_HANDOFF_SPEED_TOL <= 1.0,
-         "must be in (0, 1]");
-MC_CHECK(MC_HANDOFF_AGREE_S,
-         MC_HANDOFF_AGREE_S >= 0.0 && MC_HANDOFF_AGREE_S < MC_HANDOFF_WAIT_S &&
-             MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ <= 65535.0,
-         "must be in [0, MC_HANDOFF_WAIT_S) and at most 65535 PWM periods");
+/* In Q8 below (MC_HANDOFF_TOL_Q8): 0 would never agree. */
+MC_CHECK(MC_HANDOFF_SPEED_TOL, MC_HANDOFF_SPEED_TOL * 256.0 >= 0.5 && MC_HANDOFF_SPEED_TOL <= 1.0,
+         "must be in [1/256, 1]");
+MC_CHECK_FOR(MC_HANDOFF_AGREE_S, MC_HANDOFF_WAIT_S,
+             MC_HANDOFF_AGREE_S >= 0.0 && MC_HANDOFF_AGREE_S < MC_HANDOFF_WAIT_S &&
+                 MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ <= 65535.0,
+             "must be in [0, MC_HANDOFF_WAIT_S) and at most 65535 PWM periods");
 #define MC_HANDOFF_AGREE_PERIODS ((uint16_t)(MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ + 0.5))
 /* The agreement band in angle counts per period at the ramp end (Q8 of the
  * step's upper half, so the tolerance keeps 1/256 resolution). */
@@ -296,15 +422,44 @@ MC_CHECK(MC_HANDOFF_BLEED_DEG_PER_S, MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 
          "must give 1..4096 angle counts per period");
 #define MC_BLEED_STEP ((int16_t)(MC_BLEED_STEP_ + 0.5))
 
+/* Current-sensor plausibility (UserParms.h, mc.c note 5), judged once per
+ * speed-loop window on the window's sums: the failing windows that trip
+ * (each counts 2 in sens_cnt), the error floor, and the start's extra
+ * low-pass over windows (a power of two: a shift). */
+#define MC_SENSOR_WINDOWS_ ((double)MC_SENSOR_TIME_S * (double)MC_SPEED_LOOP_HZ)
+MC_CHECK(MC_SENSOR_TIME_S, MC_SENSOR_WINDOWS_ >= 2.0 && MC_SENSOR_WINDOWS_ <= 100.0,
+         "must be 2 to 100 speed-loop windows");
+MC_CHECK(MC_SENSOR_CHECK, MC_SENSOR_CHECK == 0 || MC_SENSOR_CHECK == 1, "must be 0 or 1");
+MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
+         MC_SENSOR_ERR_FLOOR_FRACTION > 0.0 && MC_SENSOR_ERR_FLOOR_FRACTION <= 0.5,
+         "must be in (0, 0.5] of MOTOR_CURRENT_MAX_A");
+#define MC_SENSOR_TRIP ((uint8_t)(2.0 * MC_SENSOR_WINDOWS_ + 0.5))
+#define MC_SENSOR_FLOOR_Q15                                                                        \
+    ((q15_t)(MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A /                          \
+                 (double)BOARD_I_FULLSCALE_A * 32768.0 +                                           \
+             0.5))
+/* From 90 % of the nominal speed on, the voltage circle may hold q short;
+ * below it, only while the reference still ramps (by more than 2 % of the
+ * nominal speed from its target: the pot's noise stays below). */
+#define MC_SENSOR_Q_SHORT_Q15 MC_Q15_RPM(0.9 * MOTOR_SPEED_NOMINAL_RPM)
+#define MC_SENSOR_STEADY_Q15  ((int32_t)MC_Q15_RPM(0.02 * MOTOR_SPEED_NOMINAL_RPM))
+/* The start's low-pass over windows: 8 (8 ms at 1 kHz), so that a rotor still
+ * spinning from a failed attempt, whose back-EMF the lock's current loop
+ * cannot hold, averages out; in CLOSED_LOOP the window's own 1 ms average
+ * is enough against a low-inductance motor's current noise. */
+#define MC_SENSOR_START_WINDOWS 8
+
 /* Open-loop damping (UserParms.h): the forced angle's shift in angle
  * counts = (forced - estimated step, counts per period) * MC_OL_DAMP_K / 16,
  * MC_OL_DAMP_K = MOTOR_OL_DAMP_S * fpwm in Q4; held to +-MC_OL_DAMP_MAX. */
-MC_CHECK(MOTOR_OL_DAMP_S, MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ <= 1000.0,
-         "must be 0..1000 PWM periods");
-MC_CHECK(MC_OL_DAMP_MAX_DEG, MC_OL_DAMP_MAX_DEG >= 0.0 && MC_OL_DAMP_MAX_DEG <= 90.0,
-         "must be 0..90 deg");
-MC_CHECK(MC_OL_DAMP_MEAN_WINDOWS, MC_OL_DAMP_MEAN_WINDOWS >= 1 && MC_OL_DAMP_MEAN_WINDOWS <= 1024,
-         "must be 1..1024 speed-loop windows");
+MC_CHECK(MOTOR_OL_DAMP_S,
+         MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ <= 1000.0 &&
+             MC_ZERO_OR_COUNTS_(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ, 16.0),
+         "must be 0 (off) or 1/16..1000 PWM periods");
+MC_CHECK(MC_OL_DAMP_MAX_DEG,
+         MC_OL_DAMP_MAX_DEG >= 0.0 && MC_OL_DAMP_MAX_DEG <= 90.0 &&
+             MC_ZERO_OR_COUNTS_(MC_OL_DAMP_MAX_DEG / 360.0, 65536.0),
+         "must be 0 or 1 angle count (0.0055 deg) .. 90 deg");
 #define MC_OL_DAMP_MEAN_N ((int32_t)(MC_OL_DAMP_MEAN_WINDOWS))
 #define MC_OL_DAMP_K      ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * 16.0 + 0.5))
 #define MC_OL_DAMP_MAX    ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
@@ -313,9 +468,9 @@ MC_CHECK(MC_OL_DAMP_MEAN_WINDOWS, MC_OL_DAMP_MEAN_WINDOWS >= 1 && MC_OL_DAMP_MEA
 
 /* Dead time in duty counts: Td / Ts * PWM_DUTY_MAX = Td * Fcy (80 on the MCLV). */
 #define MC_DT_COUNTS_ ((double)PWM_DEADTIME_NS * 1e-9 * (double)BOARD_FCY_HZ)
-MC_CHECK(PWM_DEADTIME_NS,
-         MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
-         "must be below 10 % of the PWM period");
+MC_CHECK_FOR(PWM_DEADTIME_NS, PWM_FREQUENCY_HZ,
+             MC_DT_COUNTS_ >= 0.0 && MC_DT_COUNTS_ < 0.1 * (BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
+             "must be below 10 % of the PWM period");
 #define MC_DT_COUNTS ((int16_t)(MC_DT_COUNTS_ + 0.5))
 
 /* Shunt window (mc.h timing contract). Centre-aligned with PTPER =
@@ -344,15 +499,24 @@ MC_CHECK(BOARD_SHUNT_MIN_ON_NS,
 MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_ + 1.0 <= 32767.0,
          "duty full scale plus the dead-time counts must fit 16 bits (the "
          "compensated duty is formed in int16)");
-MC_CHECK(MC_DEADTIME_BAND_A,
-         MC_DEADTIME_BAND_A > 0.0 && MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
-         "must be in (0, BOARD_I_FULLSCALE_A / 4)");
+/* The band's default is BOARD_VBUS_NOMINAL_V / (12 MOTOR_LS_H fpwm)
+ * (UserParms.h): L is the value a user changes that moves it. */
+MC_CHECK_FOR(MC_DEADTIME_BAND_A, MOTOR_LS_H,
+             MC_DEADTIME_BAND_A * 32768.0 >= 0.5 * BOARD_I_FULLSCALE_A &&
+                 MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
+             "must be in [1 Q15 count, BOARD_I_FULLSCALE_A / 4)");
 #define MC_DT_BAND_Q15 MC_Q15_AMPS(MC_DEADTIME_BAND_A)
 /* Inside the band the correction is i * MC_DT_COUNTS / band = (i * MC_DT_SLOPE) >> 15. */
 #define MC_DT_SLOPE_ ((double)MC_DT_COUNTS * 32768.0 / (double)MC_DT_BAND_Q15)
-MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
-         "too narrow for the dead-time counts (slope >= 1)");
+MC_CHECK_FOR(MC_DEADTIME_BAND_A, MOTOR_LS_H, MC_DT_SLOPE_ < 32767.0,
+             "too narrow for the dead-time counts (slope >= 1)");
 #define MC_DT_SLOPE ((q15_t)(MC_DT_SLOPE_ + 0.5))
+/* The light-load Id floor (UserParms.h): by default 4 dead-time bands. */
+MC_CHECK_FOR(MC_ID_MIN_A, MOTOR_CURRENT_MAX_A,
+             MC_ID_MIN_A >= 0.0 && MC_ID_MIN_A <= 0.5 * MOTOR_CURRENT_MAX_A &&
+                 MC_ZERO_OR_COUNTS_(MC_ID_MIN_A / BOARD_I_FULLSCALE_A, 32768.0),
+             "must be 0 (off) or in [1 Q15 count, MOTOR_CURRENT_MAX_A / 2]");
+#define MC_ID_MIN_Q15 MC_Q15_AMPS(MC_ID_MIN_A)
 
 /* The dead-time measurement at the lock (mc.c note 4). The lock's current
  * (on the forced q axis at angle 0, i.e. along beta) puts +-sqrt(3)/2 of it
@@ -384,13 +548,11 @@ MC_CHECK(MC_DEADTIME_BAND_A, MC_DT_SLOPE_ < 32767.0,
 MC_CHECK(MC_SPEED_LOOP_HZ,
          MC_DEADTIME_MEASURE == 0 || (MC_DTM_N + 2.0 * MC_DTM_WAIT) * IRP_PERCALC <= 32767.0,
          "too slow for the dead-time measurement's averages (mc.c note 4)");
-MC_CHECK(MC_DEADTIME_MEASURE, MC_DEADTIME_MEASURE == 0 || MC_DEADTIME_MEASURE == 1,
-         "must be 0 or 1");
-MC_CHECK(MOTOR_LOCK_CURRENT_A,
-         MC_DEADTIME_MEASURE == 0 ||
-             MOTOR_LOCK_CURRENT_A >= 1.5 * MC_DEADTIME_BAND_A / (0.75 * 0.8660254037844386),
-         "must be at least 2.31 dead-time bands (MC_DEADTIME_BAND_A) to measure the dead time "
-         "at the lock (mc.c note 4); raise it or set MC_DEADTIME_MEASURE 0");
+MC_CHECK_FOR(MOTOR_LOCK_CURRENT_A, MC_DEADTIME_BAND_A,
+             MC_DEADTIME_MEASURE == 0 ||
+                 MOTOR_LOCK_CURRENT_A >= 1.5 * MC_DEADTIME_BAND_A / (0.75 * 0.8660254037844386),
+             "must be at least 2.31 dead-time bands (MC_DEADTIME_BAND_A) to measure the dead time "
+             "at the lock (mc.c note 4); raise it or set MC_DEADTIME_MEASURE 0");
 #define MC_DTM_CURRENT_Q15 ((q15_t)((3L * (long)MC_LOCK_CURRENT_Q15) / 4L)) /* the second level */
 /* What a measurement may set: a quarter to twice the programmed dead time,
  * and below one band's counts so that the in-band slope fits Q15. */
@@ -410,9 +572,9 @@ MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_MAX_ +
 #define MC_VAPP_K_                                                                                 \
     (1.7320508075688772 / (3.0 * (double)PWM_DUTY_MAX) * (double)BOARD_VBUS_FULLSCALE_V /          \
      (double)BOARD_VBUS_NOMINAL_V * 33554432.0)
-MC_CHECK(BOARD_VBUS_FULLSCALE_V, MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
-         "VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
-         "range of the applied-voltage scaling");
+MC_CHECK_FOR(BOARD_VBUS_FULLSCALE_V, PWM_FREQUENCY_HZ, MC_VAPP_K_ >= 1024.0 && MC_VAPP_K_ < 32767.0,
+             "VBUS_FS / VBUS_NOMINAL / PWM_DUTY_MAX out of the "
+             "range of the applied-voltage scaling");
 #define MC_VAPP_K  ((int16_t)(MC_VAPP_K_ + 0.5))
 #define MC_VAPP_KB ((int16_t)(MC_VAPP_K_ * 0.8660254037844386 + 0.5)) /* sqrt(3)/2, at 2^24 */
 
@@ -427,17 +589,19 @@ MC_CHECK(MC_STALL_TRACK_TIME_S,
          MC_STALL_TRACK_TICKS_ >= 2.0 && MC_STALL_TRACK_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
          "must be 2 speed-loop runs .. 50 ms");
 #define MC_STALL_TRACK_TICKS ((uint16_t)(MC_STALL_TRACK_TICKS_ + 0.5))
-MC_CHECK(MC_STALL_SPEED_MIN_RPM,
-         MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,
-         "must be in (0, MC_ESTIMATOR_MIN_RPM)");
+/* Its default is MOTOR_SPEED_MIN_RPM / 2 (UserParms.h). */
+MC_CHECK_FOR(MC_STALL_SPEED_MIN_RPM, MOTOR_SPEED_MIN_RPM,
+             MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,
+             "must be in (0, MC_ESTIMATOR_MIN_RPM)");
 #define MC_STALL_SPEED_Q15 MC_Q15_RPM(MC_STALL_SPEED_MIN_RPM)
-MC_CHECK(MC_STALL_SPEED_ERROR_RPM,
-         MC_STALL_SPEED_ERROR_RPM > 0.0 && MC_STALL_SPEED_ERROR_RPM < MC_SPEED_FULLSCALE_RPM,
-         "must be in (0, MC_SPEED_FULLSCALE_RPM)");
+MC_CHECK_FOR(MC_STALL_SPEED_ERROR_RPM, MC_SPEED_FULLSCALE_RPM,
+             MC_STALL_SPEED_ERROR_RPM > 0.0 && MC_STALL_SPEED_ERROR_RPM < MC_SPEED_FULLSCALE_RPM,
+             "must be in (0, MC_SPEED_FULLSCALE_RPM)");
 #define MC_STALL_SPEED_ERR_Q15 MC_Q15_RPM(MC_STALL_SPEED_ERROR_RPM)
 MC_CHECK(MC_STALL_BEMF_LOW_FRACTION,
-         MC_STALL_BEMF_LOW_FRACTION >= 0.0 && MC_STALL_BEMF_LOW_FRACTION < 1.0,
-         "must be in [0, 1)");
+         MC_STALL_BEMF_LOW_FRACTION >= 0.0 && MC_STALL_BEMF_LOW_FRACTION < 1.0 &&
+             MC_ZERO_OR_COUNTS_(MC_STALL_BEMF_LOW_FRACTION, 4096.0),
+         "must be 0 (off) or in [1/4096, 1) (Q12 below)");
 MC_CHECK(MC_STALL_BEMF_HIGH_FRACTION,
          MC_STALL_BEMF_HIGH_FRACTION > 1.0 && MC_STALL_BEMF_HIGH_FRACTION < 7.9,
          "must be in (1, 7.9)");
@@ -445,34 +609,32 @@ MC_CHECK(MC_STALL_BEMF_HIGH_FRACTION,
 #define MC_STALL_BEMF_LO_Q12 ((int16_t)(MC_STALL_BEMF_LOW_FRACTION * 4096.0 + 0.5))
 #define MC_STALL_BEMF_HI_Q12 ((int16_t)(MC_STALL_BEMF_HIGH_FRACTION * 4096.0 + 0.5))
 
-/* ---- motor model and estimator -------------------------------------------------------- */
+/* ---- estimator (the motor model is checked above) ------------------------------------- */
 
-MC_CHECK(MOTOR_RS_OHM, MOTOR_RS_OHM > 0.0, "must be > 0");
-MC_CHECK(MOTOR_LS_H, MOTOR_LS_H > 0.0, "must be > 0");
-MC_CHECK(MOTOR_LS_H, MC_TS_S *MOTOR_RS_OHM / MOTOR_LS_H < 1.0,
-         "F = 1 - Ts R / L must be > 0 (L too small for MOTOR_RS_OHM)");
-MC_CHECK(MOTOR_LS_H, MC_TS_S / MOTOR_LS_H * MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A < 1.0,
-         "G = Ts/L * V_FS/I_FS must be < 1 (L too small for the board "
-         "scales)");
-MC_CHECK(MOTOR_KE_VPK_LL_PER_KRPM, MOTOR_KE_VPK_LL_PER_KRPM > 0.0, "must be > 0");
 /* Kslide must exceed the largest back-EMF (smc.h note 5), which above the
  * base speed is larger than V_FS; the estimator's back-EMF full scale is
  * E_FS = 2 V_FS (smc.h note 2). */
-MC_CHECK(MOTOR_SMC_GAIN_V,
-         MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < 2.0 * MC_VOLTAGE_FULLSCALE_V,
-         "Kslide must be in (0, 2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3)");
-MC_CHECK(MOTOR_SMC_LINEAR_BAND_A,
-         MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
-             MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,
-         "must be in (1 LSB, BOARD_I_FULLSCALE_A)");
-MC_CHECK(MC_SPEED_FILTER_HZ,
-         MC_SPEED_FILTER_HZ > 0.0 &&
-             6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ < 1.0,
-         "2 pi fc / MC_SPEED_LOOP_HZ must be in (0, 1)");
+MC_CHECK_FOR(MOTOR_SMC_GAIN_V, BOARD_VBUS_NOMINAL_V,
+             MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < 2.0 * MC_VOLTAGE_FULLSCALE_V,
+             "Kslide must be in (0, 2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3)");
+MC_CHECK_FOR(MOTOR_SMC_LINEAR_BAND_A, BOARD_I_FULLSCALE_A,
+             MOTOR_SMC_LINEAR_BAND_A > BOARD_I_FULLSCALE_A / 32768.0 &&
+                 MOTOR_SMC_LINEAR_BAND_A < BOARD_I_FULLSCALE_A,
+             "must be in (1 LSB, BOARD_I_FULLSCALE_A)");
+/* The speed filter's coefficient 2 pi fc / MC_SPEED_LOOP_HZ in Q15: at
+ * least one count (0 would freeze the estimated speed). */
+MC_CHECK_FOR(MC_SPEED_FILTER_HZ, MC_SPEED_LOOP_HZ,
+             6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ * 32768.0 >= 0.5 &&
+                 6.283185307179586 * MC_SPEED_FILTER_HZ / MC_SPEED_LOOP_HZ < 1.0,
+             "2 pi fc / MC_SPEED_LOOP_HZ must be in [1 Q15 count, 1)");
 
 /* Back-EMF, phase peak volts per electrical Hz. */
 #define MC_KE_V_PER_HZ                                                                             \
     ((double)MOTOR_KE_VPK_LL_PER_KRPM / 1.7320508075688772 / (1000.0 * MOTOR_POLE_PAIRS / 60.0))
+/* The observer's expected back-EMF per unit speed (smc.h) below 8. */
+MC_CHECK_FOR(MOTOR_KE_VPK_LL_PER_KRPM, MC_SPEED_FULLSCALE_RPM,
+             SMC_EMFG_(MC_KE_V_PER_HZ, MC_OMEGA_FS_HZ, MC_VOLTAGE_FULLSCALE_V) < 8.0,
+             "back-EMF at full-scale speed too large for the observer's consistency check");
 
 #define MC_SMC_PARAMS_INIT                                                                         \
     SMC_PARAMS_INIT(MOTOR_RS_OHM, MOTOR_LS_H, MC_TS_S, MC_VOLTAGE_FULLSCALE_V,                     \
@@ -489,6 +651,70 @@ MC_CHECK(MOTOR_FW_ID_TABLE_A, (0 MOTOR_FW_ID_TABLE_A(MC_FW_COUNT_)) == 16,
 #define MC_FW_NONPOS_(a) &&((a) <= 0.0 && (a) > -BOARD_I_FULLSCALE_A)
 MC_CHECK(MOTOR_FW_ID_TABLE_A, (1 MOTOR_FW_ID_TABLE_A(MC_FW_NONPOS_)),
          "every entry must be in (-BOARD_I_FULLSCALE_A, 0] amps");
+/* The entries as macro arguments: MC_FW_APPLY_(m) is m(entry 0, ..., entry
+ * 15, padding); the padding leaves a table of the wrong length to the
+ * count's named error above (no preprocessor error about arguments). */
+#define MC_FW_ARG_(a)       (a),
+#define MC_FW_CALL_(m, ...) m(__VA_ARGS__)
+#define MC_FW_APPLY_(m)                                                                            \
+    MC_FW_CALL_(m, MOTOR_FW_ID_TABLE_A(MC_FW_ARG_) 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,    \
+                0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+/* fieldweak interpolates Id between the entries (foc/fieldweak.h): |Id|
+ * must not shrink as the speed, and with it the back-EMF, grows. */
+#define MC_FW_FALLING_(a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15, ...)  \
+    ((a1) <= (a0) && (a2) <= (a1) && (a3) <= (a2) && (a4) <= (a3) && (a5) <= (a4) &&               \
+     (a6) <= (a5) && (a7) <= (a6) && (a8) <= (a7) && (a9) <= (a8) && (a10) <= (a9) &&              \
+     (a11) <= (a10) && (a12) <= (a11) && (a13) <= (a12) && (a14) <= (a13) && (a15) <= (a14))
+MC_CHECK(MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_FALLING_),
+         "entries must not rise from entry 0 (MOTOR_SPEED_NOMINAL_RPM) to entry 15 "
+         "(MOTOR_SPEED_FW_MAX_RPM): |Id| may only grow with speed");
+
+/* Speeds the bus can reach. Without load (Iq = 0) and with the table's Id
+ * at a speed, the steady-state phase voltage is |(R Id, w (psi + L Id))|
+ * (V peak; w electrical rad/s, psi = Ke / sqrt 3 per electrical rad/s,
+ * V s). It must fit the largest voltage the core applies,
+ * MC_VOLTAGE_LIMIT_FRACTION of V_FS. A motoring Iq adds Iq^2 (R^2 + w^2
+ * L^2) + 2 R w Iq psi > 0 to the square, and a steady speed needs one (the
+ * friction): so no load is the least a speed needs. (The shunt
+ * window takes a little more in some sectors, MC_DUTY_SAMPLE_MAX: the
+ * profiles' own margin, not refused here.) */
+#define MC_W_E_(rpm) (6.283185307179586 * (double)(rpm) * (double)MOTOR_POLE_PAIRS / 60.0)
+#define MC_PSI_VS_   (MC_KE_V_PER_HZ / 6.283185307179586)
+#define MC_V_MAX_    ((double)MC_VOLTAGE_LIMIT_FRACTION * MC_VOLTAGE_FULLSCALE_V)
+#define MC_REACHES_(rpm, id)                                                                       \
+    ((MOTOR_RS_OHM * (id)) * (MOTOR_RS_OHM * (id)) +                                               \
+         (MC_W_E_(rpm) * (MC_PSI_VS_ + MOTOR_LS_H * (id))) *                                       \
+             (MC_W_E_(rpm) * (MC_PSI_VS_ + MOTOR_LS_H * (id))) <=                                  \
+     MC_V_MAX_ * MC_V_MAX_)
+#define MC_FW_REACH0_(a0, ...) MC_REACHES_(MOTOR_SPEED_NOMINAL_RPM, a0)
+MC_CHECK_FOR(MOTOR_SPEED_NOMINAL_RPM, MOTOR_KE_VPK_LL_PER_KRPM, MC_FW_APPLY_(MC_FW_REACH0_),
+             "the back-EMF at the nominal speed (Id of table entry 0, no load) needs more "
+             "voltage than BOARD_VBUS_NOMINAL_V gives: lower the speed (field weakening "
+             "starts there)");
+/* The observer's back-EMF full scale is E_FS = 2 V_FS (smc.h note 2): the
+ * back-EMF at the top speed must stay inside it. */
+MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_KE_VPK_LL_PER_KRPM,
+             MC_W_E_(MOTOR_SPEED_FW_MAX_RPM) * MC_PSI_VS_ <
+                 SMC_EMF_FS_RATIO * MC_VOLTAGE_FULLSCALE_V,
+             "the back-EMF at the top speed must be below the observer's full scale "
+             "2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3");
+/* Entry k at MOTOR_SPEED_NOMINAL_RPM + k / 15 of the span (fieldweak.h). */
+#define MC_FW_RPM_(k)                                                                              \
+    (MOTOR_SPEED_NOMINAL_RPM + (k) / 15.0 * (MOTOR_SPEED_FW_MAX_RPM - MOTOR_SPEED_NOMINAL_RPM))
+#define MC_FW_REACH_(a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15, ...)    \
+    (MOTOR_SPEED_FW_MAX_RPM <= MOTOR_SPEED_NOMINAL_RPM ||                                          \
+     (MC_REACHES_(MC_FW_RPM_(1.0), a1) && MC_REACHES_(MC_FW_RPM_(2.0), a2) &&                      \
+      MC_REACHES_(MC_FW_RPM_(3.0), a3) && MC_REACHES_(MC_FW_RPM_(4.0), a4) &&                      \
+      MC_REACHES_(MC_FW_RPM_(5.0), a5) && MC_REACHES_(MC_FW_RPM_(6.0), a6) &&                      \
+      MC_REACHES_(MC_FW_RPM_(7.0), a7) && MC_REACHES_(MC_FW_RPM_(8.0), a8) &&                      \
+      MC_REACHES_(MC_FW_RPM_(9.0), a9) && MC_REACHES_(MC_FW_RPM_(10.0), a10) &&                    \
+      MC_REACHES_(MC_FW_RPM_(11.0), a11) && MC_REACHES_(MC_FW_RPM_(12.0), a12) &&                  \
+      MC_REACHES_(MC_FW_RPM_(13.0), a13) && MC_REACHES_(MC_FW_RPM_(14.0), a14) &&                  \
+      MC_REACHES_(MC_FW_RPM_(15.0), a15)))
+MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_REACH_),
+             "a speed of the field-weakening table needs more voltage than the bus gives "
+             "with that entry's Id (no load): more |Id| there, or a lower top speed");
+
 #define MC_FW_Q15_(a) MC_Q15_AMPS(a),
 #define MC_FW_TABLE_Q15                                                                            \
     {                                                                                              \

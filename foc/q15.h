@@ -42,36 +42,41 @@ typedef int16_t angle_q15_t;
 
 /* ---- compile-time checks ------------------------------------------------ */
 
-/* Q15_CHECK_WIDTH_(cond): 1 when cond holds, -1 (an illegal bit-field width)
- * when it does not. The (int) cast turns a floating-point condition into a
- * constant that every supported compiler folds where a bit-field width is
- * read (gcc >= 4.5 and so XC16, avr-gcc, clang); as an array size the same
- * condition would be a variable-length array to gcc 4.5 and clang. */
+/* Every compile-time check is a bit-field whose width is 1 when the
+ * condition holds and -1 (illegal) when it does not, inside a sizeof. Why
+ * not _Static_assert or an array size: the conditions compare floating
+ * constants (volts, amps, seconds), and C99 and C11 admit no floating
+ * operand in an integer constant expression, so each compiler decides for
+ * itself. Every supported one (gcc, clang, avr-gcc, XC16's gcc 4.5) folds
+ * such a condition to a constant where a bit-field width is read (clang's
+ * -Wgnu-folding-constant, a warning outside -Wall/-Wextra). _Static_assert
+ * is not portable here: clang refuses a floating condition even when it
+ * holds ("not an integral constant expression"), gcc 4.5 has none, and
+ * glibc's <sys/cdefs.h> redefines it in C99 mode. An array size would be a
+ * variable-length array to clang and gcc 4.5. The bit-field is C89 syntax
+ * and fails alike in C99 and C11 mode, the field's name in the first error
+ * line:
+ *   gcc, avr-gcc, XC16:  error: negative width in bit-field 'NAME'
+ *   clang:               error: bit-field 'NAME' has negative width (-1)
+ * The (int) cast makes a floating condition an integer one. */
 #define Q15_CHECK_WIDTH_(cond) (((int)(cond)) ? 1 : -1)
 
-/* An expression that is 0 when cond holds and stops the build with
- * "negative width in bit-field 'name'" when it does not. Usable inside
- * constant expressions (static initializers included), at file scope and
- * in functions. */
+/* An expression that is 0 when cond holds and stops the build naming
+ * `name` when it does not. Usable inside constant expressions (static
+ * initializers included), at file scope and in functions. */
 #define Q15_CHECK_EXPR(name, cond)                                                                 \
     ((int)(0 * sizeof(struct { unsigned name : Q15_CHECK_WIDTH_(cond); })))
 
-/* Q15_STATIC_ASSERT(cond, "message naming the parameter and why"), at file or
- * block scope. _Static_assert where the compiler has it (gcc >= 4.6 accepts
- * it in C99 mode as an extension); elsewhere, as in XC16's gcc 4.5, a
- * bit-field of width -1, which stops the build the same way. __COUNTER__
- * (gcc >= 4.3) keeps two asserts on the same line number of two headers
- * from declaring the same struct tag. */
-#define Q15_CAT_(a, b) a##b
-#define Q15_CAT(a, b)  Q15_CAT_(a, b)
-#if defined(__GNUC__) && ((__GNUC__ > 4) || (__GNUC__ == 4 && __GNUC_MINOR__ >= 6))
-#define Q15_STATIC_ASSERT(cond, msg) _Static_assert((int)(cond), msg)
-#else
-#define Q15_STATIC_ASSERT(cond, msg)                                                               \
-    struct Q15_CAT(q15_static_assert_, __COUNTER__) {                                              \
-        unsigned static_assertion_failed : Q15_CHECK_WIDTH_(cond);                                 \
-    }
-#endif
+/* The same as a declaration, at file or block scope: one more declaration
+ * of the array q15_check_[1] (C allows any number of compatible extern
+ * declarations), so nothing needs a unique tag or name (no __COUNTER__) and
+ * nothing is defined. */
+#define Q15_CHECK_DECL(name, cond) extern char q15_check_[1 + Q15_CHECK_EXPR(name, cond)]
+
+/* Q15_STATIC_ASSERT(cond, "why"), at file or block scope: the build stops
+ * at this line, whose message says why, with "... bit-field
+ * 'static_assertion_failed' ...". */
+#define Q15_STATIC_ASSERT(cond, msg) Q15_CHECK_DECL(static_assertion_failed, cond)
 
 /* 0 when x is inside [lo, hi]; outside, the build stops ("negative width in
  * bit-field 'q15_constant_out_of_range'"). */

@@ -198,7 +198,9 @@ typedef struct {
  *   ke_v_per_hz    back-EMF, phase peak volts per electrical Hz (0 = no
  *                  back-EMF consistency check; valid then only tests speed).
  * Each range is checked; a failure names the quantity in the compiler's
- * "negative width in bit-field 'smc_...'" error.
+ * first error, a bit-field 'smc_...' of negative width (q15.h). The core
+ * (firmware/mc_derived.h) checks the parameters these come from first, so
+ * that its builds name the parameter instead.
  */
 #define SMC_PARAMS_INIT(r, l, ts, vfs, ifs, ks, me, wfs, fmin, irp, fspd, ke)                      \
     {                                                                                              \

@@ -2,6 +2,7 @@
 #include "monitor.h"
 
 #include "q15.h"
+#include <stddef.h>
 
 Q15_STATIC_ASSERT((MONITOR_TX_SIZE & (MONITOR_TX_SIZE - 1U)) == 0U && MONITOR_TX_SIZE <= 256U,
                   "MONITOR_TX_SIZE must be a power of two up to 256");
@@ -269,6 +270,9 @@ void monitor_init(monitor_t *m, mc_t *mc)
     m->mode = MONITOR_MODE_STREAM;
     m->trig = MONITOR_TRIG_NOW;
     m->remote = false;
+    m->ref_seq_mine = 0;
+    m->may_start = NULL;
+    m->may_start_ctx = NULL;
     m->run = 0;
     rec_clear(m);
     m->isr_started = 0;
@@ -277,6 +281,12 @@ void monitor_init(monitor_t *m, mc_t *mc)
     for (i = 0; i < MONITOR_BUF_WORDS; i++) {
         m->buf[i] = 0;
     }
+}
+
+void monitor_set_start_guard(monitor_t *m, bool (*may_start)(void *ctx), void *ctx)
+{
+    m->may_start = may_start;
+    m->may_start_ctx = ctx;
 }
 
 /* ---- the ISR side ------------------------------------------------------------------------ *
@@ -506,7 +516,9 @@ static uint8_t cmd_status(monitor_t *m, uint8_t *p)
     put16(&p[15], st.fault);
     put16(&p[17], (uint16_t)st.speed_est);
     put16(&p[19], (uint16_t)st.speed_ref);
-    p[21] = m->remote ? 1U : 0U;
+    /* remote while the reference is still the one SET_SPEED set: S3 or the
+     * pot may have taken it since (app.c's owner rule) */
+    p[21] = (m->remote && st.ref_remote && st.ref_seq == m->ref_seq_mine) ? 1U : 0U;
     put16(&p[22], m->rx_errors);
     put16(&p[24], m->rx_dropped);
     return 26U;
@@ -518,6 +530,10 @@ static void cmd_motor(monitor_t *m, uint8_t *err)
     if (a == MONITOR_MOTOR_STOP) {
         mc_request(m->mc, MC_REQUEST_STOP);
     } else if (a == MONITOR_MOTOR_START) {
+        if (m->may_start != NULL && !m->may_start(m->may_start_ctx)) {
+            *err = MONITOR_ERR_STATE; /* the fault pin still holds a hardware fault */
+            return;
+        }
         mc_request(m->mc, MC_REQUEST_START);
     } else if (a == MONITOR_MOTOR_POT) {
         mc_request(m->mc, MC_REQUEST_REF_POT);
@@ -547,6 +563,7 @@ static void cmd_set_speed(monitor_t *m, uint8_t *err)
         mc_set_reference(m->mc, (int16_t)(q > 32767 ? 32767 : q));
     }
     m->remote = true;
+    m->ref_seq_mine = m->mc->ref_remote_seq;
 #endif
 }
 

@@ -171,7 +171,11 @@ typedef struct {
     uint8_t ch[MONITOR_MAX_CH]; /* variable indices */
     uint16_t cap;               /* sample sets the buffer holds: MONITOR_BUF_WORDS / nch */
     uint8_t mode, trig;
-    bool remote; /* the speed reference came from SET_SPEED */
+    bool remote;                  /* the monitor set the reference (SET_SPEED) ... */
+    uint8_t ref_seq_mine;         /* ... and mc_status_t.ref_seq was this after it: the status
+                                     reports REMOTE only while both hold (app.c's owner rule) */
+    bool (*may_start)(void *ctx); /* START's guard (the fault pin), NULL: none */
+    void *may_start_ctx;
 
     /* recorder handshake */
     volatile uint8_t run;          /* main: 1 = the ISR records */
@@ -187,8 +191,13 @@ typedef struct {
     int16_t buf[MONITOR_BUF_WORDS];
 } monitor_t;
 
-/* Everything idle, channels {speed_est}, decimation 1. */
+/* Everything idle, channels {speed_est}, decimation 1, no START guard. */
 void monitor_init(monitor_t *m, mc_t *mc);
+
+/* MOTOR START asks may_start(ctx) first and is refused (MONITOR_ERR_STATE)
+ * when it says no: the application's rule for every START (app.c's
+ * app_start_allowed: not while the fault pin holds a hardware fault). */
+void monitor_set_start_guard(monitor_t *m, bool (*may_start)(void *ctx), void *ctx);
 
 /* ISR, once per PWM period after mc_step(). Returns true when it stored a
  * sample set this period (for the simulator's truth log). */

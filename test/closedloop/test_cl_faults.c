@@ -148,6 +148,89 @@ static void test_hardware_fault_should_switch_off_at_the_next_period(void **stat
     restart_should_work(&s, 2000.0, "hardware fault");
 }
 
+/* A current sensor fails (sim event kind on phase 0 = A / 1 = B, value
+ * v2): FAULT within 50 ms with the outputs off, MC_FAULT_CURRENT_SENSOR
+ * when `own` (a reading frozen at 0 A or an open input: nothing but the
+ * plausibility check can see it), else whichever protection answers
+ * first. Then the sensor is healthy again and START brings the motor back. */
+static void check_sensor_fault(simcore_t *s, sim_event_kind_t kind, double phase, double v2,
+                               bool own, const char *what)
+{
+    double t_ev, t_f;
+    double peak0 = s->i_peak_a;
+    cl_event(s, kind, phase, v2);
+    t_ev = s->rig.t;
+    s->i_peak_a = 0.0;
+    t_f = run_until_fault(s, 0.2);
+    printf("measured: %s: FAULT %s after %.1f ms, peak true phase current %.2f A\n", what,
+           simcore_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0,
+           s->i_peak_a);
+    assert_true(t_f >= 0.0);
+    assert_true(t_f - t_ev <= 0.050);
+    if (own) {
+        assert_int_equal(s->now.fault, MC_FAULT_CURRENT_SENSOR);
+    }
+    s->i_peak_a = (peak0 > s->i_peak_a) ? peak0 : s->i_peak_a;
+    cl_event(s, SIM_EV_SENSOR_OK, phase, 0.0);
+    cl_run(s, 0.3);
+}
+
+static void test_failed_current_sensor_in_closed_loop_should_fault_within_50_ms(void **state)
+{
+    static simcore_t s;
+    static const struct {
+        sim_event_kind_t kind;
+        double phase, v2, load;
+        bool own;
+        const char *what;
+    } cases[] = {
+        {SIM_EV_SENSOR_STUCK, 0.0, 0.0, 0.5, true, "2000 rpm, half load, phase A stuck at 0 A"},
+        {SIM_EV_SENSOR_STUCK, 1.0, 0.0, 0.5, true, "2000 rpm, half load, phase B stuck at 0 A"},
+        {SIM_EV_SENSOR_OPEN, 0.0, 0.0, 0.5, true, "2000 rpm, half load, phase A open"},
+        {SIM_EV_SENSOR_OPEN, 1.0, 0.0, 0.0, true, "2000 rpm, no load, phase B open"},
+        {SIM_EV_SENSOR_STUCK, 0.0, 0.0, 0.0, true, "2000 rpm, no load, phase A stuck at 0 A"},
+        {SIM_EV_SENSOR_STUCK, 0.0, 1.0, 0.5, false, "2000 rpm, half load, phase A stuck at 1 A"},
+        {SIM_EV_SENSOR_STUCK, 1.0, 4.5, 0.5, false, "2000 rpm, half load, phase B at full scale"},
+    };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+        setup_running(&s, 2000.0);
+        cl_event(&s, SIM_EV_LOAD, cases[k].load * s.rated_nm, 0.0);
+        cl_run(&s, 0.3);
+        assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
+        check_sensor_fault(&s, cases[k].kind, cases[k].phase, cases[k].v2, cases[k].own,
+                           cases[k].what);
+    }
+    cl_event(&s, SIM_EV_LOAD, 0.0, 0.0);
+    restart_should_work(&s, 2000.0, "failed current sensor");
+}
+
+/* In LOCK and OPEN_LOOP: START, run to `at_s` after it, fail the sensor. */
+static void check_sensor_fault_at_start(sim_event_kind_t kind, double phase, double at_s,
+                                        const char *what)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    simcore_cfg_default(&cfg);
+    cl_setup(&s, &cfg, "hurst", "mclv");
+    simcore_request(&s, MC_REQUEST_START);
+    cl_run(&s, at_s);
+    printf("measured: %s: state %s at the failure\n", what, simcore_state_name(s.now.state));
+    check_sensor_fault(&s, kind, phase, 0.0, true, what);
+}
+
+static void test_failed_current_sensor_at_start_should_fault_within_50_ms(void **state)
+{
+    (void)state;
+    /* the lock puts its current on beta: phase B carries it */
+    check_sensor_fault_at_start(SIM_EV_SENSOR_STUCK, 1.0, 0.15, "LOCK, phase B stuck at 0 A");
+    check_sensor_fault_at_start(SIM_EV_SENSOR_OPEN, 1.0, 0.15, "LOCK, phase B open");
+    check_sensor_fault_at_start(SIM_EV_SENSOR_STUCK, 0.0, 0.6, "OPEN_LOOP, phase A stuck at 0 A");
+    check_sensor_fault_at_start(SIM_EV_SENSOR_OPEN, 0.0, 0.6, "OPEN_LOOP, phase A open");
+    check_sensor_fault_at_start(SIM_EV_SENSOR_STUCK, 1.0, 0.6, "OPEN_LOOP, phase B stuck at 0 A");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -156,6 +239,8 @@ int main(void)
         cmocka_unit_test(test_bus_undervoltage_and_overvoltage_should_stop_safely),
         cmocka_unit_test(test_stall_under_excessive_load_should_be_detected_within_50_ms),
         cmocka_unit_test(test_hardware_fault_should_switch_off_at_the_next_period),
+        cmocka_unit_test(test_failed_current_sensor_in_closed_loop_should_fault_within_50_ms),
+        cmocka_unit_test(test_failed_current_sensor_at_start_should_fault_within_50_ms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

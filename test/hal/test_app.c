@@ -43,15 +43,27 @@ void hal_led_set(hal_led_t led, bool on)
 {
     fake_led[led == HAL_LED_RUN ? 0 : 1] = on;
 }
+/* The reference's owner as the core's status shows it (mc_status_t
+ * ref_remote, ref_seq): set references count, the pot request clears. */
 void hal_motor_request(mc_request_t request)
 {
     int r = (int)request;
     check_expected(r);
+    if (request == MC_REQUEST_REF_POT) {
+        fake_status.ref_remote = false;
+    }
 }
+static bool fake_ref_free; /* references counted, not checked against expectations */
+static unsigned fake_ref_calls;
 void hal_motor_set_reference(int16_t ref)
 {
     int value = ref;
-    check_expected(value);
+    fake_ref_calls++;
+    if (!fake_ref_free) {
+        check_expected(value);
+    }
+    fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
+    fake_status.ref_remote = true;
 }
 void hal_motor_status(mc_status_t *st)
 {
@@ -87,6 +99,8 @@ static int setup(void **state)
     (void)state;
     memset(fake_button, 0, sizeof fake_button);
     fake_latched = false;
+    fake_ref_free = false;
+    fake_ref_calls = 0;
     fake_pot = 0;
     memset(&fake_status, 0, sizeof fake_status);
     fake_status.state = MC_STATE_STOPPED;
@@ -351,6 +365,57 @@ static void test_uart_commands_should_post_start_stop_and_return_to_the_pot(void
     app_service_uart(&app);
 }
 
+static void test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds(void **state)
+{
+    (void)state;
+    fake_latched = true;
+    fake_rx = "g";
+    will_return(hal_fault_clear, false); /* the pin still asserted: no START */
+    app_service_uart(&app);
+    fake_rx = "g";
+    will_return(hal_fault_clear, true); /* cleared: START */
+    expect_value(hal_motor_request, r, MC_REQUEST_START);
+    app_service_uart(&app);
+}
+
+static void test_s3_should_yield_the_reference_to_another_side_that_sets_it(void **state)
+{
+    (void)state;
+    unsigned i;
+    unsigned n;
+    fake_pot = 8000;
+    fake_ref_free = true;
+    fake_ref_calls = 0;
+    fake_button[1] = true;
+    for (i = 0; i < APP_DEBOUNCE_MS; i++) {
+        ticks(1);
+    }
+    assert_true(app.double_speed);
+    assert_true(fake_ref_calls >= 1U);
+    /* the monitor sets a speed: S3's mode ends, no more board references */
+    fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
+    n = fake_ref_calls;
+    ticks(5U * APP_STATUS_PERIOD_MS);
+    assert_false(app.double_speed);
+    assert_int_equal(fake_ref_calls, n);
+    /* S3 again takes it back for the board, and keeps it */
+    fake_button[1] = false;
+    ticks(APP_DEBOUNCE_MS);
+    fake_button[1] = true;
+    ticks(APP_DEBOUNCE_MS);
+    assert_true(app.double_speed);
+    n = fake_ref_calls;
+    ticks(5U * APP_STATUS_PERIOD_MS);
+    assert_true(app.double_speed);
+    assert_int_equal(fake_ref_calls, n + 5U);
+    /* the pot taken back by another side (REF_POT): the mode ends too */
+    fake_status.ref_remote = false;
+    ticks(5U * APP_STATUS_PERIOD_MS);
+    assert_false(app.double_speed);
+    assert_int_equal(fake_ref_calls, n + 5U);
+    fake_ref_free = false;
+}
+
 static void test_poll_should_do_the_1ms_work_only_when_a_tick_elapsed(void **state)
 {
     (void)state;
@@ -392,6 +457,10 @@ int main(void)
         cmocka_unit_test_setup(test_uart_commands_should_post_start_stop_and_return_to_the_pot,
                                setup),
         cmocka_unit_test_setup(test_poll_should_do_the_1ms_work_only_when_a_tick_elapsed, setup),
+        cmocka_unit_test_setup(test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds,
+                               setup),
+        cmocka_unit_test_setup(test_s3_should_yield_the_reference_to_another_side_that_sets_it,
+                               setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

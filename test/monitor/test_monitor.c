@@ -477,6 +477,59 @@ test_set_speed_should_post_the_q15_reference_and_refuse_outside_the_pot_range(vo
     assert_false(fx.mon.remote);
 }
 
+static bool guard_answer;
+static int guard_calls;
+static bool guard(void *ctx)
+{
+    assert_ptr_equal(ctx, &guard_answer);
+    guard_calls++;
+    return guard_answer;
+}
+
+static void test_start_should_be_refused_while_the_fault_pin_holds(void **state)
+{
+    uint8_t p[1] = {MONITOR_MOTOR_START};
+    uint8_t posted = fx.mc.req_posted[MC_REQUEST_START];
+    (void)state;
+    monitor_set_start_guard(&fx.mon, guard, &guard_answer);
+    guard_answer = false; /* the application's rule: the pin still asserted */
+    guard_calls = 0;
+    expect_error(transact(MONITOR_CMD_MOTOR, p, 1), MONITOR_CMD_MOTOR, MONITOR_ERR_STATE);
+    assert_int_equal(fx.mc.req_posted[MC_REQUEST_START], posted);
+    assert_int_equal(guard_calls, 1);
+    guard_answer = true; /* cleared */
+    expect_ok(transact(MONITOR_CMD_MOTOR, p, 1), MONITOR_CMD_MOTOR);
+    assert_int_equal(fx.mc.req_posted[MC_REQUEST_START], (uint8_t)(posted + 1U));
+    /* STOP and POT do not ask */
+    guard_answer = false;
+    p[0] = MONITOR_MOTOR_STOP;
+    expect_ok(transact(MONITOR_CMD_MOTOR, p, 1), MONITOR_CMD_MOTOR);
+    assert_int_equal(guard_calls, 2);
+}
+
+static void test_status_should_show_remote_only_while_the_reference_is_the_monitors(void **state)
+{
+    uint8_t p[2] = {(uint8_t)(2000 & 0xFF), (uint8_t)(2000 >> 8)};
+    mon_frame_t *f;
+    (void)state;
+    expect_ok(transact(MONITOR_CMD_SET_SPEED, p, 2), MONITOR_CMD_SET_SPEED);
+    step_with_vbus(20000); /* the core takes the new reference */
+    f = transact(MONITOR_CMD_STATUS, NULL, 0);
+    assert_int_equal(f->payload[21], 1);
+    /* the board (S3) sets its own: the monitor no longer owns it */
+    mc_set_reference(&fx.mc, 1000);
+    step_with_vbus(20000);
+    f = transact(MONITOR_CMD_STATUS, NULL, 0);
+    assert_int_equal(f->payload[21], 0);
+    /* and back: the monitor sets again, then the pot takes over */
+    expect_ok(transact(MONITOR_CMD_SET_SPEED, p, 2), MONITOR_CMD_SET_SPEED);
+    step_with_vbus(20000);
+    assert_int_equal(transact(MONITOR_CMD_STATUS, NULL, 0)->payload[21], 1);
+    mc_request(&fx.mc, MC_REQUEST_REF_POT);
+    step_with_vbus(20000);
+    assert_int_equal(transact(MONITOR_CMD_STATUS, NULL, 0)->payload[21], 0);
+}
+
 /* ---- recorder ------------------------------------------------------------------------ */
 
 static void select_channels(uint16_t decim, const uint8_t *ch, uint8_t n)
@@ -820,6 +873,9 @@ int main(void)
         cmocka_unit_test_setup(
             test_a_snapshot_armed_for_a_state_change_should_start_when_the_motor_starts, setup),
         cmocka_unit_test_setup(test_status_should_report_the_recorder_and_the_motor, setup),
+        cmocka_unit_test_setup(test_start_should_be_refused_while_the_fault_pin_holds, setup),
+        cmocka_unit_test_setup(
+            test_status_should_show_remote_only_while_the_reference_is_the_monitors, setup),
         cmocka_unit_test_setup(test_the_recorder_should_cost_nothing_while_stopped, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

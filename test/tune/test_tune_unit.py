@@ -443,6 +443,67 @@ class BadInput(unittest.TestCase):
         self.assertIn("name: ", r.stderr)
 
 
+class HeaderExpressions(unittest.TestCase):
+    """The values of the headers are C constant expressions, computed by motortune.cexpr with
+    C's rules (never Python's eval): the forms the shipped headers use, and C's semantics
+    where they differ from Python's."""
+
+    def value(self, text, names=None):
+        from motortune import cexpr
+
+        def lookup(name, depth):
+            if names is None or name not in names:
+                raise cexpr.ExprError(f"{name} unknown")
+            return names[name]
+        return cexpr.evaluate(text, lookup)
+
+    def test_literals_should_read_as_c_reads_them(self):
+        for text, want in (("20000L", 20000), ("40000000L", 40000000), ("3000UL", 3000), ("7.5e-06", 7.5e-6),
+                           ("2.5f", 2.5), ("0x1F", 31), ("010", 8), (".5", 0.5), ("5.", 5.0), ("(-1)", -1)):
+            with self.subTest(text):
+                got = self.value(text)
+                self.assertEqual(got, want)
+                self.assertIs(type(got), type(want))
+
+    def test_c_arithmetic_should_truncate_toward_zero(self):
+        self.assertEqual(self.value("7 / 2"), 3)
+        self.assertEqual(self.value("-7 / 2"), -3)  # Python's // gives -4
+        self.assertEqual(self.value("-7 % 2"), -1)
+        self.assertEqual(self.value("7.0 / 2"), 3.5)
+        self.assertEqual(self.value("(int16_t)-2.9"), -2)
+        self.assertEqual(self.value("(double)1 / 4"), 0.25)
+
+    def test_the_conditional_should_not_evaluate_the_arm_it_does_not_take(self):
+        self.assertEqual(self.value("1 ? 2 : 1 / 0"), 2)
+        self.assertEqual(self.value("0 && 1 / 0"), 0)
+        self.assertEqual(self.value("1 || 1 / 0"), 1)
+
+    def test_the_headers_computed_defaults_should_equal_a_hand_calculation(self):
+        # UserParms.h: MC_DEADTIME_BAND_A = Vbus / (12 L fpwm); MC_ID_MIN_A = min(4 bands, 0.4 Iq max)
+        # (a ?: the old reader could not evaluate). Hurst075 on the MCLV: 24 V, 1.92 mH, 20 kHz, 1.64 A.
+        env = cheader.profile_env(os.path.join(REPO, "firmware", "motors", "motor_hurst075.h"), "mclv")
+        band = 24.0 / (12.0 * 1.92e-3 * 20000.0)
+        self.assertAlmostEqual(env.get("MC_DEADTIME_BAND_A"), band, places=12)
+        self.assertAlmostEqual(env.get("MC_ID_MIN_A"), min(4.0 * band, 0.4 * 1.64), places=12)
+        self.assertEqual(env.get("MC_ESTIMATOR_MIN_RPM"), 0.8 * 600.0)
+        measured("UserParms.h computed: dead-time band %.4f A, Id floor %.4f A", env.get("MC_DEADTIME_BAND_A"),
+                 env.get("MC_ID_MIN_A"))
+
+    def test_if_0_and_ifdef_should_decide_what_is_read(self):
+        d = scratch()
+        try:
+            h = os.path.join(d, "c.h")
+            with open(h, "w") as f:
+                f.write("#if 0\n#define A 1\n#else\n#define A 2\n#endif\n"
+                        "#ifdef A\n#define B 3\n#endif\n#ifndef A\n#define C 4\n#endif\n"
+                        "#if defined(A) && !defined(C)\n#define D 5\n#elif 1\n#define D 6\n#endif\n"
+                        "#define E 7\n#undef E\n#define E 8\n/* #define F 9 */\n#define G \"a /* b\"\n")
+            raw, _ = cheader.read_defines([h])
+            self.assertEqual(raw, {"A": "2", "B": "3", "D": "5", "E": "8", "G": '"a /* b"'})
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
+
+
 class UnitsAndKinds(unittest.TestCase):
     def test_equivalent_spellings_should_give_the_same_values(self):
         a = desc_from(HURST_TOML)

@@ -6,10 +6,13 @@
 #include <string.h>
 
 #include "sim_core.h"
+#include "sim_parse.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
+
+#define COUNT_MAX 100000L /* runs per --count: a campaign chunk, a few hours of CPU at most */
 
 /*
  * One run, from one seed: the plant (R, L, Ke, inertia, friction), the
@@ -448,67 +451,116 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
     fflush(stdout);
 }
 
-static void usage(void)
+static void usage(FILE *f)
 {
     fprintf(
-        stderr,
+        f,
         "usage: robust [--motor NAME] [--board NAME] (--seed N [--csv FILE] | --from N --count N\n"
         "              [--known-fail N]...)\n"
         "  one CSV row per run on stdout (docs/robustness.md); --seed N runs one seed and\n"
         "  prints its summary (the reproduce command the campaign prints for a failure);\n"
-        "  a --known-fail seed that fails is reported on stderr, not in the exit status\n");
+        "  a --known-fail seed that fails is reported on stderr, not in the exit status.\n"
+        "  Seeds are whole numbers 0..4294967295 (uint32); --count 1..%ld, seeds\n"
+        "  --from .. --from + count - 1 all within that range; at most 8 --known-fail.\n",
+        (long)COUNT_MAX);
+}
+
+/* One line on stderr, as every refusal: "robust: <field>: <why>". */
+static int refuse(const char *field, const char *why)
+{
+    fprintf(stderr, "robust: %s: %s\n", field, why);
+    return 2;
 }
 
 int main(int argc, char **argv)
 {
+    /* A seed is a uint32_t (draw()); a campaign chunk is bounded so that no
+     * option value asks for unbounded work: 100,000 runs of a few seconds
+     * of simulated time each. */
+    static const sim_range_t seed_range = {"seed", "", 0.0, 4294967295.0, SIM_RANGE_INTEGER};
+    static const sim_range_t count_range = {"count", "runs", 1.0, (double)COUNT_MAX,
+                                            SIM_RANGE_INTEGER};
     const char *motor = "hurst", *board = "mclv", *csv_path = NULL;
-    long from = -1, count = 0, one = -1;
-    long known[8];
+    long long from = -1, count = 0, one = -1; /* seeds up to 2^32 - 1 even where long is 32 bits */
+    long long known[8];
     int n_known = 0;
     int i, k, failed = 0;
+    char why[320], q[48];
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        char *end = NULL;
+        double x = 0.0;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            return 0;
+        }
+        if (strcmp(a, "--motor") != 0 && strcmp(a, "--board") != 0 && strcmp(a, "--csv") != 0 &&
+            strcmp(a, "--seed") != 0 && strcmp(a, "--from") != 0 && strcmp(a, "--count") != 0 &&
+            strcmp(a, "--known-fail") != 0) {
+            return refuse(sim_parse_quote(a, q, sizeof(q)),
+                          "unknown option (robust --help lists them)");
+        }
         if (v == NULL) {
-            usage();
-            return 2;
+            return refuse(a, "needs a value");
         }
         i++;
-        if (strcmp(a, "--motor") == 0) {
-            motor = v;
-        } else if (strcmp(a, "--board") == 0) {
-            board = v;
-        } else if (strcmp(a, "--csv") == 0) {
-            csv_path = v;
-        } else if (strcmp(a, "--seed") == 0 || strcmp(a, "--from") == 0 ||
-                   strcmp(a, "--count") == 0 || strcmp(a, "--known-fail") == 0) {
-            long n = strtol(v, &end, 0);
-            if (end == v || *end != '\0' || n < 0 || n > 4000000000L) {
-                fprintf(stderr, "robust: %s wants a whole number 0..4e9, got '%s'\n", a, v);
-                return 2;
+        if (strcmp(a, "--motor") == 0 || strcmp(a, "--board") == 0) {
+            if (!sim_parse_name_ok(v)) {
+                sim_parse_msg(why, sizeof(why),
+                              "'%s' is not a profile name (1 to 32 letters, digits, _ or -)",
+                              sim_parse_quote(v, q, sizeof(q)));
+                return refuse(a, why);
             }
-            if (strcmp(a, "--seed") == 0) {
-                one = n;
-            } else if (strcmp(a, "--known-fail") == 0) {
-                if (n_known == (int)(sizeof(known) / sizeof(known[0]))) {
-                    fprintf(stderr, "robust: at most 8 --known-fail seeds\n");
-                    return 2;
-                }
-                known[n_known++] = n;
-            } else if (strcmp(a, "--from") == 0) {
-                from = n;
+            if (a[2] == 'm') {
+                motor = v;
             } else {
-                count = n;
+                board = v;
             }
+            continue;
+        }
+        if (strcmp(a, "--csv") == 0) {
+            csv_path = v;
+            continue;
+        }
+        if (sim_parse_number(v, (strcmp(a, "--count") == 0) ? &count_range : &seed_range, &x, why,
+                             sizeof(why)) != 0) {
+            return refuse(a, why);
+        }
+        if (strcmp(a, "--seed") == 0) {
+            one = (long long)x;
+        } else if (strcmp(a, "--known-fail") == 0) {
+            if (n_known == (int)(sizeof(known) / sizeof(known[0]))) {
+                return refuse(a, "at most 8 of them");
+            }
+            known[n_known++] = (long long)x;
+        } else if (strcmp(a, "--from") == 0) {
+            from = (long long)x;
         } else {
-            usage();
-            return 2;
+            count = (long long)x;
         }
     }
-    if ((one < 0) == (from < 0)) {
-        usage();
-        return 2;
+    if (one >= 0 && from >= 0) {
+        return refuse("--seed", "runs one seed: not with --from");
+    }
+    if (from < 0 && count > 0) {
+        return refuse("--count", "only with --from");
+    }
+    if (one < 0 && from < 0) {
+        return refuse("--seed", "give --seed N, or --from N --count N");
+    }
+    if (from >= 0 && count == 0) {
+        return refuse("--count", "--from needs it (1..100000 runs)");
+    }
+    if (from >= 0 && (double)from + (double)count - 1.0 > seed_range.hi) {
+        sim_parse_msg(why, sizeof(why), "seeds %lld..%.0f pass the last seed, %.0f", from,
+                      (double)from + (double)count - 1.0, seed_range.hi);
+        return refuse("--count", why);
+    }
+    if (one >= 0 && n_known > 0) {
+        return refuse("--known-fail", "only with --from (a campaign)");
+    }
+    if (from >= 0 && csv_path != NULL) {
+        return refuse("--csv", "only with --seed (one run's trace)");
     }
     if (one >= 0) {
         run_draw_t d;
@@ -518,8 +570,10 @@ int main(int argc, char **argv)
         if (csv_path != NULL) {
             csv = fopen(csv_path, "w");
             if (csv == NULL) {
-                fprintf(stderr, "robust: cannot write %s\n", csv_path);
-                return 2;
+                char pq[256]; /* the path, quoted */
+                sim_parse_msg(why, sizeof(why), "cannot write '%s'",
+                              sim_parse_quote(csv_path, pq, sizeof(pq)));
+                return refuse("--csv", why);
             }
             simcore_csv_header(csv);
         }
@@ -548,7 +602,7 @@ int main(int argc, char **argv)
                 is_known = is_known || known[k] == from + i;
             }
             if (is_known) {
-                fprintf(stderr, "robust: seed %ld failed, a known failure (docs/robustness.md)\n",
+                fprintf(stderr, "robust: seed %lld failed, a known failure (docs/robustness.md)\n",
                         from + i);
             } else {
                 failed++;

@@ -54,8 +54,8 @@ static double noise(sim_adc_t *adc)
 static long clamp_code(double c, long top)
 {
     double r = floor(c + 0.5);
-    if (r < 0.0) {
-        return 0;
+    if (!(r >= 0.0)) {
+        return 0; /* NaN too: a diverged plant never reaches the conversion below */
     }
     if (r > (double)top) {
         return top;
@@ -69,6 +69,15 @@ int16_t sim_adc_bipolar(sim_adc_t *adc, double x_fs, double offset_codes)
     long top = (1L << adc->prm.bits) - 1;
     long shift = 1L << (16 - adc->prm.bits);
     long code = clamp_code((double)half + x_fs * (double)half + offset_codes + noise(adc), top);
+    return (int16_t)((code - half) * shift);
+}
+
+int16_t sim_adc_bipolar_exact(const sim_adc_t *adc, double x_fs, double offset_codes)
+{
+    long half = 1L << (adc->prm.bits - 1);
+    long top = (1L << adc->prm.bits) - 1;
+    long shift = 1L << (16 - adc->prm.bits);
+    long code = clamp_code((double)half + x_fs * (double)half + offset_codes, top);
     return (int16_t)((code - half) * shift);
 }
 

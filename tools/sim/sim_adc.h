@@ -49,6 +49,8 @@ void sim_adc_sample(sim_adc_t *adc, double ia, double ib, double vbus, double po
 /* A single bipolar / unipolar conversion (x as a fraction of full scale). */
 int16_t sim_adc_bipolar(sim_adc_t *adc, double x_fs, double offset_codes);
 int16_t sim_adc_unipolar(sim_adc_t *adc, double x_fs);
+/* A bipolar code without noise (a frozen channel). */
+int16_t sim_adc_bipolar_exact(const sim_adc_t *adc, double x_fs, double offset_codes);
 
 /* Standard normal deviate from the ADC's generator (used for noise). */
 double sim_adc_gauss(sim_adc_t *adc);

@@ -71,7 +71,7 @@ const char *simcore_fault_name(unsigned fault)
 {
     static const char *const names[] = {
         "none",        "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE", "START_FAILED",
-        "STALL_SPEED", "STALL_BEMF",  "STALL_TRACK",  "OFFSET",      "OVERRUN"};
+        "STALL_SPEED", "STALL_BEMF",  "STALL_TRACK",  "OFFSET",      "OVERRUN",  "CURRENT_SENSOR"};
     return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
 }
 

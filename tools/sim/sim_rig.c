@@ -29,6 +29,13 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
     r->pot_rate = 0.0;
     r->spike_a = 0.0;
     r->spike_left = 0;
+    for (k = 0; k < 2; k++) {
+        r->sensor[k].mode = SIM_SENSOR_OK;
+        r->sensor[k].stuck_a = 0.0;
+        r->sensor[k].gain = 1.0;
+        r->sensor[k].drift_a_s = 0.0;
+        r->sensor[k].drift_t0_s = 0.0;
+    }
     for (k = 0; k < 3; k++) {
         r->floating[k] = true;
         r->i_abc[k] = 0.0;
@@ -39,6 +46,19 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
     r->t_cond_min_s = r->ts;
     r->fan_rated_w = prm->fan_rated_rpm * 2.0 * M_PI / 60.0;
     r->vbus_sampled = sim_inverter_vbus(&r->inv, 0.0);
+}
+
+/* What a phase's amplifier passes to the ADC for a current i (A): an open
+ * input reads the bias, 0 A (the ADC adds the offset and the noise); a gain
+ * error and a drifting offset act on the current. A stuck reading replaces
+ * the ADC's code (sim_rig_sample). */
+static double sensor_reading(const sim_rig_t *r, int k, double i)
+{
+    const sim_sensor_t *s = &r->sensor[k];
+    if (s->mode == SIM_SENSOR_OPEN) {
+        return 0.0;
+    }
+    return i * s->gain + s->drift_a_s * (r->t - s->drift_t0_s);
 }
 
 void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
@@ -68,7 +88,17 @@ void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
         ib -= r->spike_a;
         r->spike_left--;
     }
+    ia = sensor_reading(r, 0, ia);
+    ib = sensor_reading(r, 1, ib);
     sim_adc_sample(&r->adc, ia, ib, r->vbus_sampled, r->pot, out);
+    if (r->sensor[0].mode == SIM_SENSOR_STUCK) {
+        out->ia = sim_adc_bipolar_exact(&r->adc, r->sensor[0].stuck_a / r->adc.prm.i_fs_a,
+                                        r->adc.prm.offset_a_codes);
+    }
+    if (r->sensor[1].mode == SIM_SENSOR_STUCK) {
+        out->ib = sim_adc_bipolar_exact(&r->adc, r->sensor[1].stuck_a / r->adc.prm.i_fs_a,
+                                        r->adc.prm.offset_b_codes);
+    }
 }
 
 static void phase_emfs(const sim_plant_t *p, double e[3])
@@ -345,6 +375,31 @@ bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
         case SIM_EV_NOISE:
             r->adc.prm.noise_codes = ev->v1;
             return true;
+        case SIM_EV_SENSOR_STUCK:
+            r->sensor[(ev->v1 > 0.5) ? 1 : 0].mode = SIM_SENSOR_STUCK;
+            r->sensor[(ev->v1 > 0.5) ? 1 : 0].stuck_a = ev->v2;
+            return true;
+        case SIM_EV_SENSOR_OPEN:
+            r->sensor[(ev->v1 > 0.5) ? 1 : 0].mode = SIM_SENSOR_OPEN;
+            return true;
+        case SIM_EV_SENSOR_GAIN:
+            r->sensor[(ev->v1 > 0.5) ? 1 : 0].gain = ev->v2;
+            return true;
+        case SIM_EV_SENSOR_DRIFT: {
+            sim_sensor_t *s = &r->sensor[(ev->v1 > 0.5) ? 1 : 0];
+            /* the drift so far is kept: it continues at the new rate */
+            double sofar = s->drift_a_s * (r->t - s->drift_t0_s);
+            s->drift_a_s = ev->v2;
+            s->drift_t0_s = r->t - ((ev->v2 != 0.0) ? sofar / ev->v2 : 0.0);
+            return true;
+        }
+        case SIM_EV_SENSOR_OK: {
+            sim_sensor_t *s = &r->sensor[(ev->v1 > 0.5) ? 1 : 0];
+            s->mode = SIM_SENSOR_OK;
+            s->gain = 1.0;
+            s->drift_a_s = 0.0;
+            return true;
+        }
         default:
             return false;
     }

@@ -37,21 +37,33 @@ typedef struct {
     double fan_rated_rpm; /* speed at which load_fan gives its nominal torque, rpm */
 } sim_rig_params_t;
 
+/* A current sensor's health (scenario events sensor_*). */
+typedef enum { SIM_SENSOR_OK, SIM_SENSOR_STUCK, SIM_SENSOR_OPEN } sim_sensor_mode_t;
+
+typedef struct {
+    sim_sensor_mode_t mode;
+    double stuck_a;    /* SIM_SENSOR_STUCK: the frozen reading, A */
+    double gain;       /* reading / current (1 healthy) */
+    double drift_a_s;  /* offset drift, A/s */
+    double drift_t0_s; /* when the drift started, s */
+} sim_sensor_t;
+
 typedef struct {
     sim_plant_t plant;
     sim_inverter_t inv;
     sim_adc_t adc;
     int substeps;
-    double sample_at;  /* as in sim_rig_params_t */
-    double ts;         /* PWM period, s */
-    double t;          /* start of the period the last sample fell in, s */
-    long period;       /* periods completed */
-    double pot;        /* potentiometer, 0..1 */
-    double pot_target; /* ramp end, 0..1 */
-    double pot_rate;   /* ramp rate, 1/s (0 = no ramp) */
-    double spike_a;    /* current added to the phase-A reading (B: subtracted), A */
-    long spike_left;   /* periods of spike still to come */
-    bool floating[3];  /* outputs off: phase not conducting */
+    double sample_at;       /* as in sim_rig_params_t */
+    double ts;              /* PWM period, s */
+    double t;               /* start of the period the last sample fell in, s */
+    long period;            /* periods completed */
+    double pot;             /* potentiometer, 0..1 */
+    double pot_target;      /* ramp end, 0..1 */
+    double pot_rate;        /* ramp rate, 1/s (0 = no ramp) */
+    double spike_a;         /* current added to the phase-A reading (B: subtracted), A */
+    long spike_left;        /* periods of spike still to come */
+    sim_sensor_t sensor[2]; /* the phase-A and phase-B current sensors */
+    bool floating[3];       /* outputs off: phase not conducting */
     bool was_on;
     double fan_rated_w;  /* rad/s */
     double i_abc[3];     /* phase currents at the last sample, A */

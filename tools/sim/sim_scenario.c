@@ -2,7 +2,9 @@
 #include "sim_scenario.h"
 
 #include "sim_inverter.h"
+#include "sim_parse.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +36,11 @@ static const ev_desc_t EVENTS[] = {
     {"inverter", SIM_EV_INVERTER, 1, 1},
     {"deadtime_shape", SIM_EV_DEADTIME_SHAPE, 1, 1},
     {"noise", SIM_EV_NOISE, 1, 1},
+    {"sensor_stuck", SIM_EV_SENSOR_STUCK, 2, 2},
+    {"sensor_open", SIM_EV_SENSOR_OPEN, 1, 1},
+    {"sensor_gain", SIM_EV_SENSOR_GAIN, 2, 2},
+    {"sensor_drift", SIM_EV_SENSOR_DRIFT, 2, 2},
+    {"sensor_ok", SIM_EV_SENSOR_OK, 1, 1},
     {"zoom", SIM_EV_ZOOM, 0, 1},
     {"mark", SIM_EV_MARK, 0, 0},
     {"end", SIM_EV_END, 0, 0},
@@ -52,37 +59,190 @@ const char *sim_event_name(sim_event_kind_t k)
     return "?";
 }
 
-static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double *out)
+/*
+ * Value rules: what each value of each event may be. A row names the value
+ * as an error message shows it, its unit and its range (sim_parse.h), and
+ * the words parse_number() takes instead of a number. Every value of every
+ * event in EVENTS needs its row: a value with none is refused when parsed,
+ * and sim_scenario_check_rules() (run by test_sim_parse) names the event
+ * that lacks one. The ranges are physical or sane bounds, wide enough for
+ * every shipped scenario and test, narrow enough that no value makes the
+ * run unbounded or overflows a conversion (a periods count cast to long).
+ * They cannot stop a load the motor cannot hold from driving the plant out
+ * of its model's range over a long run (docs/sim.md, "Input checking").
+ */
+#define T_MAX_S       3600.0   /* event times and ramps: one simulated hour, ~72 M periods */
+#define RPM_MAX       100000.0 /* pot speeds: far above any profile's top (17,000 rpm) */
+#define TORQUE_MAX    10.0     /* N m: 15 x the most any profile's board drives (hispeed, 0.66) */
+#define VBUS_MAX      1000.0   /* V: three times the MCHV's 320 V bus */
+#define CURRENT_MAX   100.0    /* A: beyond both boards' ADC full scale (4.4 A, 8 A) */
+#define DEADTIME_MAX  20.0     /* us: 40 % of a 50 us PWM period */
+#define NOISE_MAX     100.0    /* ADC codes (sigma): a tenth of the 10-bit range */
+#define RIPPLE_HZ     10000.0  /* bus ripple: up to half the 20 kHz PWM rate */
+#define SPIKE_PERIODS 20000.0  /* one second of PWM periods at 20 kHz */
+#define ZOOM_MAX_S    10.0     /* full-rate trace: 200,000 rows at 20 kHz */
+
+typedef struct {
+    sim_event_kind_t kind;
+    int argi;
+    sim_range_t r;     /* r.name: the value's name in messages */
+    const char *words; /* the words taken instead of a number ("max|min"), or NULL */
+    int words_only;    /* 1: one of the words, never a number */
+} value_rule_t;
+
+static const value_rule_t RULES[] = {
+    {SIM_EV_POT, 0, {"position", "", 0.0, 1.0, 0u}, NULL, 0},
+    {SIM_EV_POT_RAMP, 0, {"position", "", 0.0, 1.0, 0u}, NULL, 0},
+    {SIM_EV_POT_RAMP, 1, {"ramp time", "s", 0.0, T_MAX_S, 0u}, NULL, 0},
+    {SIM_EV_SPEED, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, "max|min", 0},
+    {SIM_EV_SPEED_RAMP, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, "max|min", 0},
+    {SIM_EV_SPEED_RAMP, 1, {"ramp time", "s", 0.0, T_MAX_S, 0u}, NULL, 0},
+    {SIM_EV_LOAD, 0, {"torque", "N m", 0.0, TORQUE_MAX, 0u}, NULL, 0},
+    {SIM_EV_LOAD_ACTIVE, 0, {"torque", "N m", -TORQUE_MAX, TORQUE_MAX, 0u}, NULL, 0},
+    {SIM_EV_LOAD_FAN, 0, {"torque at rated speed", "N m", 0.0, TORQUE_MAX, 0u}, NULL, 0},
+    {SIM_EV_VBUS, 0, {"voltage", "V", 0.0, VBUS_MAX, 0u}, NULL, 0},
+    {SIM_EV_VBUS_RIPPLE, 0, {"amplitude", "V", 0.0, VBUS_MAX, 0u}, NULL, 0},
+    {SIM_EV_VBUS_RIPPLE, 1, {"frequency", "Hz", 0.0, RIPPLE_HZ, 0u}, NULL, 0},
+    {SIM_EV_CURRENT_SPIKE, 0, {"current", "A", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
+    {SIM_EV_CURRENT_SPIKE, 1, {"periods", "", 1.0, SPIKE_PERIODS, SIM_RANGE_INTEGER}, NULL, 0},
+    {SIM_EV_DEADTIME, 0, {"dead time", "us", 0.0, DEADTIME_MAX, 0u}, NULL, 0},
+    {SIM_EV_INVERTER, 0, {"model", "", 0.0, 0.0, 0u}, "averaged|switching", 1},
+    {SIM_EV_DEADTIME_SHAPE, 0, {"shape", "", 0.0, 0.0, 0u}, "linear|hard|ripple", 1},
+    {SIM_EV_NOISE, 0, {"sigma", "codes", 0.0, NOISE_MAX, 0u}, NULL, 0},
+    {SIM_EV_SENSOR_STUCK, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_STUCK, 1, {"current", "A", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
+    {SIM_EV_SENSOR_OPEN, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_GAIN, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_GAIN, 1, {"gain", "", -10.0, 10.0, 0u}, NULL, 0},
+    {SIM_EV_SENSOR_DRIFT, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_DRIFT, 1, {"drift", "A/s", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
+    {SIM_EV_SENSOR_OK, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_ZOOM, 0, {"length", "s", 0.0, ZOOM_MAX_S, SIM_RANGE_LO_OPEN}, NULL, 0},
+};
+
+#define N_RULES (sizeof(RULES) / sizeof(RULES[0]))
+
+static const sim_range_t TIME_RANGE = {"time", "s", 0.0, T_MAX_S, 0u};
+
+static const value_rule_t *find_rule(sim_event_kind_t kind, int argi)
 {
-    char *endp;
+    size_t i;
+    for (i = 0; i < N_RULES; i++) {
+        if (RULES[i].kind == kind && RULES[i].argi == argi) {
+            return &RULES[i];
+        }
+    }
+    return NULL;
+}
+
+int sim_scenario_check_rules(char *err, size_t err_len)
+{
+    size_t i;
+    int a;
+    for (i = 0; i < N_EVENTS; i++) {
+        for (a = 0; a < EVENTS[i].max_args; a++) {
+            if (find_rule(EVENTS[i].kind, a) == NULL) {
+                sim_parse_msg(err, err_len,
+                              "event '%s' value %d has no row in RULES (sim_scenario.c)",
+                              EVENTS[i].name, a + 1);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* The words an event's value may be instead of a number. Returns 1 when tok
+ * is one (*out set), 0 when it is none, -1 when it must be one and is not. */
+static int parse_word(const char *tok, sim_event_kind_t kind, int argi, double *out)
+{
     if ((kind == SIM_EV_SPEED || kind == SIM_EV_SPEED_RAMP) && argi == 0) {
         if (strcmp(tok, "max") == 0) {
             *out = SIM_SPEED_MAX;
-            return 0;
+            return 1;
         }
         if (strcmp(tok, "min") == 0) {
             *out = SIM_SPEED_MIN;
-            return 0;
+            return 1;
         }
     }
+    if (kind >= SIM_EV_SENSOR_STUCK && kind <= SIM_EV_SENSOR_OK && argi == 0) {
+        /* the measured phase: a or b */
+        *out = (strcmp(tok, "a") == 0) ? 0.0 : 1.0;
+        return (strcmp(tok, "a") == 0 || strcmp(tok, "b") == 0) ? 1 : -1;
+    }
     if (kind == SIM_EV_INVERTER || kind == SIM_EV_DEADTIME_SHAPE) {
-        int k;
+        int k = 0;
         int bad = (kind == SIM_EV_INVERTER) ? sim_inverter_model_parse(tok, &k)
                                             : sim_inverter_shape_parse(tok, &k);
         *out = (double)k;
-        return bad;
+        return bad ? -1 : 1;
     }
-    *out = strtod(tok, &endp);
-    return (endp == tok || *endp != '\0') ? -1 : 0;
+    return 0;
 }
 
-static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, size_t err_len)
+/* One value: a word, or a number inside its rule's range. */
+static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double *out, char *why,
+                        size_t why_len)
 {
-    char *tok[5] = {NULL, NULL, NULL, NULL, NULL};
+    const value_rule_t *rule = find_rule(kind, argi);
+    int w;
+    if (rule == NULL) {
+        sim_parse_msg(why, why_len, "value %d has no range (RULES in sim_scenario.c)", argi + 1);
+        return -1;
+    }
+    w = parse_word(tok, kind, argi, out);
+    if (w > 0) {
+        return 0;
+    }
+    if (w < 0 || rule->words_only) {
+        char q[48];
+        sim_parse_msg(why, why_len, "%s: '%s' is not one of %s", rule->r.name,
+                      sim_parse_quote(tok, q, sizeof(q)),
+                      (rule->words != NULL) ? rule->words : "valid");
+        return -1;
+    }
+    {
+        char msg[160];
+        if (sim_parse_number(tok, &rule->r, out, msg, sizeof(msg)) == 0) {
+            return 0;
+        }
+        sim_parse_msg(why, why_len, "%s: %s%s%s", rule->r.name, msg,
+                      (rule->words != NULL) ? ", or one of " : "",
+                      (rule->words != NULL) ? rule->words : "");
+    }
+    return -1;
+}
+
+typedef struct {
+    const char *src; /* file name for messages, or NULL: "line N" */
+    int lineno;
+    char *err;
+    size_t err_len;
+} ctx_t;
+
+/* One-line message "FILE:LINE: what" (or "line LINE: what"); returns -1. */
+static int fail(const ctx_t *c, const char *what)
+{
+    if (c->src != NULL) {
+        sim_parse_msg(c->err, c->err_len, "%s:%d: %s", c->src, c->lineno, what);
+    } else {
+        sim_parse_msg(c->err, c->err_len, "line %d: %s", c->lineno, what);
+    }
+    return -1;
+}
+
+/* time, event and up to three values; a line with more is counted past
+ * this and refused by its event's value count */
+#define MAX_TOKENS 5
+
+static int parse_line(char *line, const ctx_t *c, sim_scenario_t *sc)
+{
+    char *tok[MAX_TOKENS];
     int ntok = 0;
     char *save = line;
     char *t;
-    char *endp;
+    char msg[200];
     size_t i;
     sim_event_t ev;
     const ev_desc_t *d = NULL;
@@ -92,15 +252,26 @@ static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, siz
     if (t != NULL) {
         *t = '\0';
     }
-    while (ntok < 5) {
+    for (t = line; *t != '\0'; t++) {
+        unsigned char ch = (unsigned char)*t;
+        if (ch < 0x20u && ch != '\t' && ch != '\r') {
+            sim_parse_msg(msg, sizeof(msg), "control character 0x%02x outside a comment", ch);
+            return fail(c, msg);
+        }
+    }
+    while (*save != '\0') {
         while (*save == ' ' || *save == '\t' || *save == '\r') {
             save++;
         }
-        if (*save == '\0' || *save == '\n') {
+        if (*save == '\0') {
+            break;
+        }
+        if (ntok == MAX_TOKENS) {
+            ntok++; /* counted, not kept: the event's own check names it */
             break;
         }
         tok[ntok++] = save;
-        while (*save != '\0' && *save != ' ' && *save != '\t' && *save != '\r' && *save != '\n') {
+        while (*save != '\0' && *save != ' ' && *save != '\t' && *save != '\r') {
             save++;
         }
         if (*save != '\0') {
@@ -110,14 +281,15 @@ static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, siz
     if (ntok == 0) {
         return 0;
     }
-    ev.t_s = strtod(tok[0], &endp);
-    if (endp == tok[0] || *endp != '\0' || ev.t_s < 0.0) {
-        snprintf(err, err_len, "line %d: bad time '%s'", lineno, tok[0]);
-        return -1;
+    {
+        char why[160];
+        if (sim_parse_number(tok[0], &TIME_RANGE, &ev.t_s, why, sizeof(why)) != 0) {
+            sim_parse_msg(msg, sizeof(msg), "time: %s", why);
+            return fail(c, msg);
+        }
     }
     if (ntok < 2) {
-        snprintf(err, err_len, "line %d: missing event name", lineno);
-        return -1;
+        return fail(c, "missing event name");
     }
     for (i = 0; i < N_EVENTS; i++) {
         if (strcmp(EVENTS[i].name, tok[1]) == 0) {
@@ -125,22 +297,31 @@ static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, siz
         }
     }
     if (d == NULL) {
-        snprintf(err, err_len, "line %d: unknown event '%s'", lineno, tok[1]);
-        return -1;
+        char q[48];
+        sim_parse_msg(msg, sizeof(msg), "unknown event '%s'",
+                      sim_parse_quote(tok[1], q, sizeof(q)));
+        return fail(c, msg);
     }
     if (ntok - 2 < d->min_args || ntok - 2 > d->max_args) {
-        snprintf(err, err_len, "line %d: '%s' takes %d to %d values", lineno, d->name, d->min_args,
-                 d->max_args);
-        return -1;
+        const char *more = (ntok > MAX_TOKENS) ? " or more" : "";
+        if (d->min_args == d->max_args) {
+            sim_parse_msg(msg, sizeof(msg), "'%s' takes %d value%s, got %d%s", d->name, d->min_args,
+                          (d->min_args == 1) ? "" : "s", ntok - 2, more);
+        } else {
+            sim_parse_msg(msg, sizeof(msg), "'%s' takes %d to %d values, got %d%s", d->name,
+                          d->min_args, d->max_args, ntok - 2, more);
+        }
+        return fail(c, msg);
     }
     ev.kind = d->kind;
     ev.v1 = 0.0;
     ev.v2 = 0.0;
     for (a = 0; a < ntok - 2; a++) {
-        double v;
-        if (parse_number(tok[2 + a], d->kind, a, &v) != 0) {
-            snprintf(err, err_len, "line %d: bad value '%s'", lineno, tok[2 + a]);
-            return -1;
+        double v = 0.0;
+        char why[160];
+        if (parse_number(tok[2 + a], d->kind, a, &v, why, sizeof(why)) != 0) {
+            sim_parse_msg(msg, sizeof(msg), "%s %s", d->name, why);
+            return fail(c, msg);
         }
         if (a == 0) {
             ev.v1 = v;
@@ -149,16 +330,17 @@ static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, siz
         }
     }
     if (sc->n > 0 && ev.t_s < sc->ev[sc->n - 1].t_s) {
-        snprintf(err, err_len, "line %d: time goes backwards", lineno);
-        return -1;
+        sim_parse_msg(msg, sizeof(msg),
+                      "time: %.10g s goes backwards (the event before is at %.10g s)", ev.t_s,
+                      sc->ev[sc->n - 1].t_s);
+        return fail(c, msg);
     }
     if (sc->n > 0 && sc->ev[sc->n - 1].kind == SIM_EV_END) {
-        snprintf(err, err_len, "line %d: event after 'end'", lineno);
-        return -1;
+        return fail(c, "event after 'end'");
     }
     if (sc->n >= SIM_SCENARIO_MAX_EVENTS) {
-        snprintf(err, err_len, "line %d: more than %d events", lineno, SIM_SCENARIO_MAX_EVENTS);
-        return -1;
+        sim_parse_msg(msg, sizeof(msg), "more than %d events", SIM_SCENARIO_MAX_EVENTS);
+        return fail(c, msg);
     }
     sc->ev[sc->n++] = ev;
     if (ev.kind == SIM_EV_END) {
@@ -167,62 +349,91 @@ static int parse_line(char *line, int lineno, sim_scenario_t *sc, char *err, siz
     return 0;
 }
 
-int sim_scenario_parse(const char *text, sim_scenario_t *sc, char *err, size_t err_len)
+static int parse_text(const char *text, size_t len, const char *src, sim_scenario_t *sc, char *err,
+                      size_t err_len)
 {
     char line[256];
-    int lineno = 0;
-    const char *p = text;
+    ctx_t c;
+    size_t pos = 0;
+    c.src = src;
+    c.lineno = 0;
+    c.err = err;
+    c.err_len = err_len;
     sc->n = 0;
     sc->end_s = -1.0;
-    while (*p != '\0') {
-        size_t len = strcspn(p, "\n");
-        lineno++;
-        if (len >= sizeof(line)) {
-            snprintf(err, err_len, "line %d: too long", lineno);
+    while (pos < len) {
+        const char *p = text + pos;
+        const char *nl = memchr(p, '\n', len - pos);
+        size_t n = (nl != NULL) ? (size_t)(nl - p) : len - pos;
+        c.lineno++;
+        if (memchr(p, '\0', n) != NULL) {
+            return fail(&c, "NUL byte: not a text file");
+        }
+        if (n >= sizeof(line)) {
+            sim_parse_msg(line, sizeof(line), "longer than %d characters", (int)sizeof(line) - 1);
+            return fail(&c, line);
+        }
+        memcpy(line, p, n);
+        line[n] = '\0';
+        if (parse_line(line, &c, sc) != 0) {
             return -1;
         }
-        memcpy(line, p, len);
-        line[len] = '\0';
-        if (parse_line(line, lineno, sc, err, err_len) != 0) {
-            return -1;
-        }
-        p += len;
-        if (*p == '\n') {
-            p++;
-        }
+        pos += n + ((nl != NULL) ? 1u : 0u);
     }
     if (sc->end_s < 0.0) {
-        snprintf(err, err_len, "no 'end' event");
+        if (src != NULL) {
+            sim_parse_msg(err, err_len, "%s: no 'end' event", src);
+        } else {
+            sim_parse_msg(err, err_len, "no 'end' event");
+        }
         return -1;
     }
     return 0;
 }
 
+int sim_scenario_parse(const char *text, sim_scenario_t *sc, char *err, size_t err_len)
+{
+    return parse_text(text, strlen(text), NULL, sc, err, err_len);
+}
+
+/* A scenario is a page of text: anything larger is the wrong file. */
+#define SCENARIO_MAX_BYTES (1L << 20)
+
 int sim_scenario_load(const char *path, sim_scenario_t *sc, char *err, size_t err_len)
 {
     FILE *f = fopen(path, "rb");
     char *buf;
-    long len;
+    char q[256]; /* the path, as messages name it */
+    size_t len;
     int rc;
+    sim_parse_quote(path, q, sizeof(q));
     if (f == NULL) {
-        snprintf(err, err_len, "cannot open %s", path);
+        sim_parse_msg(err, err_len, "%s: cannot open (%s)", q, strerror(errno));
         return -1;
     }
-    if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    buf = malloc((size_t)SCENARIO_MAX_BYTES + 1u);
+    if (buf == NULL) {
         fclose(f);
-        snprintf(err, err_len, "cannot read %s", path);
+        sim_parse_msg(err, err_len, "%s: out of memory", q);
         return -1;
     }
-    buf = malloc((size_t)len + 1);
-    if (buf == NULL || fread(buf, 1, (size_t)len, f) != (size_t)len) {
+    /* read, not fseek/ftell: a directory, a pipe or /dev/zero must end in
+     * a message, not in a huge allocation or an endless read */
+    len = fread(buf, 1, (size_t)SCENARIO_MAX_BYTES + 1u, f);
+    if (ferror(f)) {
         free(buf);
         fclose(f);
-        snprintf(err, err_len, "cannot read %s", path);
+        sim_parse_msg(err, err_len, "%s: cannot read (not a file?)", q);
         return -1;
     }
-    buf[len] = '\0';
     fclose(f);
-    rc = sim_scenario_parse(buf, sc, err, err_len);
+    if (len > (size_t)SCENARIO_MAX_BYTES) {
+        free(buf);
+        sim_parse_msg(err, err_len, "%s: larger than %ld bytes: not a scenario", q,
+                      SCENARIO_MAX_BYTES);
+        return -1;
+    }
+    rc = parse_text(buf, len, q, sc, err, err_len);
     free(buf);
     return rc;
 }

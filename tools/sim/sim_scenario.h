@@ -26,6 +26,13 @@
  *   hw_fault                the FLTA pin trips (MC_REQUEST_HW_FAULT)
  *   deadtime <us>           inverter dead time
  *   noise <codes>           ADC noise sigma
+ *   sensor_stuck a|b <A>    that phase's current reading freezes at <A> (one ADC
+ *                           code, no noise: a dead amplifier or ADC channel)
+ *   sensor_open a|b         its shunt amplifier's input open: it reads its bias
+ *                           (0 A, with its offset and the noise)
+ *   sensor_gain a|b <x>     its reading is <x> times the current
+ *   sensor_drift a|b <A/s>  its offset drifts at <A/s> from now on
+ *   sensor_ok a|b           that phase's sensor healthy again
  *   mark                    nothing happens: starts a new segment of the summary table
  *   zoom [s]                write every PWM period to the trace for [s] seconds
  *                           (default 0.02): the close-up panels of the plot
@@ -53,6 +60,11 @@ typedef enum {
     SIM_EV_INVERTER,       /* averaged | switching (sim_inv_model_t) */
     SIM_EV_DEADTIME_SHAPE, /* linear | hard | ripple (sim_dt_shape_t) */
     SIM_EV_NOISE,
+    SIM_EV_SENSOR_STUCK, /* v1 phase (0 = A, 1 = B), v2 A */
+    SIM_EV_SENSOR_OPEN,  /* v1 phase */
+    SIM_EV_SENSOR_GAIN,  /* v1 phase, v2 gain */
+    SIM_EV_SENSOR_DRIFT, /* v1 phase, v2 A/s */
+    SIM_EV_SENSOR_OK,    /* v1 phase */
     SIM_EV_ZOOM,
     SIM_EV_MARK,
     SIM_EV_END
@@ -76,12 +88,19 @@ typedef struct {
     double end_s; /* time of the `end` event */
 } sim_scenario_t;
 
-/* Parses a whole text (NUL-terminated). Returns 0, or -1 with a message
- * naming the line in err. */
+/* Parses a whole text (NUL-terminated). Returns 0, or -1 with a one-line
+ * message "line N: <event> <value>: <why>" in err. Every number is checked
+ * strictly (sim_parse.h): a plain decimal, finite, inside the value's range
+ * (RULES in sim_scenario.c, listed in docs/sim.md); times 0..3600 s and
+ * non-decreasing. */
 int sim_scenario_parse(const char *text, sim_scenario_t *sc, char *err, size_t err_len);
 
-/* Reads and parses a file. */
+/* Reads (at most 1 MiB) and parses a file; messages read "FILE:N: ...". */
 int sim_scenario_load(const char *path, sim_scenario_t *sc, char *err, size_t err_len);
+
+/* 0 when every value of every event has its range (RULES in sim_scenario.c);
+ * else -1 with the event that lacks one in err. */
+int sim_scenario_check_rules(char *err, size_t err_len);
 
 /* Name of an event kind as written in the files. */
 const char *sim_event_name(sim_event_kind_t k);

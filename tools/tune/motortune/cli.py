@@ -1,27 +1,37 @@
-"""Command line: tools/tune/tune <description.toml> | --check <profile.h>."""
+"""Command line: tools/tune/tune <description.toml> | --check <profile.h>.
+
+Every problem ends in exactly one line on stderr, "tune: <file>: <field>: <why>",
+and a non-zero exit: 2 for bad input (InputError), 1 for a request the board
+cannot meet or a profile the core would reject, 3 for a fault of the tool
+itself (caught by main, still one line: never a traceback).
+"""
+
+from __future__ import annotations
 
 import argparse
 import os
 import shutil
 import subprocess
 import sys
-import tempfile
+from typing import NoReturn, Optional
 
-from . import cheader, derive, describe, emit
+from . import cheader, derive, describe, emit, safeio
 from .derive import Infeasible
-from .units import InputError
+from .units import InputError, one_line
 
 USAGE = """\
 tools/tune/tune [options] <motor.toml>      write firmware/motors/motor_<name>.h
 tools/tune/tune --check <profile.h> [--board B]   print a profile back in engineering units"""
 
+HAND_TUNED = ("motor_hurst.h", "motor_hurst300.h", "motor_hispeed.h")
 
-def _fail(prefix, msg, code):
-    print(f"tune: {prefix}{msg}", file=sys.stderr)
+
+def _fail(prefix: str, msg: str, code: int) -> int:
+    print("tune: " + one_line(f"{prefix}{msg}"), file=sys.stderr)
     return code
 
 
-def compile_check(header, board):
+def compile_check(header: str, board: str) -> Optional[str]:
     """gcc -fsyntax-only of firmware/mc.c with this profile: the core's own
     compile-time checks. Returns None when it passes (or no gcc), else the
     first error line."""
@@ -33,14 +43,14 @@ def compile_check(header, board):
            "-Wshadow", f"-I{repo}/firmware", f"-I{repo}/foc", f"-I{repo}/smc_estimator",
            f"-DMC_BOARD_{board.upper()}", f'-DMC_MOTOR_HEADER="{os.path.abspath(header)}"',
            os.path.join(repo, "firmware", "mc.c")]
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    p = subprocess.run(cmd, capture_output=True, text=True, errors="replace")
     if p.returncode == 0:
         return None
     errs = [ln for ln in p.stderr.splitlines() if "error" in ln]
     return (errs[0] if errs else p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "compile failed")
 
 
-def clang_format(text):
+def clang_format(text: str) -> str:
     """The repo's clang-format style (make lint checks firmware/motors/*.h), when installed."""
     exe = shutil.which("clang-format")
     if exe is None:
@@ -54,28 +64,37 @@ def clang_format(text):
     return text
 
 
-def generate(path, out_dir=None, out=None, name=None, compile_=True, quiet=False):
+def _target(name: str, out: Optional[str], out_dir: Optional[str]) -> safeio.Output:
+    """Where the header goes: -o as given (anywhere the user names), else
+    firmware/motors/motor_<name>.h (name checked: it cannot leave that folder)."""
+    if out is not None:
+        return safeio.Output(out, "-o")
+    if out_dir is not None:
+        return safeio.Output(os.path.join(out_dir, f"motor_{name}.h"), "name")
+    motors = os.path.join(cheader.FIRMWARE, "motors")
+    target = os.path.join(motors, f"motor_{name}.h")
+    if os.path.basename(target) in HAND_TUNED:
+        raise InputError("name", f"motor_{name}.h is a hand-tuned profile; choose another name")
+    return safeio.Output(target, "name", root=cheader.REPO)
+
+
+def generate(path: str, out_dir: Optional[str] = None, out: Optional[str] = None, name: Optional[str] = None,
+             compile_: bool = True, quiet: bool = False) -> tuple[int, Optional[str]]:
     """Returns (exit code, header path or None)."""
     try:
         d = describe.load(path)
         if name is not None:
-            d.name = name
+            d.name = describe.check_name(name, "--name")
         t = derive.derive(d)
+        dest = _target(d.name, out, out_dir)
     except (InputError, Infeasible) as e:
         return _fail(f"{path}: ", str(e), 2 if isinstance(e, InputError) else 1), None
-    target = out or os.path.join(out_dir or os.path.join(cheader.FIRMWARE, "motors"), f"motor_{d.name}.h")
-    target_dir = os.path.dirname(os.path.abspath(target))
-    if os.path.basename(target) in ("motor_hurst.h", "motor_hurst300.h", "motor_hispeed.h") and \
-            os.path.abspath(target_dir) == os.path.join(cheader.FIRMWARE, "motors"):
-        return _fail(f"{path}: ", f"name: motor_{d.name}.h is a hand-tuned profile; choose another name", 2), None
     rel_src = os.path.relpath(os.path.abspath(path), cheader.REPO)
     d.source = rel_src if not rel_src.startswith("..") else path
     text = clang_format(emit.render(d, t, f"tools/tune/tune {d.source}"))
-    os.makedirs(target_dir, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".motor_{d.name}.", suffix=".h", dir=target_dir)
+    tmp: Optional[str] = None
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
+        tmp = dest.write_temp(text)
         core = cheader.derive_core(cheader.profile_env(tmp, d.board))
         if core.failures:
             p, m = core.failures[0]
@@ -84,11 +103,13 @@ def generate(path, out_dir=None, out=None, name=None, compile_=True, quiet=False
             err = compile_check(tmp, d.board)
             if err is not None:
                 return _fail(f"{path}: ", f"firmware/mc.c does not compile with the generated profile: {err}", 1), None
-        os.replace(tmp, target)
+        dest.commit(tmp)
         tmp = None
+    except InputError as e:
+        return _fail(f"{path}: ", str(e), 2), None
     finally:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
+        dest.discard(tmp)
+    target = dest.path
     if not quiet:
         for w in t.warnings:
             print(f"tune: note: {w}", file=sys.stderr)
@@ -101,27 +122,50 @@ def generate(path, out_dir=None, out=None, name=None, compile_=True, quiet=False
     return 0, target
 
 
-def check(profile, board=None):
-    if not os.path.exists(profile):
-        return _fail("", f"{profile}: no such file", 2)
+def check_profile(profile: str, board: Optional[str] = None) -> tuple[cheader.Derived, str, str]:
+    """The core's values for a profile header: (derived, profile name, board). InputError
+    for anything that keeps it from being computed."""
     if board is None:
-        raw, _ = cheader.read_defines([profile])
-        board = raw.get("MOTOR_TUNE_BOARD", '"mclv"').strip('"')
-    try:
-        env = cheader.profile_env(profile, board)
-        core = cheader.derive_core(env)
-    except InputError as e:
-        return _fail("", str(e), 2)
-    except KeyError as e:
-        return _fail(f"{profile}: ", f"{e.args[0]}: missing (the core needs it)", 2)
+        own = cheader.read_headers([profile])
+        board = "mclv"
+        if "MOTOR_TUNE_BOARD" in own.raw:
+            v = cheader.Env(own).get("MOTOR_TUNE_BOARD")
+            if not isinstance(v, str):
+                raise InputError("MOTOR_TUNE_BOARD", "must be a string naming the board")
+            board = v
+    cheader.board_name_ok(board)
+    env = cheader.profile_env(profile, board)
+    core = cheader.derive_core(env)
     name = env.get("MOTOR_NAME") if env.has("MOTOR_NAME") else os.path.basename(profile)
-    print(cheader.format_table(core, f"{profile}: {name} on board {board} (values as the core computes them)"))
-    return 1 if core.failures else 0
+    return core, one_line(str(name), 100), board
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(prog="tools/tune/tune", usage=USAGE,
-                                 description="Motor profile calculator (AN1078 sensorless FOC).")
+def check(profile: str, board: Optional[str] = None) -> int:
+    try:
+        core, name, board = check_profile(profile, board)
+    except InputError as e:
+        msg = str(e)
+        label = cheader.label(profile)
+        return _fail("" if msg.startswith(label) else f"{profile}: ", msg, 2)
+    title = f"{one_line(profile)}: {name} on board {board} (values as the core computes them)"
+    print(cheader.format_table(core, title))
+    if core.failures:
+        p, m = core.failures[0]
+        more = f" (and {len(core.failures) - 1} more, listed above)" if len(core.failures) > 1 else ""
+        return _fail(f"{profile}: ", f"{p}: {m}{more}", 1)
+    return 0
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        """A usage error in one line too (argparse prints the usage block first)."""
+        _fail("", f"{message} (usage: tools/tune/tune --help)", 2)
+        raise SystemExit(2)
+
+
+def _main(argv: Optional[list[str]]) -> int:
+    ap = _Parser(prog="tools/tune/tune", usage=USAGE,
+                 description="Motor profile calculator (AN1078 sensorless FOC).")
     ap.add_argument("description", nargs="?", help="motor description (TOML)")
     ap.add_argument("--check", metavar="PROFILE", help="print a profile header back in engineering units")
     ap.add_argument("--board", help="with --check: the board (default: the one the profile names, else mclv)")
@@ -129,13 +173,27 @@ def main(argv=None):
     ap.add_argument("--name", help="profile name (overrides the description's)")
     ap.add_argument("--no-compile", action="store_true", help="skip the gcc -fsyntax-only check of firmware/mc.c")
     a = ap.parse_args(argv)
-    if a.check:
+    if a.check is not None:
         return check(a.check, a.board)
     if not a.description:
         ap.print_usage(sys.stderr)
         return 2
     code, _ = generate(a.description, out=a.output, name=a.name, compile_=not a.no_compile)
     return code
+
+
+def main(argv: Optional[list[str]] = None) -> int:
+    """The command; whatever goes wrong ends in one line on stderr, never a traceback."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        return _fail("", "interrupted", 130)
+    except (InputError, Infeasible) as e:  # a path that forgot to catch its own
+        return _fail("", str(e), 2 if isinstance(e, InputError) else 1)
+    except BrokenPipeError:
+        return 1
+    except Exception as e:  # noqa: BLE001 - the promise is one line, even for a bug of the tool
+        return _fail("", f"internal error ({type(e).__name__}: {e}); please report it with the input", 3)
 
 
 if __name__ == "__main__":

@@ -10,8 +10,11 @@ Each derived value is stored as a Value(macro, number, unit, reason) so the
 header writer can put the reason next to the number.
 """
 
+from __future__ import annotations
+
 import cmath
 import math
+from typing import Any
 
 from . import cheader
 from .units import InputError
@@ -27,6 +30,16 @@ START_LOAD_SHARE = 0.6  # the start load's share of the forced current's torque 
 # (mc_derived.h: 1.5 bands at 3/4 of the lock current times sqrt(3)/2).
 DTM_LOCK_BANDS = 1.5 / (0.75 * math.sqrt(3.0) / 2.0)
 OL_DAMP_ZETA = 0.35  # open-loop damping ratio MOTOR_OL_DAMP_S is computed for (UserParms.h: why low)
+# The fewest counts a PI gain may have in the core's Q15 form (mc_derived.h: a mantissa
+# with a shift above 1): at 16 counts rounding alone moves it by up to 3 %; at 0 the loop
+# does nothing. Fewer is a unit slip upstream (the shipped examples have 392 or more).
+MIN_GAIN_COUNTS = 16
+
+
+def gain_counts(x: float) -> int:
+    """The integer the core stores for a gain of x full-scale units (0 <= x < 128):
+    MC_CUR_KP / MC_SPD_KP as mantissa and shift, MC_CUR_KI / MC_SPD_KI (x < 1) alike."""
+    return cheader.mant_shift(x)[0] if 0.0 <= x < 128.0 else 32767
 
 
 class Infeasible(Exception):
@@ -38,14 +51,14 @@ class Infeasible(Exception):
 
 
 class Value:
-    def __init__(self, macro, number, unit, reason, fmt="{:.4g}"):
+    def __init__(self, macro: str, number: float, unit: str, reason: str, fmt: str = "{:.4g}") -> None:
         self.macro, self.number, self.unit, self.reason, self.fmt = macro, number, unit, reason, fmt
 
-    def text(self):
+    def text(self) -> str:
         return fmt_num(self.number, self.fmt)
 
 
-def fmt_num(x, fmt="{:.4g}"):
+def fmt_num(x: float, fmt: str = "{:.4g}") -> str:
     s = fmt.format(x)
     if "e" not in s and "." not in s and "inf" not in s and "nan" not in s:
         s += ".0"
@@ -78,17 +91,28 @@ def round_down(x, step):
 class Tuning:
     """Every derived value; .values is the ordered list written to the header."""
 
-    def __init__(self):
-        self.values, self.notes, self.warnings, self.fw_table, self.fw_speeds = [], [], [], [], []
-        self.by = {}
+    def __init__(self) -> None:
+        self.values: list[Value] = []
+        self.notes: list[str] = []
+        self.warnings: list[str] = []
+        self.fw_table: list[float] = []
+        self.fw_speeds: list[float] = []
+        self.by: dict[str, Value] = {}
+        # the board and the motor as derive saw them (SI units; speeds rpm)
+        self.desc: Any = None
+        self.board = self.board_name = ""
+        self.fpwm = 0
+        self.i_fs = self.v_fs = self.vbus = self.psi = self.kt = self.v_ss = self.headroom = 0.0
+        self.i_peak = self.i_qmax = self.trip = self.i_load = self.n_bus = self.id_limit = 0.0
+        self.n_emf = self.v_dt = self.ws = self.n_top = self.e_top = self.e_per_rpm = 0.0
 
-    def add(self, macro, number, unit, reason, fmt="{:.4g}"):
+    def add(self, macro: str, number: float, unit: str, reason: str, fmt: str = "{:.4g}") -> float:
         v = Value(macro, number, unit, reason, fmt)
         self.values.append(v)
         self.by[macro] = v
         return number
 
-    def __getitem__(self, macro):
+    def __getitem__(self, macro: str) -> float:
         return self.by[macro].number
 
 
@@ -138,22 +162,22 @@ def id_for_voltage(w, r, l, psi, iq, vmax):
     return min(0.0, (-B + math.sqrt(disc)) / (2.0 * A))
 
 
-def derive(desc):
+def derive(desc: Any) -> Tuning:
     t = Tuning()
     benv = cheader.board_env(desc.board)
     gb = benv.get
-    i_fs = float(gb("BOARD_I_FULLSCALE_A"))
-    vbus = float(gb("BOARD_VBUS_NOMINAL_V"))
-    fcy = int(gb("BOARD_FCY_HZ"))
-    td = float(gb("BOARD_DEADTIME_NS")) * 1e-9
-    board_name = gb("BOARD_NAME") if benv.has("BOARD_NAME") else desc.board
-    fpwm = int(round(desc.pwm_hz)) if desc.pwm_hz is not None else int(gb("PWM_FREQUENCY_HZ"))
+    i_fs = float(cheader.scale_value(benv, "BOARD_I_FULLSCALE_A", "the current scale"))
+    vbus = float(cheader.scale_value(benv, "BOARD_VBUS_NOMINAL_V", "the bus voltage"))
+    fcy = int(cheader.scale_value(benv, "BOARD_FCY_HZ", "the instruction clock", whole=True))
+    td = benv.num("BOARD_DEADTIME_NS") * 1e-9
+    board_name = str(gb("BOARD_NAME")) if benv.has("BOARD_NAME") else desc.board
+    fpwm = int(round(desc.pwm_hz)) if desc.pwm_hz is not None else int(benv.num("PWM_FREQUENCY_HZ"))
     if not 4000 <= fpwm <= 40000 or fcy % fpwm != 0:
         raise InputError("pwm_frequency", f"{fpwm} Hz: must be 4..40 kHz and divide the {fcy} Hz instruction clock")
-    loop_hz = int(gb("MC_SPEED_LOOP_HZ"))
+    loop_hz = int(cheader.scale_value(benv, "MC_SPEED_LOOP_HZ", "the speed-loop rate", whole=True))
     if fpwm % loop_hz != 0 or not 1 <= fpwm // loop_hz <= 256:
         raise InputError("pwm_frequency", f"{fpwm} Hz: must be 1..256 times the {loop_hz} Hz speed loop")
-    vfrac = float(gb("MC_VOLTAGE_LIMIT_FRACTION"))
+    vfrac = benv.num("MC_VOLTAGE_LIMIT_FRACTION")
     ts = 1.0 / fpwm
     pp, r, l = desc.pole_pairs, desc.r_ph, desc.l_ph
     v_fs = vbus / SQRT3
@@ -179,8 +203,8 @@ def derive(desc):
     # available in every sector.
     dt_frac = td * fpwm
     headroom = 1.0 - 0.05 - dt_frac
-    win = cheader.duty_sample_max(fcy, fpwm, float(gb("PWM_ADC_TRIGGER_TCY")), float(gb("PWM_DEADTIME_NS")),
-                                  float(gb("BOARD_SHUNT_MIN_ON_NS"))) / (fcy // fpwm)
+    win = cheader.duty_sample_max(fcy, fpwm, benv.num("PWM_ADC_TRIGGER_TCY"), benv.num("PWM_DEADTIME_NS"),
+                                  benv.num("BOARD_SHUNT_MIN_ON_NS")) / (fcy // fpwm)
     vfrac_ss = min(vfrac, win)
     v_ss = vfrac_ss * v_fs * headroom
     t.v_ss, t.headroom = v_ss, headroom
@@ -290,7 +314,7 @@ def derive(desc):
     fs = round_up(1.5 * n_fw, 1000.0)
     fs_max = min(fpwm * 60.0 / (TWO_PI * pp) * 0.95,  # smc: 2 pi omega_fs Ts < 1
                  fpwm * 60.0 / (3.0 * pp) * 0.95,  # mc.c: 3 omega_fs Ts < 1
-                 32767.0 * float(gb("MC_SPEED_RAMP_RPM_PER_S")) / loop_hz)  # slew >= 1 count
+                 32767.0 * benv.num("MC_SPEED_RAMP_RPM_PER_S") / loop_hz)  # slew >= 1 count
     fs = min(fs, round_down(fs_max, 100.0))
     if fs < n_fw / 0.95:
         raise Infeasible(top_field, f"{n_fw:.0f} rpm x {pp} pole pairs is too fast for {fpwm} Hz PWM "
@@ -428,7 +452,7 @@ def derive(desc):
         # Noise: one ADC count of current (10-bit ADC over +-I_FS, dsPIC33F ADC1) times Kp is
         # voltage noise the observer sees as back-EMF; keep it within 2 % of the back-EMF at
         # the lowest closed-loop speed.
-        adc_bits = int(gb("BOARD_ADC_BITS")) if benv.has("BOARD_ADC_BITS") else 10
+        adc_bits = int(benv.num("BOARD_ADC_BITS")) if benv.has("BOARD_ADC_BITS") else 10
         i_count = 2.0 * i_fs / (1 << adc_bits)
         wc_noise = 0.02 * e_per_rpm * n_min / i_count / l
         wc = round_down(min(wc_max, wc_noise), 100.0)
@@ -443,6 +467,14 @@ def derive(desc):
           f"Kp = L wc = {l * 1e3:.4g} mH x wc: pole-zero cancellation (the PI zero Ki/Kp = R/L cancels the "
           f"winding pole, tau = {l / r * 1e3:.3g} ms), leaving a first-order loop of bandwidth wc")
     t.add("MOTOR_CURRENT_KI_V_PER_AS", sig(r * wc, 4), "V/(A s)", f"Ki = R wc = {r:.4g} ohm x wc", "{:.6g}")
+    for macro, x, fld in (("MOTOR_CURRENT_KP_V_PER_A", t["MOTOR_CURRENT_KP_V_PER_A"] * i_fs / v_fs, "motor.inductance"),
+                          ("MOTOR_CURRENT_KI_V_PER_AS", t["MOTOR_CURRENT_KI_V_PER_AS"] * ts * i_fs / v_fs,
+                           "motor.resistance")):
+        fld = "application.current_bandwidth" if desc.wc is not None else fld
+        n = gain_counts(x)
+        if n < MIN_GAIN_COUNTS:
+            raise InputError(fld, f"gives {macro} = {t[macro]:g}, {n} counts in the core's Q15 form (at least "
+                             f"{MIN_GAIN_COUNTS}): the current loop could not act; check the value and its unit")
 
     # ---- speed PI ------------------------------------------------------------
     # Gain schedule of the core (mc.c): Kp is full above MOTOR_SPEED_KP_FULL_RPM and scaled
@@ -493,6 +525,18 @@ def derive(desc):
               "no inertia given (safe default): a speed error of 40 % of the top speed asks for the full Iq limit")
         t.add("MOTOR_SPEED_KI_A_PER_RPM_S", sig(kp_rpm * 5.0, 3), "A/(rpm s)",
               "no inertia given (safe default): integral time Kp/Ki = 0.2 s, slow enough for a heavy load")
+
+    # Both speed gains as the core stores them: counts that round to (nearly) 0 are an inertia
+    # in the wrong unit (g cm^2 read as kg m^2 gives gains 1e7 times too small).
+    fld = "motor.inertia" if j is not None else "motor.rated_current"
+    for macro, x in (("MOTOR_SPEED_KP_A_PER_RPM", t["MOTOR_SPEED_KP_A_PER_RPM"] * fs / i_fs),
+                     ("MOTOR_SPEED_KI_A_PER_RPM_S", t["MOTOR_SPEED_KI_A_PER_RPM_S"] / loop_hz * fs / i_fs)):
+        n = gain_counts(x)
+        if n < MIN_GAIN_COUNTS:
+            hint = ("did you mean kg cm^2 or g cm^2 for a value written in kg m^2, or the reverse?" if j is not None
+                    else "check the value and its unit")
+            raise InputError(fld, f"gives {macro} = {t[macro]:g}, {n} counts in the core's Q15 form (at least "
+                             f"{MIN_GAIN_COUNTS}): the speed loop could not act; {hint}")
 
     t.n_top, t.e_top, t.e_per_rpm = n_top, e_top, e_per_rpm
     return t

@@ -25,16 +25,26 @@
                                  # ramp end): the start-up current is sized for it
 
 A bare number is accepted when the key carries the unit ("resistance_ohm =
-2.67"). Every problem raises InputError naming the field.
+2.67"). Every problem raises InputError naming the field: an unknown or
+missing field, a unit that is not one of the quantity's, a number that is not
+finite or outside what any motor this firmware drives could have (PLAUSIBLE),
+an inertia that does not fit the motor's own torque (a unit slip, with the
+unit that would fit), a name that is not a safe C identifier, a description
+with characters that do not belong in a C string or comment.
 """
+
+from __future__ import annotations
 
 import difflib
 import math
-import re
 import tomllib
+from typing import Any, Optional
 
-from . import units
-from .units import InputError
+from . import safeio, units
+from .units import NAME_RE, InputError
+
+MAX_TOML_BYTES = 64 * 1024  # the examples are 1..2 kB
+MAX_DESCRIPTION = 100  # characters of `description` (MOTOR_NAME, and the header's first line)
 
 SQRT2 = math.sqrt(2.0)
 SQRT3 = math.sqrt(3.0)
@@ -70,34 +80,98 @@ _KIND_ALIASES = {"line to line": "line-to-line", "ll": "line-to-line", "l-l": "l
                  "phase": "per-phase", "per phase": "per-phase", "phase-to-neutral": "per-phase"}
 
 
+# What any motor this firmware could drive has, in the units Description holds (SI; speeds
+# rpm; Ke V/krpm peak line-to-line; R, L per phase; currents A peak). Outside: a unit slip
+# or a typo, refused naming the field, before any arithmetic sees a 1e300 or a 1e-300.
+PLAUSIBLE: dict[str, tuple[float, float, str]] = {
+    "motor.resistance": (1e-4, 1e3, "ohm"),
+    "motor.inductance": (1e-7, 10.0, "H"),
+    "motor.back_emf": (1e-3, 1e5, "V/krpm"),
+    "motor.rated_current": (1e-3, 1e3, "A"),
+    "motor.peak_current": (1e-3, 1e3, "A"),
+    "motor.rated_speed": (1.0, 2e5, "rpm"),
+    "motor.inertia": (1e-12, 1e3, "kg m^2"),
+    "application.max_speed": (1.0, 2e5, "rpm"),
+    "application.min_speed": (1.0, 2e5, "rpm"),
+    "application.current_bandwidth": (1.0, 1e6, "rad/s"),
+    "application.fw_load_current": (1e-3, 1e3, "A"),
+    "application.start_load": (1e-6, 1e4, "N m"),
+    "pwm_frequency": (1.0, 1e6, "Hz"),
+}
+# The time a motor takes to reach its rated speed at its rated torque, t = J w / T: a bare
+# rotor a few ms (the Hurst075 with its assumed load 21 ms), a flywheel or a geared load
+# seconds. Outside this window the inertia's unit is wrong (kg cm^2 is 1e-4 kg m^2, g cm^2
+# 1e-7): the speed gains would round to 0 in Q15 or saturate.
+ACCEL_TIME_S = (20e-6, 100.0)
+_INERTIA_UNITS = (("kg m^2", 1.0), ("kg cm^2", 1e-4), ("kg mm^2", 1e-6), ("g cm^2", 1e-7))
+
+
 class Description:
     """Validated motor description, SI units (speeds in rpm, Ke in V/krpm peak line-to-line,
     currents A peak, R and L per phase)."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.source = ""
-        self.name = self.desc = self.board = None
-        self.pwm_hz = None
+        self.name: str = ""
+        self.desc: str = ""
+        self.board: str = ""
+        self.pwm_hz: Optional[float] = None
         self.pole_pairs = 0
         self.r_ph = self.l_ph = self.ke_ll = self.i_rated = self.n_rated = 0.0
-        self.i_peak = self.j = self.n_max = self.n_min = self.wc = self.i_fw_load = None
-        self.raw = {}
+        self.i_peak: Optional[float] = None
+        self.j: Optional[float] = None
+        self.n_max: Optional[float] = None
+        self.n_min: Optional[float] = None
+        self.wc: Optional[float] = None
+        self.i_fw_load: Optional[float] = None
+        self.t_start: Optional[float] = None
+        self.raw: dict[tuple[str, str], Any] = {}
 
 
-def _match_key(section, key, fields):
+def check_name(name: Any, field: str = "name") -> str:
+    """A profile name however it arrives (the TOML `name`, --name): it becomes
+    motor_<name>.h, the include guard MOTOR_<NAME>_H and MOTOR=<name>."""
+    if not isinstance(name, str) or not NAME_RE.fullmatch(name):
+        raise InputError(field, f"{str(name)[:40]!r}: use a lower-case letter, then lower-case letters, digits "
+                                f"and _, 32 characters at most (it becomes motor_<name>.h and a C macro name)")
+    return name
+
+
+def check_description(text: str, field: str = "description") -> str:
+    """The description goes into a C string literal (MOTOR_NAME) and the header's first
+    comment: printable ASCII only (no newline, which would end the comment's line and
+    could start a directive), and nothing that ends either (a double quote, a backslash,
+    the comment's end) or starts a comment (which -Wcomment refuses inside one) or a
+    trigraph (two question marks: ??/ is a backslash in C99)."""
+    if len(text) > MAX_DESCRIPTION:
+        raise InputError(field, f"{len(text)} characters: {MAX_DESCRIPTION} at most")
+    for c in text:
+        if not " " <= c <= "~":
+            raise InputError(field, f"character {c!r} is not allowed (printable ASCII only: it is written "
+                                    f"into a C string and a comment)")
+    for bad in ('"', "\\", "*/", "/*", "??"):
+        if bad in text:
+            raise InputError(field, f"must not contain {bad} (it is written into a C string and a comment)")
+    return text
+
+
+def _match_key(section: str, key: str, fields: dict[str, tuple[str, bool]]) -> tuple[str, str]:
     """Canonical field of a key, allowing a unit suffix (resistance_ohm)."""
     if key in fields:
         return key, key
+    shown = key if len(key) <= 40 else key[:40] + "..."
+    where = f"{section}.{shown}" if section else shown
+    if len(key) > 64:  # no field is that long; and difflib's work grows with the length
+        raise InputError(where, "unknown field")
     for f, (q, _) in fields.items():
         if q in units._SUFFIX_UNITS and units.base_key(key, q) == f and key != f:
             return f, key
-    where = f"{section}.{key}" if section else key
     close = difflib.get_close_matches(key, list(fields), n=1, cutoff=0.6)
     hint = f" (did you mean {close[0]}?)" if close else f" (known: {', '.join(fields)})"
     raise InputError(where, f"unknown field{hint}")
 
 
-def _read_kind(field, value, kind):
+def _read_kind(field: str, value: Any, kind: str) -> float:
     if not isinstance(value, str):
         raise InputError(field, f"expected one of {', '.join(KINDS[kind])}")
     v = value.strip().lower()
@@ -109,33 +183,74 @@ def _read_kind(field, value, kind):
     return KINDS[kind][v]
 
 
-def load(path):
-    try:
-        with open(path, "rb") as f:
-            data = tomllib.load(f)
-    except FileNotFoundError:
-        raise InputError("file", f"{path}: no such file") from None
-    except tomllib.TOMLDecodeError as e:
-        raise InputError("file", f"{path}: not valid TOML ({e})") from None
-    d = parse(data)
+def load(path: str) -> Description:
+    """The description in the TOML file at path: a regular file of at most MAX_TOML_BYTES."""
+    if not path:
+        raise InputError("file", "no description file given")
+    d = parse(loads(safeio.read_utf8(path, "file", MAX_TOML_BYTES), path))
     d.source = path
     return d
 
 
-def parse(data):
-    vals = {}
+def loads(text: str, path: str = "<text>") -> dict[str, Any]:
+    """TOML text to a dict; every problem (syntax, an integer of thousands of digits,
+    arrays nested thousands deep) an InputError naming the file."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise InputError("file", f"{path}: not valid TOML ({e})") from None
+    except ValueError:  # tomllib: an integer of more than 4300 digits (Python's int-from-text limit)
+        raise InputError("file", f"{path}: a number with too many digits") from None
+    except (RecursionError, MemoryError):  # arrays or inline tables nested thousands deep
+        raise InputError("file", f"{path}: nested too deeply") from None
+
+
+def _inertia_check(d: Description, given: Any) -> None:
+    """motor.inertia against the motor's own torque: ACCEL_TIME_S bounds the time the
+    rated torque takes to bring J to the rated speed. Outside it, the units that would
+    put the same number inside are suggested."""
+    if d.j is None:
+        return
+    psi = d.ke_ll / SQRT3 / (1000.0 * 2.0 * math.pi / 60.0 * d.pole_pairs)  # Wb
+    torque = 1.5 * d.pole_pairs * psi * d.i_rated  # N m at the rated current
+    w = d.n_rated * 2.0 * math.pi / 60.0  # rad/s
+    t_acc = d.j * w / torque
+    lo, hi = ACCEL_TIME_S
+    if lo <= t_acc <= hi:
+        return
+    if isinstance(given, str):
+        m = units._NUM_RE.match(given)
+        number = float(m.group(1)) if m else d.j
+    else:
+        number = float(given)
+    fits = [f'"{number:g} {u}"' for u, f in _INERTIA_UNITS
+            if number > 0 and lo <= number * f * w / torque <= hi]
+    hint = f"; did you mean {' or '.join(fits)}?" if fits else "; check its unit (kg cm^2 = 1e-4 kg m^2, g cm^2 = 1e-7)"
+    raise InputError("motor.inertia", f"{d.j:.3g} kg m^2 would reach the rated {d.n_rated:g} rpm in "
+                     f"{t_acc:.3g} s at the rated torque {torque:.3g} N m; a motor with its load takes "
+                     f"{lo:g} .. {hi:g} s{hint}")
+
+
+def parse(data: dict[str, Any]) -> Description:
+    if not isinstance(data, dict):
+        raise InputError("file", "not a TOML table")
+    vals: dict[tuple[str, str], Any] = {}
+    given: dict[tuple[str, str], Any] = {}  # the values as written, for hints
     for sec, fields in SECTIONS.items():
         table = data if sec == "" else data.get(sec, {})
         if sec and not isinstance(table, dict):
             raise InputError(sec, "must be a [section]")
         for key, value in table.items():
-            if sec == "" and key in SECTIONS and isinstance(value, dict):
-                continue
+            if sec == "" and key in SECTIONS:
+                if isinstance(value, dict):
+                    continue
+                raise InputError(key, f"must be a [{key}] section, got {type(value).__name__}")
             field, k = _match_key(sec, key, fields)
             where = f"{sec}.{key}" if sec else key
             qty = fields[field][0]
             if (sec, field) in vals:
                 raise InputError(where, "given twice (with and without a unit suffix)")
+            v: Any
             if qty == "text":
                 if not isinstance(value, str) or not value.strip():
                     raise InputError(where, "expected a non-empty string")
@@ -149,20 +264,23 @@ def parse(data):
             else:
                 v = units.parse(where, value, qty, key=k)
             vals[(sec, field)] = v
+            given[(sec, field)] = value
         for field, (_, required) in fields.items():
             if required and (sec, field) not in vals:
                 where = f"{sec}.{field}" if sec else field
                 raise InputError(where, "missing (required)")
 
     d = Description()
-    g = lambda s, f: vals.get((s, f))  # noqa: E731
-    d.name = g("", "name")
-    if not re.fullmatch(r"[a-z][a-z0-9_]*", d.name):
-        raise InputError("name", f"{d.name!r}: use lower-case letters, digits and _ (it becomes motor_<name>.h)")
-    d.desc = g("", "description") or d.name
-    if '"' in d.desc or "\\" in d.desc or "*/" in d.desc:
-        raise InputError("description", "must not contain quotes, backslashes or */")
+
+    def g(s: str, f: str) -> Any:
+        return vals.get((s, f))
+
+    d.name = check_name(g("", "name"))
+    d.desc = check_description(g("", "description") or d.name)
     d.board = g("", "board")
+    if not NAME_RE.fullmatch(d.board):
+        raise InputError("board", f"{d.board[:40]!r}: a board name is lower-case letters, digits and _ "
+                                  f"(firmware/boards/board_<board>.h)")
     d.pwm_hz = g("", "pwm_frequency")
     d.pole_pairs = g("motor", "pole_pairs")
     d.r_ph = g("motor", "resistance") * g("motor", "resistance_kind")
@@ -186,15 +304,20 @@ def parse(data):
     # physical sanity, each naming its field
     if not 1 <= d.pole_pairs <= 32:
         raise InputError("motor.pole_pairs", f"{d.pole_pairs}: must be 1..32")
-    positive = [("motor.resistance", d.r_ph), ("motor.inductance", d.l_ph), ("motor.back_emf", d.ke_ll),
-                ("motor.rated_current", d.i_rated), ("motor.rated_speed", d.n_rated),
-                ("motor.peak_current", d.i_peak), ("motor.inertia", d.j),
-                ("application.max_speed", d.n_max), ("application.min_speed", d.n_min),
-                ("application.current_bandwidth", d.wc), ("application.fw_load_current", d.i_fw_load),
-                ("application.start_load", d.t_start)]
-    for field, v in positive:
-        if v is not None and not v > 0.0:
-            raise InputError(field, f"must be > 0 (got {v:g})")
+    positive: list[tuple[str, Optional[float]]] = [
+        ("motor.resistance", d.r_ph), ("motor.inductance", d.l_ph), ("motor.back_emf", d.ke_ll),
+        ("motor.rated_current", d.i_rated), ("motor.rated_speed", d.n_rated),
+        ("motor.peak_current", d.i_peak), ("motor.inertia", d.j),
+        ("application.max_speed", d.n_max), ("application.min_speed", d.n_min),
+        ("application.current_bandwidth", d.wc), ("application.fw_load_current", d.i_fw_load),
+        ("application.start_load", d.t_start)]
+    for name, x in positive + [("pwm_frequency", d.pwm_hz)]:
+        if x is not None and not x > 0.0:
+            raise InputError(name, f"must be > 0 (got {x:g})")
+        lo, hi, unit = PLAUSIBLE[name]
+        if x is not None and not lo <= x <= hi:
+            raise InputError(name, f"{x:g} {unit} is outside {lo:g} .. {hi:g} {unit}, what a motor this "
+                                   f"firmware drives could have (a unit slip?)")
     if d.pwm_hz is not None and abs(d.pwm_hz - round(d.pwm_hz)) > 1e-6:
         raise InputError("pwm_frequency", "must be a whole number of Hz")
     if d.i_peak is not None and d.i_peak < d.i_rated:
@@ -202,4 +325,5 @@ def parse(data):
     if d.n_min is not None and d.n_min >= d.n_rated and (d.n_max is None or d.n_min >= d.n_max):
         raise InputError("application.min_speed", "must be below the top speed")
     d.raw = vals
+    _inertia_check(d, given.get(("motor", "inertia")))
     return d

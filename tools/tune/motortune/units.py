@@ -6,15 +6,38 @@ A unit that is not known for the quantity is an error that names the field;
 a bare number without a unit in its key is an error too (no silent guessing).
 """
 
+from __future__ import annotations
+
 import math
 import re
+from typing import Any, Optional
+
+# A profile or board name: it becomes a file name (motor_<name>.h), a C include guard
+# (MOTOR_<NAME>_H), a -D option (MC_MOTOR_<NAME>) and a make variable, so only what is
+# safe in all four: a lower-case C identifier, 32 characters at most.
+NAME_RE = re.compile(r"[a-z][a-z0-9_]{0,31}")
+
+MAX_MESSAGE = 300  # characters of one error line
+
+
+def one_line(text: str, limit: int = MAX_MESSAGE) -> str:
+    """text as one printable line: control characters (a newline in a TOML key, a file
+    name) are shown escaped, never printed, and a long text is cut."""
+    out = []
+    for c in text:
+        if c.isprintable() or c == " ":
+            out.append(c)
+        else:
+            out.append(c.encode("unicode_escape").decode("ascii"))
+    s = "".join(out)
+    return s if len(s) <= limit else s[: limit - 3] + "..."
 
 
 class InputError(Exception):
-    """A problem with the description: the message starts with the field name."""
+    """A problem with the input: the message (one line) starts with the field name."""
 
-    def __init__(self, field, message):
-        super().__init__(f"{field}: {message}")
+    def __init__(self, field: str, message: str):
+        super().__init__(one_line(f"{field}: {message}"))
         self.field = field
 
 
@@ -68,17 +91,18 @@ _SUFFIX_UNITS = {
     "ratio": {"": ""},
 }
 
+MAX_QUANTITY_TEXT = 64  # characters of "number unit" ("7.5e-6 kg m^2" has 13)
 _NUM_RE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
 
-def _norm_unit(u):
+def _norm_unit(u: str) -> str:
     u = u.strip().lower()
     u = u.replace("\u00b2", "^2").replace("**", "^")
     u = re.sub(r"[\s*\u00b7]", "", u)  # "kg m^2", "kg*m^2", "kg·m^2" -> "kgm^2"
     return u
 
 
-def base_key(key, quantity):
+def base_key(key: str, quantity: str) -> str:
     """The key without a unit suffix ("resistance_ohm" -> "resistance")."""
     for suf in sorted(_SUFFIX_UNITS.get(quantity, {}), key=len, reverse=True):
         if suf and key.endswith(suf):
@@ -86,7 +110,7 @@ def base_key(key, quantity):
     return key
 
 
-def parse(field, value, quantity, key=None):
+def parse(field: str, value: Any, quantity: str, key: Optional[str] = None) -> float:
     """Value of `field` (a number or a "number unit" string) in SI units
     (back-EMF: V per 1000 rpm; speed: rpm; angular rate: rad/s)."""
     table = _UNITS[quantity]
@@ -105,8 +129,13 @@ def parse(field, value, quantity, key=None):
                 f"the number {value!r} needs a unit: write it as a string, e.g. "
                 f'"{value} {_example_unit(quantity)}"',
             )
-        number, factor = float(value), table[unit]
+        try:
+            number, factor = float(value), table[unit]
+        except OverflowError:  # a TOML integer of hundreds of digits
+            raise InputError(field, "is not a finite number") from None
     elif isinstance(value, str):
+        if len(value) > MAX_QUANTITY_TEXT:  # also keeps the regular expression's work small
+            raise InputError(field, f"{len(value)} characters: too long for a number and a unit")
         m = _NUM_RE.match(value)
         if not m:
             raise InputError(field, f"cannot read {value!r} as a number and a unit")
@@ -116,20 +145,21 @@ def parse(field, value, quantity, key=None):
             raise InputError(
                 field, f"{value!r} has no unit (e.g. \"{m.group(1)} {_example_unit(quantity)}\")"
             )
-        factor = table.get(unit)
-        if factor is None:
+        found = table.get(unit)
+        if found is None:
             known = ", ".join(sorted({k for k, v in table.items() if v is not None and k}))
             raise InputError(
                 field, f"unknown unit {m.group(2)!r} for {quantity.replace('_', ' ')} (use one of: {known})"
             )
+        factor = found
     else:
         raise InputError(field, f"expected a number with a unit, got {type(value).__name__}")
-    if not math.isfinite(number):
+    if not math.isfinite(number) or not math.isfinite(number * factor):
         raise InputError(field, f"{value!r} is not a finite number")
     return number * factor
 
 
-def _example_unit(quantity):
+def _example_unit(quantity: str) -> str:
     return {
         "resistance": "ohm", "inductance": "mH", "back_emf": "V/krpm", "current": "A",
         "speed": "rpm", "inertia": "kg m^2", "frequency": "kHz", "angular_rate": "rad/s",

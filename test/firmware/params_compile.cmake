@@ -1,0 +1,52 @@
+# params_compile.cmake - compiles params_probe.c with one UserParms.h / profile
+# value changed and judges the compiler's answer (cmake -P, from CTest).
+#
+#   -DCC=<compiler> -DSRC=<repo root> -DPROBE=<params_probe.c>
+#   -DDEF=<NAME=value> (optional) -DPROFILE=<board>[/<motor>] (optional)
+#   -DSTD=<c99|c11> (default c99)
+#   -DEXPECT=<name>  the build must fail and the FIRST line reporting an error
+#                    must name <name> (as a word, or inside a check's
+#                    bit-field name such as NAME__out_of_range_for__OTHER)
+#   -DEXPECT=        (empty) the build must succeed with -Wall -Wextra -Werror
+#
+# The first error line is what a user reads: a check that names the value
+# only in a later error, or names only a value derived from it, fails here.
+if(NOT STD)
+  set(STD c99)
+endif()
+set(args -std=${STD} -fsyntax-only -Wall -Wextra -Werror
+         -I${SRC}/firmware -I${SRC}/foc -I${SRC}/smc_estimator)
+if(PROFILE)
+  string(REPLACE "/" ";" prof "${PROFILE}")
+  list(GET prof 0 board)
+  string(TOUPPER "${board}" board)
+  list(APPEND args -DMC_BOARD_${board})
+  list(LENGTH prof n)
+  if(n GREATER 1)
+    list(GET prof 1 motor)
+    list(APPEND args "-DMC_MOTOR_HEADER=\"motors/motor_${motor}.h\"")
+  endif()
+endif()
+if(DEF)
+  list(APPEND args "-D${DEF}")
+endif()
+execute_process(COMMAND ${CC} ${args} ${PROBE}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+
+if(NOT EXPECT)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${DEF} ${PROFILE}: refused, should compile:\n${out}")
+  endif()
+  message(STATUS "${DEF} ${PROFILE}: compiles")
+  return()
+endif()
+
+if(rc EQUAL 0)
+  message(FATAL_ERROR "${DEF} ${PROFILE}: compiles, should be refused naming ${EXPECT}")
+endif()
+string(REGEX MATCH "[^\n]*error:[^\n]*" first "${out}")
+if(NOT first MATCHES "(^|[^A-Za-z0-9_]|__)${EXPECT}($|[^A-Za-z0-9_]|__)")
+  message(FATAL_ERROR "${DEF} ${PROFILE}: refused, but the first error does not name ${EXPECT}:\n"
+                      "  ${first}\nwhole output:\n${out}")
+endif()
+message(STATUS "${DEF} ${PROFILE}: refused: ${first}")

@@ -1,0 +1,45 @@
+/* sim_parse.h - strict numbers for the simulator's inputs (scenario files and command lines). */
+#ifndef SIM_PARSE_H
+#define SIM_PARSE_H
+
+#include <stddef.h>
+
+/*
+ * Every number a user gives the simulator (a scenario value, a command-line
+ * option) goes through sim_parse_number(): the whole token must be a plain
+ * decimal number (no hex, no "inf" or "nan", nothing after it), finite, and
+ * inside the field's stated range. Anything else is refused with a reason
+ * that names the range, so a typo never turns into a silent nonsense run or
+ * into undefined behaviour further down (a NaN cast to an integer, a loop
+ * bound of 1e300 periods).
+ */
+
+#define SIM_RANGE_INTEGER 1u /* whole numbers only, written without '.' or exponent */
+#define SIM_RANGE_LO_OPEN 2u /* lo itself is excluded: (lo, hi] */
+
+typedef struct {
+    const char *name; /* the field as the user knows it: "--rpm0", "speed rpm" */
+    const char *unit; /* "rpm", "s", "" */
+    double lo, hi;    /* inclusive unless SIM_RANGE_LO_OPEN */
+    unsigned flags;
+} sim_range_t;
+
+/* Parses tok into *out. Returns 0, or -1 with why set to one line such as
+ * "'1e300' is outside 0..3600 s" (the token quoted by sim_parse_quote). */
+int sim_parse_number(const char *tok, const sim_range_t *r, double *out, char *why, size_t why_len);
+
+/* The token made safe to print on one line: bytes outside printable ASCII
+ * become '?'; a token longer than buf ends in "...". Returns buf. */
+const char *sim_parse_quote(const char *tok, char *buf, size_t len);
+
+/* snprintf for messages that may be cut at len on purpose (a long token in
+ * a fixed buffer): the cut is the intent, so no -Wformat-truncation. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+void sim_parse_msg(char *buf, size_t len, const char *fmt, ...);
+
+/* A profile name (--motor, --board): 1 to 32 letters, digits, '_' or '-'. */
+int sim_parse_name_ok(const char *s);
+
+#endif /* SIM_PARSE_H */
