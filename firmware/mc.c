@@ -369,9 +369,8 @@ static void mc_enter_closed_loop(mc_t *mc)
      * (AN1078's preset) shot an unloaded Hurst from 500 to 1,217 rpm. The
      * slow step presets the PI with it; until its first result arrives,
      * the references are what the preset PI puts out. */
-    int32_t iq0 = (int32_t)mc->ol_iq + (int32_t)(MC_RAMP_CURRENT_Q15 / 4);
-    iq0 = (iq0 < 0) ? 0 : iq0;
-    mc->i_ref.q = (iq0 > (int32_t)MC_RAMP_CURRENT_Q15) ? MC_RAMP_CURRENT_Q15 : (q15_t)iq0;
+    mc->i_ref.q =
+        q15_clamp(q15_add_sat(mc->ol_iq, (q15_t)(MC_RAMP_CURRENT_Q15 / 4)), 0, MC_RAMP_CURRENT_Q15);
     mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->preset_pending = true;
@@ -707,26 +706,6 @@ int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
     return (int16_t)m;
 }
 
-/* The dead-time measurement's phases (note 4). */
-enum {
-    MC_DTM_ALIGN, /* the lock proper, MC_LOCK_PERIODS */
-    MC_DTM_WAIT1, /* at the lock current, until the swing reverses */
-    MC_DTM_ACC1,  /* averaging, to a reversal at least MC_DTM_N periods on */
-    MC_DTM_SETTLE2,
-    MC_DTM_WAIT2, /* at 3/4 of it */
-    MC_DTM_ACC2,
-    MC_DTM_DONE /* OPEN_LOOP next */
-};
-
-#if MC_DTM_ON
-/* LOCK, once per window in the slow step (note 4). The rotor's swing
- * reverses where the estimator's alpha voltage (its back-EMF), summed over
- * the window (a 1 ms mean, which also smooths the chatter an inverter with
- * a sharp dead-time edge puts on phase A, whose current sits at zero),
- * crosses its mean over MC_DTM_MEAN windows (the offset phase A's loss
- * leaves in it). Each level's average runs between two reversals, or gives
- * up waiting after MC_DTM_WAIT windows. so->lock_iq is the lock's current
- * reference; so->lock_done, with the dead time, ends the lock. */
 /* Current-sensor plausibility, once per window (note 5): did the measured
  * current follow the current loops? */
 static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
@@ -781,6 +760,26 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     so->sensor_fault = mc->sens_cnt >= MC_SENSOR_TRIP;
 }
 
+/* The dead-time measurement's phases (note 4). */
+enum {
+    MC_DTM_ALIGN, /* the lock proper, MC_LOCK_PERIODS */
+    MC_DTM_WAIT1, /* at the lock current, until the swing reverses */
+    MC_DTM_ACC1,  /* averaging, to a reversal at least MC_DTM_N periods on */
+    MC_DTM_SETTLE2,
+    MC_DTM_WAIT2, /* at 3/4 of it */
+    MC_DTM_ACC2,
+    MC_DTM_DONE /* OPEN_LOOP next */
+};
+
+#if MC_DTM_ON
+/* LOCK, once per window in the slow step (note 4). The rotor's swing
+ * reverses where the estimator's alpha voltage (its back-EMF), summed over
+ * the window (a 1 ms mean, which also smooths the chatter an inverter with
+ * a sharp dead-time edge puts on phase A, whose current sits at zero),
+ * crosses its mean over MC_DTM_MEAN windows (the offset phase A's loss
+ * leaves in it). Each level's average runs between two reversals, or gives
+ * up waiting after MC_DTM_WAIT windows. so->lock_iq is the lock's current
+ * reference; so->lock_done, with the dead time, ends the lock. */
 static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
 {
     int32_t a = si->lock_va; /* |.| <= MC_SLOW_STEP_PERIODS x 2^15 */

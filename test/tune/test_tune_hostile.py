@@ -21,9 +21,10 @@ import shutil
 import stat
 import subprocess
 import sys
-import tempfile
 import time
 import unittest
+
+from test_tune_unit import HURST_TOML, scratch  # the unit tests' fixture (same folder)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -31,35 +32,10 @@ TUNE = os.path.join(REPO, "tools", "tune", "tune")
 MOTORS = os.path.join(REPO, "firmware", "motors")
 TIMEOUT_S = 20.0  # per command; a well-behaved answer takes well under a second
 
-BASE_TOML = """\
-name = "hostile_t"
-description = "hostile test motor"
-board = "mclv"
-pwm_frequency = "20 kHz"
-[motor]
-pole_pairs = 5
-resistance = "5.34 ohm"
-resistance_kind = "line-to-line"
-inductance = "3.84 mH"
-inductance_kind = "line-to-line"
-back_emf = "7.3 V/krpm"
-back_emf_kind = "peak line-to-line"
-rated_current = "1.64 A"
-current_kind = "peak"
-rated_speed = "2700 rpm"
-peak_current = "3.0 A"
-inertia = "7.5e-6 kg m^2"
-[application]
-max_speed = "5300 rpm"
-fw_load_current = "0.1 A"
-"""
-
-
-def scratch():
-    base = os.environ.get("TUNE_SCRATCH")
-    if base:
-        os.makedirs(base, exist_ok=True)
-    return tempfile.mkdtemp(prefix="tune_hostile_", dir=base)
+# The Hurst description the unit tests use, under its own name and with a
+# description (the hostile cases rewrite fields of it).
+BASE_TOML = HURST_TOML.replace('name = "hurst_t"\n',
+                               'name = "hostile_t"\ndescription = "hostile test motor"\n')
 
 
 def run_tune(*args, umask=None):

@@ -505,10 +505,7 @@ int main(int argc, char **argv)
         }
         i++;
         if (strcmp(a, "--motor") == 0 || strcmp(a, "--board") == 0) {
-            if (!sim_parse_name_ok(v)) {
-                sim_parse_msg(why, sizeof(why),
-                              "'%s' is not a profile name (1 to 32 letters, digits, _ or -)",
-                              sim_parse_quote(v, q, sizeof(q)));
+            if (sim_parse_name(v, why, sizeof(why)) != 0) {
                 return refuse(a, why);
             }
             if (a[2] == 'm') {

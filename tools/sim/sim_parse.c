@@ -99,7 +99,7 @@ int sim_parse_number(const char *tok, const sim_range_t *r, double *out, char *w
     return 0;
 }
 
-int sim_parse_name_ok(const char *s)
+static int name_ok(const char *s)
 {
     size_t n = 0;
     for (; s[n] != '\0'; n++) {
@@ -112,6 +112,17 @@ int sim_parse_name_ok(const char *s)
         }
     }
     return n > 0;
+}
+
+int sim_parse_name(const char *s, char *why, size_t why_len)
+{
+    char q[64];
+    if (name_ok(s)) {
+        return 0;
+    }
+    sim_parse_msg(why, why_len, "'%s' is not a profile name (1 to 32 letters, digits, _ or -)",
+                  sim_parse_quote(s, q, sizeof(q)));
+    return -1;
 }
 
 void sim_parse_msg(char *buf, size_t len, const char *fmt, ...)

@@ -39,7 +39,8 @@ __attribute__((format(printf, 3, 4)))
 #endif
 void sim_parse_msg(char *buf, size_t len, const char *fmt, ...);
 
-/* A profile name (--motor, --board): 1 to 32 letters, digits, '_' or '-'. */
-int sim_parse_name_ok(const char *s);
+/* A profile name (--motor, --board): 1 to 32 letters, digits, '_' or '-'.
+ * Returns 0, or -1 with the one-line reason in why. */
+int sim_parse_name(const char *s, char *why, size_t why_len);
 
 #endif /* SIM_PARSE_H */
