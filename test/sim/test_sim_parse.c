@@ -84,13 +84,15 @@ static void test_quote_should_keep_a_message_on_one_printable_line(void **state)
     assert_string_equal(sim_parse_quote("abcdefghijklmnopqrstuvwxyz", buf, sizeof(buf)),
                         "abcdefghijkl..."); /* 15 characters and the NUL */
     assert_string_equal(sim_parse_quote("fits", buf, sizeof(buf)), "fits");
-    assert_true(sim_parse_name_ok("hurst075"));
-    assert_true(sim_parse_name_ok("hs2p-x_1"));
-    assert_false(sim_parse_name_ok(""));
-    assert_false(sim_parse_name_ok("--board"));
-    assert_false(sim_parse_name_ok("a b"));
-    assert_false(sim_parse_name_ok("a/../b"));
-    assert_false(sim_parse_name_ok("abcdefghijklmnopqrstuvwxyz0123456789"));
+    char why[128];
+    assert_int_equal(sim_parse_name("hurst075", why, sizeof(why)), 0);
+    assert_int_equal(sim_parse_name("hs2p-x_1", why, sizeof(why)), 0);
+    assert_int_equal(sim_parse_name("", why, sizeof(why)), -1);
+    assert_int_equal(sim_parse_name("--board", why, sizeof(why)), -1);
+    assert_int_equal(sim_parse_name("a b", why, sizeof(why)), -1);
+    assert_non_null(strstr(why, "'a b' is not a profile name"));
+    assert_int_equal(sim_parse_name("a/../b", why, sizeof(why)), -1);
+    assert_int_equal(sim_parse_name("abcdefghijklmnopqrstuvwxyz0123456789", why, sizeof(why)), -1);
 }
 
 /* A scenario "0 start", the line, "4 end": refused at line 2, naming want. */
