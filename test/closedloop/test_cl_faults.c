@@ -1,6 +1,8 @@
 /* test_cl_faults.c - protections in closed loop: detection time, outputs off, restart. */
 #include "cl_helpers.h"
 
+#include <string.h>
+
 /* Runs until FAULT (or max_s); returns the time of the step that reported it,
  * -1 if none. Checks the same step switched the outputs off. */
 static double run_until_fault(simcore_t *s, double max_s)
@@ -231,6 +233,47 @@ static void test_failed_current_sensor_at_start_should_fault_within_50_ms(void *
     check_sensor_fault_at_start(SIM_EV_SENSOR_STUCK, 1.0, 0.6, "OPEN_LOOP, phase B stuck at 0 A");
 }
 
+/* Not the core's protection but the bench's: a plant driven beyond what its
+ * integration follows, or gone non-finite, stops the run with one message
+ * instead of feeding the core nonsense. */
+static void test_bench_should_stop_when_the_plant_diverges(void **state)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    char msg[320];
+    long period;
+    double lim_w;
+    (void)state;
+    simcore_cfg_default(&cfg);
+    cl_setup(&s, &cfg, "hurst", "mclv");
+    cl_run(&s, 0.01);
+    assert_false(s.diverged);
+    /* just inside the limit: runs on; just beyond: stops */
+    lim_w = SIMCORE_MAX_STEP_RAD * (double)s.rig.substeps / s.rig.ts / (double)MOTOR_POLE_PAIRS;
+    s.rig.plant.s.omega_m = -0.99 * lim_w;
+    s.rig.plant.s.stuck = false;
+    simcore_step(&s);
+    assert_false(s.diverged);
+    s.rig.plant.s.omega_m = -1.01 * lim_w;
+    simcore_step(&s);
+    assert_true(s.diverged);
+    period = s.rig.period;
+    simcore_step(&s);
+    assert_int_equal(s.rig.period, period); /* a no-op from then on */
+    simcore_diverged_msg(&s, msg, sizeof(msg));
+    printf("measured: %s\n", msg);
+    assert_non_null(strstr(msg, "rpm, beyond the"));
+
+    cl_setup(&s, &cfg, "hurst", "mclv");
+    cl_run(&s, 0.01);
+    s.rig.plant.s.omega_m = NAN;
+    s.rig.plant.s.stuck = false;
+    simcore_step(&s);
+    assert_true(s.diverged);
+    simcore_diverged_msg(&s, msg, sizeof(msg));
+    assert_non_null(strstr(msg, "non-finite"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -241,6 +284,7 @@ int main(void)
         cmocka_unit_test(test_hardware_fault_should_switch_off_at_the_next_period),
         cmocka_unit_test(test_failed_current_sensor_in_closed_loop_should_fault_within_50_ms),
         cmocka_unit_test(test_failed_current_sensor_at_start_should_fault_within_50_ms),
+        cmocka_unit_test(test_bench_should_stop_when_the_plant_diverges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -322,6 +322,11 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
             simcore_request(&s, MC_REQUEST_STOP);
         }
         simcore_step(&s);
+        if (s.diverged) {
+            snprintf(res->why, sizeof(res->why), "the plant diverged at %.3f s (%.0f rpm)",
+                     s.diverged_t_s, s.diverged_rpm);
+            break;
+        }
         if (s.st.fault != MC_FAULT_NONE && !saw_fault) {
             saw_fault = true;
             res->fault = s.st.fault;

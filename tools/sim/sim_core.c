@@ -367,6 +367,34 @@ static void update_metrics(simcore_t *s)
     }
 }
 
+static bool plant_diverged(const simcore_t *s)
+{
+    const sim_plant_t *p = &s->rig.plant;
+    double step_rad =
+        fabs((double)p->m.pole_pairs * p->s.omega_m) * s->rig.ts / (double)s->rig.substeps;
+    /* written so that a NaN anywhere fails it */
+    return !(isfinite(p->s.id) && isfinite(p->s.iq) && isfinite(p->s.theta_e) &&
+             step_rad <= SIMCORE_MAX_STEP_RAD);
+}
+
+void simcore_diverged_msg(const simcore_t *s, char *buf, size_t len)
+{
+    double lim_rpm = SIMCORE_MAX_STEP_RAD * (double)s->rig.substeps / s->rig.ts /
+                     (double)s->rig.plant.m.pole_pairs * 60.0 / (2.0 * M_PI);
+    if (isfinite(s->diverged_rpm) && isfinite(s->rig.plant.s.id) && isfinite(s->rig.plant.s.iq)) {
+        snprintf(buf, len,
+                 "at %.4f s the simulated rotor turned at %.0f rpm, beyond the %.0f rpm the plant "
+                 "integrates at %d sub-steps per period; run stopped (a load driving the rotor? "
+                 "reduce it or raise --substeps)",
+                 s->diverged_t_s, s->diverged_rpm, lim_rpm, s->rig.substeps);
+    } else {
+        snprintf(buf, len,
+                 "at %.4f s the simulated plant's state became non-finite; run stopped (raise "
+                 "--substeps or bring the scales nearer 1)",
+                 s->diverged_t_s);
+    }
+}
+
 void simcore_step(simcore_t *s)
 {
     sim_adc_frame_t f;
@@ -376,6 +404,9 @@ void simcore_step(simcore_t *s)
     const sim_plant_t *p = &s->rig.plant;
     double theta_true;
 
+    if (s->diverged) {
+        return;
+    }
     sim_rig_sample(&s->rig, &f);
     in.ia = f.ia;
     in.ib = f.ib;
@@ -419,6 +450,11 @@ void simcore_step(simcore_t *s)
     n->estimator_valid = s->st.estimator_valid;
 
     sim_rig_advance(&s->rig, out.duty, out.outputs_on);
+    if (plant_diverged(s)) {
+        s->diverged = true;
+        s->diverged_t_s = s->rig.t;
+        s->diverged_rpm = sim_plant_rpm(p);
+    }
     update_metrics(s);
     if (s->cfg.csv != NULL && s->cfg.csv_decim > 0 &&
         ((s->rig.period - 1) % s->cfg.csv_decim == 0 || n->t_s < s->zoom_until_s)) {
@@ -435,7 +471,7 @@ static double wall_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name)
+int simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name)
 {
     int next = 0, k;
     long periods = (long)floor(sc->end_s * (double)PWM_FREQUENCY_HZ + 0.5);
@@ -483,7 +519,7 @@ void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *na
         s->seg[k].win_s = s->seg[k].t0_s + 0.5 * (s->seg[k].t1_s - s->seg[k].t0_s);
     }
 
-    while (s->rig.period < periods) {
+    while (s->rig.period < periods && !s->diverged) {
         double t = s->rig.t;
         while (next < sc->n && sc->ev[next].t_s <= t + 0.5 / (double)PWM_FREQUENCY_HZ) {
             if (sc->ev[next].kind != SIM_EV_END) {
@@ -505,6 +541,7 @@ void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *na
     if (reported) {
         fprintf(stderr, "\n");
     }
+    return s->diverged ? -1 : 0;
 }
 
 void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)

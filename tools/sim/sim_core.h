@@ -102,7 +102,17 @@ typedef struct {
     simcore_segment_t seg[SIMCORE_MAX_SEG];
     int prev_state;
     double zoom_until_s; /* full-rate trace rows until this time */
+    /* The plant left what its integration can follow (simcore_step): set once,
+     * every later simcore_step is a no-op. */
+    bool diverged;
+    double diverged_t_s, diverged_rpm;
 } simcore_t;
+
+/* The largest electrical angle the plant may turn in one RK4 sub-step, rad:
+ * beyond it the rotating-frame coupling is integrated too coarsely to trust
+ * (RK4 on a pure rotation is stable to 2.8 rad but loses accuracy long before;
+ * 0.5 rad keeps the amplitude error per step near 0.01 %). */
+#define SIMCORE_MAX_STEP_RAD 0.5
 
 /* Returns 0, or -1 with a message on stderr (unknown profile, pole pairs
  * differ from the core's MOTOR_POLE_PAIRS...). */
@@ -111,14 +121,20 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg);
 /* Defaults: hurst on mclv, no mismatch, 4 sub-steps, board dead time and noise. */
 void simcore_cfg_default(simcore_cfg_t *cfg);
 
-/* One PWM period; fills s->now. */
+/* One PWM period; fills s->now. Once the plant's state is not finite or it
+ * turns faster than SIMCORE_MAX_STEP_RAD per sub-step (an active load driving
+ * the rotor), sets s->diverged and does nothing from then on. */
 void simcore_step(simcore_t *s);
+
+/* One line saying where and how the plant diverged (s->diverged set). */
+void simcore_diverged_msg(const simcore_t *s, char *buf, size_t len);
 
 /* Applies a scenario event now (controller- or plant-side). */
 void simcore_event(simcore_t *s, const sim_event_t *ev);
 
-/* Runs a whole scenario; segments for the summary are set from its events. */
-void simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name);
+/* Runs a whole scenario; segments for the summary are set from its events.
+ * Returns 0, or -1 when the plant diverged (the run stops there). */
+int simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name);
 
 /* Prints the summary table. */
 void simcore_print_summary(const simcore_t *s, FILE *f, const char *name);

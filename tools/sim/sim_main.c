@@ -208,7 +208,7 @@ int main(int argc, char **argv)
     const char *scen_path = NULL, *csv_path = NULL;
     const char *pty_only = NULL; /* a --pty option given, for the check below */
     char err[512], name[128], q[48], why[320], pq[256]; /* pq: a path, quoted */
-    int i;
+    int i, rc;
     clock_t c0;
     double wall;
 #ifdef SIM_HAVE_PTY
@@ -401,7 +401,7 @@ int main(int argc, char **argv)
         simcore_csv_header(s.cfg.csv);
     }
     c0 = clock();
-    simcore_run_scenario(&s, &sc, name);
+    rc = simcore_run_scenario(&s, &sc, name);
     wall = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (s.cfg.csv != NULL && fclose(s.cfg.csv) != 0) {
         return refuse("--csv", "write failed (disk full?)");
@@ -410,5 +410,12 @@ int main(int argc, char **argv)
     printf("   run: %.2f s simulated in %.2f s CPU (%.0f x real time)%s%s\n", s.rig.t, wall,
            (wall > 0.0) ? s.rig.t / wall : 0.0, (csv_path != NULL) ? ", trace " : "",
            (csv_path != NULL) ? csv_path : "");
+    if (rc != 0) {
+        /* the summary above covers the run up to the stop; exit 1: the run, not its input */
+        simcore_diverged_msg(&s, why, sizeof(why));
+        fflush(stdout);
+        fprintf(stderr, "sim: %s: %s\n", name, why);
+        return 1;
+    }
     return 0;
 }

@@ -115,7 +115,8 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     fflush(stdout);
 
     t0_wall = wall_s();
-    while (stop_requested == 0 && (cfg->duration_s <= 0.0 || s->rig.t < cfg->duration_s)) {
+    while (stop_requested == 0 && !s->diverged &&
+           (cfg->duration_s <= 0.0 || s->rig.t < cfg->duration_s)) {
         uint8_t in[64];
 
         /* the ISR, once per PWM period */
@@ -177,5 +178,12 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     close(master);
     printf("   monitor: stopped at %.3f s simulated, %u error replies, %u frames dropped\n",
            s->rig.t, (unsigned)mon.rx_errors, (unsigned)mon.rx_dropped);
+    if (s->diverged) {
+        char why[320];
+        simcore_diverged_msg(s, why, sizeof(why));
+        fflush(stdout);
+        fprintf(stderr, "sim: pty: %s\n", why);
+        return 1;
+    }
     return 0;
 }
