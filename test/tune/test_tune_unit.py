@@ -671,6 +671,26 @@ int main(void)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("CHECK FAILED  MC_OVERCURRENT_A", r.stdout)
 
+    def test_check_should_run_the_cores_own_compile_time_checks(self):
+        # A value the table's replay does not judge (the loop bandwidth only documents the
+        # gains below it) but the core refuses: --check answers as the compiler does.
+        h, board, _ = self.out["hurst075"]
+        bad = os.path.join(self.dir, "motor_bw.h")
+        with open(h) as f:
+            text = f.read()
+        self.assertIn("#define MOTOR_CURRENT_LOOP_BW_RAD_S 3000.0", text)
+        with open(bad, "w") as f:
+            f.write(text.replace("#define MOTOR_CURRENT_LOOP_BW_RAD_S 3000.0",
+                                 "#define MOTOR_CURRENT_LOOP_BW_RAD_S 30000.0"))
+        r = run_tune("--check", bad)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        lines = r.stderr.splitlines()
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn("does not compile with this profile", lines[0])
+        self.assertIn("MOTOR_CURRENT_LOOP_BW_RAD_S", lines[0])
+        r = run_tune("--check", bad, "--no-compile")
+        self.assertEqual(r.returncode, 0, r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

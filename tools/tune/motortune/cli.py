@@ -31,11 +31,16 @@ def _fail(prefix: str, msg: str, code: int) -> int:
     return code
 
 
+def find_cc() -> Optional[str]:
+    """$CC, else gcc, else cc; None when none is installed."""
+    return shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
+
+
 def compile_check(header: str, board: str) -> Optional[str]:
     """gcc -fsyntax-only of firmware/mc.c with this profile: the core's own
     compile-time checks. Returns None when it passes (or no gcc), else the
     first error line."""
-    cc = shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
+    cc = find_cc()
     if cc is None:
         return None
     repo = cheader.REPO
@@ -140,7 +145,10 @@ def check_profile(profile: str, board: Optional[str] = None) -> tuple[cheader.De
     return core, one_line(str(name), 100), board
 
 
-def check(profile: str, board: Optional[str] = None) -> int:
+def check(profile: str, board: Optional[str] = None, compile_: bool = True) -> int:
+    """The table in engineering units, then the authority: the core's own
+    compile-time checks (compile_check), which the table's replay may not
+    cover in full."""
     try:
         core, name, board = check_profile(profile, board)
     except InputError as e:
@@ -153,6 +161,14 @@ def check(profile: str, board: Optional[str] = None) -> int:
         p, m = core.failures[0]
         more = f" (and {len(core.failures) - 1} more, listed above)" if len(core.failures) > 1 else ""
         return _fail(f"{profile}: ", f"{p}: {m}{more}", 1)
+    if compile_:
+        if find_cc() is None:
+            print("tune: note: no C compiler found: the core's compile-time checks were not run",
+                  file=sys.stderr)
+            return 0
+        err = compile_check(profile, board)
+        if err is not None:
+            return _fail(f"{profile}: ", f"firmware/mc.c does not compile with this profile: {err}", 1)
     return 0
 
 
@@ -171,10 +187,11 @@ def _main(argv: Optional[list[str]]) -> int:
     ap.add_argument("--board", help="with --check: the board (default: the one the profile names, else mclv)")
     ap.add_argument("-o", "--output", help="header to write (default firmware/motors/motor_<name>.h)")
     ap.add_argument("--name", help="profile name (overrides the description's)")
-    ap.add_argument("--no-compile", action="store_true", help="skip the gcc -fsyntax-only check of firmware/mc.c")
+    ap.add_argument("--no-compile", action="store_true",
+                    help="skip the compile check of firmware/mc.c with the profile (the core's own checks)")
     a = ap.parse_args(argv)
     if a.check is not None:
-        return check(a.check, a.board)
+        return check(a.check, a.board, compile_=not a.no_compile)
     if not a.description:
         ap.print_usage(sys.stderr)
         return 2
