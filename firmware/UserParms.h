@@ -245,11 +245,11 @@
  * measured current must follow the current loops' reference. A speed-loop
  * window fails when the mean error on either axis exceeds half the
  * reference plus MC_SENSOR_ERR_FLOOR_FRACTION of MOTOR_CURRENT_MAX_A (half
- * of that in LOCK and OPEN_LOOP, whose errors are low-passed further; 0.1
- * in CLOSED_LOOP tripped on a low-inductance motor's current ringing; in
- * CLOSED_LOOP from 90 % of the nominal speed on, the q axis counts only
- * while its PI is inside the voltage circle: there the bus legitimately
- * leaves q short). MC_SENSOR_TIME_S of failing windows, net of passing
+ * of that in LOCK and OPEN_LOOP, whose errors are low-passed further; the
+ * floor stands above a low-inductance motor's current ringing). In
+ * CLOSED_LOOP, with the q PI at the voltage limit, the bus may hold q short
+ * by any amount: such a window is judged on d and on the estimator's
+ * validity instead. MC_SENSOR_TIME_S of failing windows, net of passing
  * ones at half weight, is a MC_FAULT_CURRENT_SENSOR. */
 #ifndef MC_SENSOR_TIME_S
 #define MC_SENSOR_TIME_S 0.007

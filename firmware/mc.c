@@ -717,9 +717,9 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     /* half the reference's larger component plus the floor (half of it at
      * the start, whose errors are low-passed further), per period, as a
      * window sum (< 2^15 x MC_SLOW_STEP_PERIODS) */
-    int32_t floor = (si->state == MC_STATE_CLOSED_LOOP) ? (int32_t)MC_SENSOR_FLOOR_Q15
-                                                        : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
-    int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + floor) * (int32_t)MC_SLOW_STEP_PERIODS;
+    int32_t flr = (si->state == MC_STATE_CLOSED_LOOP) ? (int32_t)MC_SENSOR_FLOOR_Q15
+                                                      : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
+    int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + flr) * (int32_t)MC_SLOW_STEP_PERIODS;
     bool bad;
     if (si->state != MC_STATE_LOCK && si->state != MC_STATE_OPEN_LOOP &&
         si->state != MC_STATE_CLOSED_LOOP) {
@@ -736,24 +736,21 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     }
     ed = (ed < 0) ? -ed : ed;
     eq = (eq < 0) ? -eq : eq;
-    if (si->state == MC_STATE_CLOSED_LOOP) {
-        /* near and above the nominal speed the circle legitimately leaves q
-         * short of its reference; below it a q PI at the voltage limit for
-         * most of the window fails it once the reference's ramp is done
-         * (accelerating near the bus limit legitimately saturates q; holding
-         * a speed below 90 % of nominal does not) */
-        bool high = mc->spd_ref >= MC_SENSOR_Q_SHORT_Q15 || mc->spd_ref <= -MC_SENSOR_Q_SHORT_Q15;
-        bool q_sat = 2U * si->sens_qsat > MC_SLOW_STEP_PERIODS;
-        /* the reference's ramp done (within MC_SENSOR_STEADY_Q15: the pot's
-         * noise keeps it moving by a few counts) */
-        int32_t ramp = (int32_t)so->speed_target - (int32_t)mc->spd_ref;
-        bool steady = ramp <= MC_SENSOR_STEADY_Q15 && ramp >= -MC_SENSOR_STEADY_Q15;
-        bad = ed > thr || (q_sat ? (!high && steady) : eq > thr);
+    if (si->state == MC_STATE_CLOSED_LOOP && 2U * si->sens_qsat > MC_SLOW_STEP_PERIODS) {
+        /* q at the voltage limit for most of the window: the circle, not
+         * the sensor, may hold its current short of the reference, by any
+         * amount (a bus or a load the speed asks too much of), so q's error
+         * says nothing. The d axis, which the limit serves first, still
+         * does, and so does the estimator: a model fed a failed sensor's
+         * currents soon stops vouching for its estimate. */
+        bad = ed > thr || !si->est_valid;
     } else {
         bad = ed > thr || eq > thr;
     }
     if (bad && MC_SENSOR_CHECK) {
-        mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
+        if (mc->sens_cnt < MC_SENSOR_TRIP) {
+            mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
+        }
     } else if (mc->sens_cnt > 0U) {
         mc->sens_cnt--;
     }
@@ -1039,6 +1036,7 @@ static void mc_window_end(mc_t *mc)
     si->sens_q = mc->sens_q;
     si->sens_qsat = mc->sens_qsat;
     si->sens_ref = mc->i_ref_frame;
+    si->est_valid = smc_valid(&mc->smc);
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
@@ -1429,10 +1427,17 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    low-inductance motor's current noise; at the start the means are
  *    low-passed over MC_SENSOR_START_WINDOWS too, so that a rotor still
  *    spinning from a failed attempt, whose back-EMF the lock's loop cannot
- *    hold, does not count). In CLOSED_LOOP from 90 % of the nominal speed
- *    the circle legitimately leaves q short (field weakening, heavy load at
- *    the top), so there q counts only while its PI is inside it; below,
- *    a q PI at its limit for most of the window fails the window. Failing
+ *    hold, does not count). In CLOSED_LOOP the voltage circle can leave q
+ *    short of its reference by any amount, legitimately: field weakening,
+ *    a load or a sagging bus that asks more than the bus can drive (the
+ *    speed then sags and the speed PI winds the reference up to its limit
+ *    while the current stays where the voltage holds it). So a window with
+ *    the q PI at its limit for most of its periods is judged on d and on
+ *    the estimator instead: it fails when d does or when the estimator
+ *    does not vouch for its estimate at the window end (smc_valid: the
+ *    speed above its minimum and the back-EMF within its band of what Ke
+ *    predicts), which a model fed a failed sensor's currents soon stops
+ *    doing, while a healthy drive held at the circle keeps it. Failing
  *    windows count 2, passing ones -1: MC_SENSOR_TIME_S of failure net sets
  *    slow_out.sensor_fault, applied as MC_FAULT_CURRENT_SENSOR. A phase-A
  *    sensor failed during LOCK reads what the phase carries there (the

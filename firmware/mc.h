@@ -216,8 +216,9 @@ typedef struct {
     int16_t dt_counts;      /* the dead time in use, duty counts */
     q15_t vbus;             /* the window end's bus, Q15 */
     int32_t sens_d, sens_q; /* the window's current-error sums (mc.c note 5) ... */
-    uint8_t sens_qsat;      /* ... periods with the q PI at its limit ... */
-    dq_q15_t sens_ref;      /* ... and the current reference at the window end */
+    uint16_t sens_qsat;     /* ... periods with the q PI at its limit ... */
+    dq_q15_t sens_ref;      /* ... the current reference at the window end ... */
+    bool est_valid;         /* ... and whether the estimator vouches for its estimate */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -277,7 +278,7 @@ typedef struct {
     dq_q15_t i_ref_frame;   /* i_ref in the transforms' frame this period (theta_offset) */
     int32_t sens_d, sens_q; /* current-sensor plausibility (mc.c note 5): this window's sums of
                                the current error on d and q, Q15 of I_FS */
-    uint8_t sens_qsat;      /* ... and of periods with the q PI at its voltage limit */
+    uint16_t sens_qsat;     /* ... and of periods with the q PI at its voltage limit */
     dq_q15_t v_dq;          /* after the circle limit and ripple compensation */
     uint16_t circle_redos;  /* periods the q step was redone at the circle (mc.c note 3),
                                saturates */

@@ -429,20 +429,21 @@ MC_CHECK(MC_HANDOFF_BLEED_DEG_PER_S, MC_BLEED_STEP_ >= 1.0 && MC_BLEED_STEP_ <= 
 #define MC_SENSOR_WINDOWS_ ((double)MC_SENSOR_TIME_S * (double)MC_SPEED_LOOP_HZ)
 MC_CHECK(MC_SENSOR_TIME_S, MC_SENSOR_WINDOWS_ >= 2.0 && MC_SENSOR_WINDOWS_ <= 100.0,
          "must be 2 to 100 speed-loop windows");
-MC_CHECK(MC_SENSOR_CHECK, MC_SENSOR_CHECK == 0 || MC_SENSOR_CHECK == 1, "must be 0 or 1");
+MC_CHECK(MC_SENSOR_CHECK,
+         MC_IS_INTEGER_(MC_SENSOR_CHECK) && (MC_SENSOR_CHECK == 0 || MC_SENSOR_CHECK == 1),
+         "must be 0 or 1");
+/* the floor is halved at the start: at least one count there */
 MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
-         MC_SENSOR_ERR_FLOOR_FRACTION > 0.0 && MC_SENSOR_ERR_FLOOR_FRACTION <= 0.5,
-         "must be in (0, 0.5] of MOTOR_CURRENT_MAX_A");
+         MC_SENSOR_ERR_FLOOR_FRACTION <= 0.5 &&
+             MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A /
+                     (double)BOARD_I_FULLSCALE_A * 32768.0 >=
+                 2.0,
+         "must be at most 0.5 of MOTOR_CURRENT_MAX_A and at least 2 Q15 counts of it");
 #define MC_SENSOR_TRIP ((uint8_t)(2.0 * MC_SENSOR_WINDOWS_ + 0.5))
 #define MC_SENSOR_FLOOR_Q15                                                                        \
     ((q15_t)(MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A /                          \
                  (double)BOARD_I_FULLSCALE_A * 32768.0 +                                           \
              0.5))
-/* From 90 % of the nominal speed on, the voltage circle may hold q short;
- * below it, only while the reference still ramps (by more than 2 % of the
- * nominal speed from its target: the pot's noise stays below). */
-#define MC_SENSOR_Q_SHORT_Q15 MC_Q15_RPM(0.9 * MOTOR_SPEED_NOMINAL_RPM)
-#define MC_SENSOR_STEADY_Q15  ((int32_t)MC_Q15_RPM(0.02 * MOTOR_SPEED_NOMINAL_RPM))
 /* The start's low-pass over windows: 8 (8 ms at 1 kHz), so that a rotor still
  * spinning from a failed attempt, whose back-EMF the lock's current loop
  * cannot hold, averages out; in CLOSED_LOOP the window's own 1 ms average

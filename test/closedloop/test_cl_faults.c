@@ -233,6 +233,45 @@ static void test_failed_current_sensor_at_start_should_fault_within_50_ms(void *
     check_sensor_fault_at_start(SIM_EV_SENSOR_STUCK, 1.0, 0.6, "OPEN_LOOP, phase B stuck at 0 A");
 }
 
+/* A healthy drive held at the voltage circle below the nominal speed (a
+ * load or a sagging bus that asks more than the bus can drive) leaves q
+ * short of its reference by any amount: the sensor check must not call
+ * that a failed sensor. The speed sags; nothing trips. */
+static void test_voltage_limited_running_should_not_trip_the_sensor_check(void **state)
+{
+    static simcore_t s;
+    static const struct {
+        double rpm, load, vbus;
+    } cases[] = {
+        {2200.0, 0.8, 24.0}, /* 0.08 N m at 2,200 rpm: the bus holds 2,050 */
+        {1800.0, 1.0, 24.0}, /* rated load at 1,800 rpm */
+        {2200.0, 0.5, 22.0}, /* a sag under half load */
+        {2200.0, 0.0, 16.0}, /* a deep sag, no load: q short by Imax */
+        {2000.0, 1.0, 16.0},
+    };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+        double sat = 0.0;
+        long n = 0;
+        setup_running(&s, cases[k].rpm);
+        cl_event(&s, SIM_EV_LOAD, cases[k].load * s.rated_nm, 0.0);
+        cl_event(&s, SIM_EV_VBUS, cases[k].vbus, 0.0);
+        while (n < (long)(1.5 * PWM_FREQUENCY_HZ)) {
+            simcore_step(&s);
+            /* the last window's count of periods with the q PI at the circle */
+            sat += (2U * s.mc.slow_in.sens_qsat > MC_SLOW_STEP_PERIODS) ? 1.0 : 0.0;
+            n++;
+        }
+        printf("measured: %.0f rpm asked, %.2f x rated load, %.0f V: %s at %.0f rpm, q at the "
+               "voltage limit in %.0f %% of the windows\n",
+               cases[k].rpm, cases[k].load, cases[k].vbus, simcore_state_name(s.now.state),
+               s.now.speed_rpm, 100.0 * sat / (double)n);
+        assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
+        assert_true(sat > 0.2 * (double)n); /* it did run at the limit */
+    }
+}
+
 /* Not the core's protection but the bench's: a plant driven beyond what its
  * integration follows, or gone non-finite, stops the run with one message
  * instead of feeding the core nonsense. */
@@ -284,6 +323,7 @@ int main(void)
         cmocka_unit_test(test_hardware_fault_should_switch_off_at_the_next_period),
         cmocka_unit_test(test_failed_current_sensor_in_closed_loop_should_fault_within_50_ms),
         cmocka_unit_test(test_failed_current_sensor_at_start_should_fault_within_50_ms),
+        cmocka_unit_test(test_voltage_limited_running_should_not_trip_the_sensor_check),
         cmocka_unit_test(test_bench_should_stop_when_the_plant_diverges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
