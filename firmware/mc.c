@@ -171,7 +171,13 @@ static bool mc_take(mc_t *mc, mc_request_t r)
 
 void mc_request(mc_t *mc, mc_request_t r)
 {
-    if ((unsigned)r < (unsigned)MC_REQUEST_COUNT) {
+    if (r == MC_REQUEST_REF_POT) {
+        /* a choice of reference like mc_set_reference, on the same
+         * sequence: of the two, the later one wins even within a period */
+        mc->ref_to_pot = true;
+        mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
+        mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
+    } else if ((unsigned)r < (unsigned)MC_REQUEST_COUNT) {
         mc->req_posted[r] = (uint8_t)(mc->req_posted[r] + 1U);
         mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* after the request: mc.h note 1 */
     }
@@ -180,6 +186,7 @@ void mc_request(mc_t *mc, mc_request_t r)
 void mc_set_reference(mc_t *mc, int16_t ref)
 {
     mc->ref_remote = ref;
+    mc->ref_to_pot = false;
     mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
     mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
 }
@@ -1155,9 +1162,6 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         req_hw = mc_take(mc, MC_REQUEST_HW_FAULT);
         req_start = mc_take(mc, MC_REQUEST_START);
         req_stop = mc_take(mc, MC_REQUEST_STOP);
-        if (mc_take(mc, MC_REQUEST_REF_POT)) {
-            mc->ref_from_remote = false;
-        }
         uint8_t gseq = mc->gain_seq;
         if (gseq != mc->gain_seen) {
             mc->gain_seen = gseq;
@@ -1166,7 +1170,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         uint8_t seq = mc->ref_remote_seq;
         if (seq != mc->ref_remote_seen) {
             mc->ref_remote_seen = seq;
-            mc->ref_from_remote = true;
+            mc->ref_from_remote = !mc->ref_to_pot;
         }
     }
     /* 2. Offsets off; ic from the other two. */
@@ -1314,8 +1318,11 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->duty[2] = mc->duty[2];
     st->outputs_on = mc->outputs_on;
     st->deadtime = mc->dt_counts;
-    st->ref_remote = mc->ref_from_remote;
-    st->ref_seq = mc->ref_remote_seq;
+    /* a choice posted but not yet taken counts: the writer reading its
+     * own write back must find it, whether or not a period fell between */
+    uint8_t seq = mc->ref_remote_seq;
+    st->ref_remote = (seq != mc->ref_remote_seen) ? !mc->ref_to_pot : mc->ref_from_remote;
+    st->ref_seq = seq;
 }
 
 /*

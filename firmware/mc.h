@@ -166,8 +166,9 @@ typedef struct {
     int16_t deadtime;       /* the dead time compensated and modelled, Tcy (duty counts):
                                PWM_DEADTIME_NS's until a lock measured it (MC_DEADTIME_MEASURE) */
     bool ref_remote;        /* the reference is a set one (mc_set_reference), not the pot */
-    uint8_t ref_seq;        /* mc_set_reference calls so far, mod 256: a writer that finds it
-                               moved since its own last call has lost the reference */
+    uint8_t ref_seq;        /* choices of reference so far (mc_set_reference, REF_POT), mod
+                               256: a writer that finds it moved since its own last call has
+                               lost the reference */
 } mc_status_t;
 
 /* ---- run-time gains -------------------------------------------------------- *
@@ -248,7 +249,8 @@ typedef struct {
     volatile uint8_t req_seq; /* incremented last by mc_request, mc_set_reference, mc_set_gain */
     uint8_t req_seen;
     volatile int16_t ref_remote;     /* remote reference (speed or Iq), Q15 */
-    volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference */
+    volatile bool ref_to_pot;        /* the last choice: the pot (MC_REQUEST_REF_POT) */
+    volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference and REF_POT */
     uint8_t ref_remote_seen;
     bool ref_from_remote;
     volatile int16_t gain_posted[MC_GAIN_COUNT]; /* mc_set_gain; Q15 mantissas */

@@ -625,6 +625,34 @@ static void test_speed_target_should_follow_the_pot_then_the_remote_reference(vo
     assert_int_equal(st.speed_target, mc_pot_to_speed(32767));
 }
 
+/* One owner for the reference (mc.h, mc_status_t.ref_seq): the later of two
+ * choices posted within one period wins, and a writer reading the status
+ * back finds its own choice at once, before the core has taken it. */
+static void test_the_later_choice_of_reference_should_win_and_show_at_once(void **state)
+{
+    (void)state;
+    const long two = 2L * MC_SLOW_STEP_PERIODS;
+    mc_status_t s0;
+    mc_status(&mc, &s0);
+    mc_set_reference(&mc, MC_Q15_RPM(1000.0));
+    mc_status(&mc, &st);
+    assert_true(st.ref_remote);
+    assert_int_equal(st.ref_seq, (uint8_t)(s0.ref_seq + 1U));
+    mc_request(&mc, MC_REQUEST_REF_POT); /* after it, in the same period */
+    mc_status(&mc, &st);
+    assert_false(st.ref_remote);
+    assert_int_equal(st.ref_seq, (uint8_t)(s0.ref_seq + 2U));
+    steps(two, frame(0, 0, MC_VBUS_NOMINAL_Q15, 16384));
+    assert_false(st.ref_remote);
+    assert_int_equal(st.speed_target, mc_pot_to_speed(16384));
+    /* the other order */
+    mc_request(&mc, MC_REQUEST_REF_POT);
+    mc_set_reference(&mc, MC_Q15_RPM(1000.0));
+    steps(two, frame(0, 0, MC_VBUS_NOMINAL_Q15, 16384));
+    assert_true(st.ref_remote);
+    assert_int_equal(st.speed_target, MC_Q15_RPM(1000.0));
+}
+
 /* ---- dead time and applied voltage -------------------------------------------------------------
  */
 
@@ -865,6 +893,8 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(test_pot_should_map_linearly_onto_the_speed_reference_range, setup),
         cmocka_unit_test_setup(test_pot_should_map_linearly_onto_the_torque_reference_range, setup),
+        cmocka_unit_test_setup(test_the_later_choice_of_reference_should_win_and_show_at_once,
+                               setup),
         cmocka_unit_test_setup(test_speed_target_should_follow_the_pot_then_the_remote_reference,
                                setup),
         cmocka_unit_test_setup(

@@ -431,8 +431,15 @@ static void test_motor_command_should_post_start_stop_and_pot_requests(void **st
     (void)state;
     for (i = 0; i < 3; i++) {
         uint8_t was = fx.mc.req_posted[cases[i].req];
+        uint8_t was_seq = fx.mc.ref_remote_seq;
         expect_ok(transact(MONITOR_CMD_MOTOR, &cases[i].action, 1), MONITOR_CMD_MOTOR);
-        assert_int_equal(fx.mc.req_posted[cases[i].req], (uint8_t)(was + 1U));
+        if (cases[i].req == MC_REQUEST_REF_POT) {
+            /* a choice of reference: on the reference's own sequence (mc.c) */
+            assert_true(fx.mc.ref_to_pot);
+            assert_int_equal(fx.mc.ref_remote_seq, (uint8_t)(was_seq + 1U));
+        } else {
+            assert_int_equal(fx.mc.req_posted[cases[i].req], (uint8_t)(was + 1U));
+        }
     }
     memcpy(before, (const void *)fx.mc.req_posted, sizeof before);
     expect_error(transact(MONITOR_CMD_MOTOR, &bad, 1), MONITOR_CMD_MOTOR, MONITOR_ERR_RANGE);
