@@ -78,15 +78,22 @@
 /* OSCCON.NOSC/COSC code of "primary oscillator (XT) with PLL" [SRC: AN1078]. */
 #define HAL_OSC_PRIPLL 3u
 
-Q15_STATIC_ASSERT(HAL_PLL_M *HAL_FIN_HZ == 2L * BOARD_FCY_HZ * HAL_PLL_N1 * HAL_PLL_N2,
-                  "BOARD_FCY_HZ is not reachable from the 8 MHz crystal with N1 = N2 = 2");
-Q15_STATIC_ASSERT(HAL_PLL_M >= 2L && HAL_PLL_M <= 513L, "PLLFBD out of its 9-bit range");
-Q15_STATIC_ASSERT(HAL_FIN_HZ / HAL_PLL_N1 >= HAL_PLL_PFD_MIN_HZ &&
-                      HAL_FIN_HZ / HAL_PLL_N1 <= HAL_PLL_PFD_MAX_HZ,
-                  "PLL input after N1 outside 0.8..8 MHz");
-Q15_STATIC_ASSERT(HAL_PLL_VCO_HZ >= HAL_PLL_VCO_MIN_HZ && HAL_PLL_VCO_HZ <= HAL_PLL_VCO_MAX_HZ,
-                  "PLL VCO outside 100..200 MHz");
-Q15_STATIC_ASSERT(BOARD_FCY_HZ <= 40000000L, "the dsPIC33F runs at most 40 MIPS");
+/* HAL_CHECK(PARAM, cond, "why"): the build stops at this line naming the
+ * user's parameter the condition is about ("PARAM__out_of_range" in the
+ * first error line, as the core's MC_CHECK does). */
+#define HAL_CHECK(param, cond, msg) Q15_CHECK_DECL(param##__out_of_range, cond)
+
+HAL_CHECK(BOARD_FCY_HZ, HAL_PLL_M *HAL_FIN_HZ == 2L * BOARD_FCY_HZ * HAL_PLL_N1 * HAL_PLL_N2,
+          "BOARD_FCY_HZ is not reachable from the 8 MHz crystal with N1 = N2 = 2");
+HAL_CHECK(BOARD_FCY_HZ, HAL_PLL_M >= 2L && HAL_PLL_M <= 513L, "PLLFBD out of its 9-bit range");
+HAL_CHECK(BOARD_FCY_HZ,
+          HAL_FIN_HZ / HAL_PLL_N1 >= HAL_PLL_PFD_MIN_HZ &&
+              HAL_FIN_HZ / HAL_PLL_N1 <= HAL_PLL_PFD_MAX_HZ,
+          "PLL input after N1 outside 0.8..8 MHz");
+HAL_CHECK(BOARD_FCY_HZ,
+          HAL_PLL_VCO_HZ >= HAL_PLL_VCO_MIN_HZ && HAL_PLL_VCO_HZ <= HAL_PLL_VCO_MAX_HZ,
+          "PLL VCO outside 100..200 MHz");
+HAL_CHECK(BOARD_FCY_HZ, BOARD_FCY_HZ <= 40000000L, "the dsPIC33F runs at most 40 MIPS");
 
 /* ---- MCPWM1 (hardware.md 1.4-1.6) ----------------------------------------- *
  * Center-aligned (PTMOD = 10): one period = 2 * (PTPER + 1) Tcy, so
@@ -95,12 +102,12 @@ Q15_STATIC_ASSERT(BOARD_FCY_HZ <= 40000000L, "the dsPIC33F runs at most 40 MIPS"
  * duty is 2 * (PTPER + 1) = PWM_DUTY_MAX: the core's duties go to PDCx
  * unscaled. */
 #define HAL_PTPER ((uint16_t)(BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ) - 1L))
-Q15_STATIC_ASSERT(BOARD_FCY_HZ % (2L * (long)PWM_FREQUENCY_HZ) == 0,
-                  "PWM_FREQUENCY_HZ does not divide Fcy / 2: the period would not be exact");
-Q15_STATIC_ASSERT(BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ) - 1L <= 0x7FFFL,
-                  "PTPER is 15 bits: PWM_FREQUENCY_HZ too low");
-Q15_STATIC_ASSERT(2L * (BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ)) == (long)PWM_DUTY_MAX,
-                  "PWM_DUTY_MAX must be 2 * (PTPER + 1), the PDCx count of 100 % duty");
+HAL_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ % (2L * (long)PWM_FREQUENCY_HZ) == 0,
+          "PWM_FREQUENCY_HZ does not divide Fcy / 2: the period would not be exact");
+HAL_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ) - 1L <= 0x7FFFL,
+          "PTPER is 15 bits: PWM_FREQUENCY_HZ too low");
+HAL_CHECK(PWM_DUTY_MAX, 2L * (BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ)) == (long)PWM_DUTY_MAX,
+          "PWM_DUTY_MAX must be 2 * (PTPER + 1), the PDCx count of 100 % duty");
 
 #define HAL_P1TCON_PTEN_UPDOWN 0x8002u /* PTEN = 1, PTMOD = 10 (center-aligned), 1:1 [SRC] */
 #define HAL_PWM1CON1_COMPL_ALL 0x0077u /* PEN1H..3H, PEN1L..3L, PMOD = 0 complementary [SRC] */
@@ -112,9 +119,10 @@ Q15_STATIC_ASSERT(2L * (BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ)) == (long)P
 #define HAL_DEADTIME_TCY ((PWM_DEADTIME_NS * (BOARD_FCY_HZ / 1000L) + 500000L) / 1000000L)
 #define HAL_DTA          ((uint16_t)(HAL_DEADTIME_TCY / 2L))
 #define HAL_P1DTCON1     ((uint16_t)((HAL_DTAPS_2TCY << 6) | HAL_DTA))
-Q15_STATIC_ASSERT(HAL_DEADTIME_TCY % 2L == 0, "dead time is not a whole number of 2-Tcy units");
-Q15_STATIC_ASSERT(HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
-                  "dead time outside DTA's 1..63 units of 2 Tcy");
+HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY % 2L == 0,
+          "dead time is not a whole number of 2-Tcy units");
+HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
+          "dead time outside DTA's 1..63 units of 2 Tcy");
 
 /* Special event: ADC start 80 Tcy after the period's midpoint (PTMR =
  * PTPER, all low switches on), counting down: "80 offset ... to avoid

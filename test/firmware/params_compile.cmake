@@ -4,6 +4,7 @@
 #   -DCC=<compiler> -DSRC=<repo root> -DPROBE=<params_probe.c>
 #   -DDEF=<NAME=value> (optional) -DPROFILE=<board>[/<motor>] (optional)
 #   -DSTD=<c99|c11> (default c99)
+#   -DHAL=1 (optional) the HAL's include paths (PROBE a HAL source)
 #   -DEXPECT=<name>  the build must fail and the FIRST line reporting an error
 #                    must name <name> (as a word, or inside a check's
 #                    bit-field name such as NAME__out_of_range_for__OTHER)
@@ -26,6 +27,11 @@ if(PROFILE)
     list(GET prof 1 motor)
     list(APPEND args "-DMC_MOTOR_HEADER=\"motors/motor_${motor}.h\"")
   endif()
+endif()
+if(HAL)
+  # the dsPIC HAL's own checks, against the SFR stand-in
+  list(APPEND args -I${SRC}/test/support/sfr -I${SRC}/test/support -I${SRC}/hal
+       -I${SRC}/hal/dspic33f)
 endif()
 if(DEF)
   list(APPEND args "-D${DEF}")
