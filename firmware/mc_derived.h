@@ -432,18 +432,15 @@ MC_CHECK(MC_SENSOR_TIME_S, MC_SENSOR_WINDOWS_ >= 2.0 && MC_SENSOR_WINDOWS_ <= 10
 MC_CHECK(MC_SENSOR_CHECK,
          MC_IS_INTEGER_(MC_SENSOR_CHECK) && (MC_SENSOR_CHECK == 0 || MC_SENSOR_CHECK == 1),
          "must be 0 or 1");
-/* the floor is halved at the start: at least one count there */
+/* the floor in Q15 counts of I_FS; halved at the start: at least one count there */
+#define MC_SENSOR_FLOOR_                                                                           \
+    (MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A / (double)BOARD_I_FULLSCALE_A *    \
+     32768.0)
 MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
-         MC_SENSOR_ERR_FLOOR_FRACTION <= 0.5 &&
-             MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A /
-                     (double)BOARD_I_FULLSCALE_A * 32768.0 >=
-                 2.0,
+         MC_SENSOR_ERR_FLOOR_FRACTION <= 0.5 && MC_SENSOR_FLOOR_ >= 2.0,
          "must be at most 0.5 of MOTOR_CURRENT_MAX_A and at least 2 Q15 counts of it");
-#define MC_SENSOR_TRIP ((uint8_t)(2.0 * MC_SENSOR_WINDOWS_ + 0.5))
-#define MC_SENSOR_FLOOR_Q15                                                                        \
-    ((q15_t)(MC_SENSOR_ERR_FLOOR_FRACTION * (double)MOTOR_CURRENT_MAX_A /                          \
-                 (double)BOARD_I_FULLSCALE_A * 32768.0 +                                           \
-             0.5))
+#define MC_SENSOR_TRIP      ((uint8_t)(2.0 * MC_SENSOR_WINDOWS_ + 0.5))
+#define MC_SENSOR_FLOOR_Q15 ((q15_t)(MC_SENSOR_FLOOR_ + 0.5))
 /* The start's low-pass over windows: 8 (8 ms at 1 kHz), so that a rotor still
  * spinning from a failed attempt, whose back-EMF the lock's current loop
  * cannot hold, averages out; in CLOSED_LOOP the window's own 1 ms average
