@@ -222,7 +222,7 @@ class FuzzDescriptions(unittest.TestCase):
         r = answer(self, generate, text)
         if not isinstance(r, Exception):  # accepted: then every gain the core stores is usable
             self.assertGreaterEqual(derive.gain_counts(
-                r["MOTOR_SPEED_KI_A_PER_RPM_S"] / 1000.0 * r["MOTOR_SPEED_FULLSCALE_RPM"] / r.i_fs),
+                r["MOTOR_SPEED_KI_A_PER_RPM_S"] / 1000.0 * r["MOTOR_SPEED_FULLSCALE_RPM"] / r.i_fs, integral=True),
                 derive.MIN_GAIN_COUNTS)
 
     @FUZZ

@@ -38,7 +38,7 @@ BASE_TOML = HURST_TOML.replace('name = "hurst_t"\n',
                                'name = "hostile_t"\ndescription = "hostile test motor"\n')
 
 
-def run_tune(*args, umask=None):
+def run_tune(*args, umask=None, env=None, cwd=None):
     """(exit code, stderr lines, stdout, seconds); a hang is a failure, not a wait."""
     def pre():
         if umask is not None:
@@ -46,7 +46,8 @@ def run_tune(*args, umask=None):
     t0 = time.monotonic()
     try:
         r = subprocess.run([sys.executable, TUNE, *args], capture_output=True, text=True, errors="replace",
-                           timeout=TIMEOUT_S, preexec_fn=pre if umask is not None else None)
+                           timeout=TIMEOUT_S, preexec_fn=pre if umask is not None else None,
+                           env=None if env is None else {**os.environ, **env}, cwd=cwd)
     except subprocess.TimeoutExpired:
         raise AssertionError(f"tools/tune {' '.join(args)[:80]}: no answer within {TIMEOUT_S:.0f} s") from None
     return r.returncode, r.stderr.strip().splitlines(), r.stdout, time.monotonic() - t0
@@ -204,6 +205,9 @@ class CheckNeverExecutes(Hostile):
             ("#ifdef without a name", "#ifdef\n#endif\n", "#ifdef"),
             ("unterminated comment (it swallows the guard's #endif)", "/* no end\n", "#if without #endif"),
             ("conflicting redefinition", "#define MOTOR_POLE_PAIRS 4\n", "MOTOR_POLE_PAIRS"),
+            # the build would read the included file's values, --check would not: refused
+            ("#include in a profile", '#include "motor_hurst.h"\n', "dir.h:"),
+            ("a floating constant in #if (gcc refuses it)", "#if 1.5 > 1\n#endif\n", "floating constant"),
         ]
         for label, insert, fragment in cases:
             with self.subTest(label):
@@ -212,6 +216,11 @@ class CheckNeverExecutes(Hostile):
                 self.one_line(f"--check {label}", code, lines, 2, fragment)
         code, lines, _, _ = run_tune("--check", self.write("dir.h", self.base + "/* no end\n"))
         self.one_line("--check unterminated comment at the end", code, lines, 2, "comment not closed")
+        # inside #if 0 the compiler does not read the #include either
+        text = self.base.replace("#endif /* MOTOR_HURST075_H */", '#if 0\n#include "x.h"\n#endif\n'
+                                 "#endif /* MOTOR_HURST075_H */")
+        code, lines, _, _ = run_tune("--no-compile", "--check", self.write("dir.h", text))
+        self.assertEqual(code, 0, lines)
 
 
 # ---- defect 4 (--check side): tracebacks on bad values --------------------------------------
@@ -256,6 +265,53 @@ class CheckBadValues(Hostile):
         code, lines, _, _ = run_tune("--check", self.write("v.h", text))
         self.one_line("--check voltage limit fraction 2 (used to raise ValueError)", code, lines, 1,
                       "MC_VOLTAGE_LIMIT_FRACTION")
+
+    def test_values_beyond_every_range_should_fail_the_check_naming_the_macro(self):
+        # each used to end in "internal error" (OverflowError, ValueError), exit 3
+        cases = [
+            ("open-loop damping 1e305 s (int of inf)", {"MOTOR_OL_DAMP_S": "1e305"}, "MOTOR_OL_DAMP_S"),
+            ("ADC trigger 1e308 Tcy (int of -inf)", {"PWM_ADC_TRIGGER_TCY": "1e308"}, "PWM_ADC_TRIGGER_TCY"),
+            ("estimator floor 90000 rpm on a 100000 rpm scale (Q15 of more than 1)",
+             {"MC_ESTIMATOR_MIN_RPM": "90000.0", "MC_SPEED_FULLSCALE_RPM": "100000.0"}, "MC_ESTIMATOR_MIN_RPM"),
+        ]
+        for label, defines, fragment in cases:
+            with self.subTest(label):
+                text = self.base
+                for name, body in defines.items():
+                    if re.search(rf"^#define {name} ", text, flags=re.M):
+                        text = replace_define(text, name, body)
+                    else:
+                        text = text.replace("#endif /* MOTOR_HURST075_H */",
+                                            f"#define {name} {body}\n#endif /* MOTOR_HURST075_H */")
+                code, lines, out, _ = run_tune("--check", self.write("v.h", text))
+                self.one_line(f"--check {label}", code, lines, 1, fragment)
+                self.assertIn("CHECK FAILED", out)
+
+    def test_every_macro_set_to_every_extreme_should_give_only_input_errors(self):
+        # In-process: each of the 80-odd macros the core reads (board, profile, UserParms.h),
+        # set to each extreme in turn, and the pairs a range check joins: derive_core answers
+        # with failed checks or an InputError, never another exception (--check's exit 3).
+        sys.path.insert(0, os.path.join(REPO, "tools", "tune"))
+        from motortune import cheader
+        from motortune.units import InputError
+        base = cheader.profile_env(os.path.join(MOTORS, "motor_hurst075.h"), "mclv").defs
+        extremes = ["1e305", "-1e305", "1e308", "-1e308", "1e-305", "0", "0.0", "(-1)", "90000.0", "100000.0",
+                    "32768", "4294967296.0", "9223372036854775807"]
+        pairs = [("MC_ESTIMATOR_MIN_RPM", "MC_SPEED_FULLSCALE_RPM"), ("MOTOR_RAMP_END_RPM", "PWM_FREQUENCY_HZ"),
+                 ("MOTOR_OL_DAMP_S", "PWM_FREQUENCY_HZ"), ("PWM_ADC_TRIGGER_TCY", "BOARD_FCY_HZ")]
+        cases = [{n: v} for n in sorted(base.raw) for v in extremes]
+        cases += [{a: v, b: w} for a, b in pairs for v in extremes for w in extremes]
+        crashed = []
+        for case in cases:
+            defs = cheader.Defines({**base.raw, **case}, dict(base.xtables), set(base.funcs), dict(base.origin))
+            try:
+                cheader.derive_core(cheader.Env(defs))
+            except InputError:
+                pass
+            except Exception as e:  # noqa: BLE001 - what the test looks for
+                crashed.append(f"{case}: {type(e).__name__}: {e}")
+        print(f"measured: hostile {len(cases)} extreme macro values in-process: {len(crashed)} exceptions")
+        self.assertEqual(crashed, [])
 
     def test_files_that_are_not_headers_should_be_refused(self):
         d = self.dir
@@ -333,18 +389,39 @@ class OutputIsSafe(Hostile):
         self.one_line("-o a hand-written header (a copy of motor_hurst.h)", code, lines, 2, "not generated")
         self.assertEqual(sha(self.hand), before)
 
-    def test_a_symlinked_directory_should_not_carry_the_write_elsewhere(self):
+    def test_a_symlinked_directory_the_user_names_should_be_followed_to_its_real_folder(self):
+        # -o is "anywhere the user names": a folder that is a link (macOS /tmp) is resolved
+        # once and the write happens in the real folder; what is there is judged as always
         link = os.path.join(self.dir, "link")
         os.symlink(os.path.dirname(self.hand), link)
         before = sha(self.hand)
         code, lines, _, _ = run_tune("--no-compile", "-o", os.path.join(link, "motor_hurst.h"), self.toml)
-        self.one_line("-o through a symlinked folder onto motor_hurst.h (a copy)", code, lines, 2, "symbolic link")
+        self.one_line("-o through a symlinked folder onto motor_hurst.h (a copy)", code, lines, 2, "not generated")
         self.assertEqual(sha(self.hand), before)
-        gen = self.generated(os.path.join("motors", "motor_gen.h"))  # even onto a generated header
-        before = sha(gen)
-        code, lines, _, _ = run_tune("--no-compile", "-o", os.path.join(link, "motor_gen.h"), self.toml)
-        self.one_line("-o through a symlinked folder onto a generated header", code, lines, 2, "symbolic link")
-        self.assertEqual(sha(gen), before)
+        gen = self.generated(os.path.join("motors", "motor_gen.h"))
+        os.chmod(gen, 0o644)
+        with open(gen, "a") as f:
+            f.write("/* stale */\n")
+        code, lines, out, _ = run_tune("--no-compile", "-o", os.path.join(link, "motor_gen.h"), self.toml)
+        print(f"measured: hostile -o through a symlinked folder onto a generated header: exit {code}")
+        self.assertEqual(code, 0, lines)
+        self.assertNotIn(b"/* stale */", sha(gen))  # replaced in the real folder
+        self.assertTrue(os.path.islink(link))
+        self.assertEqual(sorted(os.listdir(link)), ["motor_gen.h", "motor_hurst.h"])
+
+    def test_the_default_target_should_never_follow_a_symlinked_folder(self):
+        # firmware/motors/motor_<name>.h: no folder below the repository may be a link (it
+        # would carry the write out of firmware/motors). In-process, on a scratch "repository".
+        sys.path.insert(0, os.path.join(REPO, "tools", "tune"))
+        from motortune import safeio
+        from motortune.units import InputError
+        os.symlink(os.path.dirname(self.hand), os.path.join(self.dir, "firmware"))
+        target = os.path.join(self.dir, "firmware", "motor_gen.h")
+        with self.assertRaises(InputError) as cm:
+            safeio.Output(target, "name", root=self.dir)
+        print(f"measured: hostile default target through a symlinked folder: {cm.exception}")
+        self.assertIn("symbolic link", str(cm.exception))
+        safeio.Output(target, "-o")  # named by the user: accepted
 
     def test_a_symlink_target_should_be_refused(self):
         gen = self.generated()
@@ -363,6 +440,36 @@ class OutputIsSafe(Hostile):
         code, lines, _, _ = run_tune("--no-compile", "-o", gen, self.toml)
         self.one_line("-o a read-only generated header", code, lines, 2, "read-only")
         self.assertEqual(sha(gen), before)
+
+    def test_odd_output_paths_should_be_written_and_echoed_escaped(self):
+        # a file name that is not UTF-8 (with a UTF-8 terminal: the print used to fail after the
+        # write, exit 3) or holds a newline: written, and named on one escaped line
+        for label, name, shown in (("a byte that is not UTF-8", "\udcfd.h", "\\udcfd.h"),
+                                   ("a newline", "a\nb.h", "a\\nb.h"), ("an escape sequence", "\x1b[2J.h", "\\x1b")):
+            with self.subTest(label):
+                code, lines, out, _ = run_tune("--no-compile", "-o", name, self.toml, env={"PYTHONIOENCODING": "utf-8"},
+                                               cwd=self.dir)
+                print(f"measured: hostile -o with {label}: exit {code}: {out.splitlines()[0] if out else ''}")
+                self.assertEqual(code, 0, lines)
+                self.assertTrue(os.path.exists(os.path.join(os.fsencode(self.dir), os.fsencode(name))))
+                self.assertEqual(len(out.splitlines()), 3, out)
+                self.assertTrue(out.startswith("tune: wrote " + shown), out)
+                self.assertNotIn("\x1b", out)
+
+    def test_a_path_gcc_cannot_name_in_a_string_should_still_be_compiled(self):
+        # MC_MOTOR_HEADER is a string literal gcc's #include takes without escapes: a '"' or a
+        # backslash in the path used to fail the compile check of a valid profile (exit 1)
+        if shutil.which("gcc") is None:
+            self.skipTest("no gcc")
+        for label, folder in (("a double quote", 'q"x'), ("a backslash", "b\\y"), ("a newline", "n\nl")):
+            with self.subTest(label):
+                os.mkdir(os.path.join(self.dir, folder))
+                out = os.path.join(self.dir, folder, "motor_q.h")
+                code, lines, _, _ = run_tune("-o", out, self.toml)
+                print(f"measured: hostile -o into a folder with {label}, compiled: exit {code}")
+                self.assertEqual(code, 0, lines)
+                code, lines, _, _ = run_tune("--check", out)
+                self.assertEqual(code, 0, lines)
 
     def test_a_generated_header_should_be_replaced_with_the_umask_mode(self):
         for umask, mode in ((0o022, 0o644), (0o027, 0o640), (0o002, 0o664)):
@@ -594,14 +701,21 @@ class DescriptionsNeverTraceback(Hostile):
         self.one_line("an internal error (injected ZeroDivisionError)", code, lines, 3, "internal error")
 
     def test_command_line_errors_should_be_one_line(self):
-        for label, args in (("an unknown option", ["--bogus"]), ("-o without a value", ["-o"]),
-                            ("no arguments", [])):
+        h = os.path.join(MOTORS, "motor_hurst075.h")
+        toml = self.write("m.toml", BASE_TOML)
+        out = os.path.join(self.dir, "o.h")
+        for label, args, fragment in (
+                ("an unknown option", ["--bogus"], "--bogus"), ("-o without a value", ["-o"], "-o"),
+                ("no arguments", [], "no description given (usage: tools/tune/tune --help)"),
+                # --check writes nothing: what would be ignored is refused
+                ("--check with -o", ["--check", h, "-o", out], "-o"),
+                ("--check with --name", ["--check", h, "--name", "x"], "--name"),
+                ("--check with a description", ["--check", h, toml], "description"),
+                ("--board without --check", ["--board", "mclv", "-o", out, toml], "--board")):
             with self.subTest(label):
                 code, lines, _, _ = run_tune(*args)
-                if not args:  # the usage, as before: not an error of the input
-                    self.assertEqual(code, 2)
-                    continue
-                self.one_line(f"command line: {label}", code, lines, 2, "")
+                self.one_line(f"command line: {label}", code, lines, 2, fragment)
+                self.assertFalse(os.path.exists(out))
 
 
 if __name__ == "__main__":

@@ -370,6 +370,138 @@ class StartLoad(unittest.TestCase):
         self.assertNotIn("MOTOR_OL_DAMP_S", dict(no_j.by))
 
 
+class CoreLimits(unittest.TestCase):
+    """Derived values the core bounds (firmware/mc_derived.h MC_CHECK lines), reached by
+    ordinary motors: each is rounded or held to the safe side of the core's limit, with a
+    note, or refused naming the description's field; never a C macro the core rejects."""
+
+    # lowl with 0.23025 mH and 1.5 A: the dead-time band Vbus / (12 L fpwm) is 0.4343 A, the
+    # lock needs 2.31 of them, 1.0029 A; rounded to the nearest 3 digits that was 1.0 A
+    LOWL_1A = (open(os.path.join(EXAMPLES, "lowl.toml")).read().replace('"0.192 mH"', '"0.23025 mH"')
+               .replace('rated_current = "3.0 A"', 'rated_current = "1.5 A"').replace('start_load = "0.05 N m"', ""))
+    # hs2p on the MCHV at 40 kHz under a 1e-3 kg m^2 flywheel: 8 swings of the lock take 2 s
+    # (80000 periods, the core counts 65000), 2 zeta / w of open-loop damping 44 ms (1780 periods)
+    HEAVY_40K = (open(os.path.join(EXAMPLES, "hispeed.toml")).read().replace('"20 kHz"', '"40 kHz"')
+                 .replace('"2.0e-5 kg m^2"', '"1e-3 kg m^2"'))
+    # the Hurst with 0.17 mH per phase: the dead-beat band Kslide G / F is 6 A, the MCLV reads 4.4 A
+    LOW_L = HURST_TOML.replace('"3.84 mH"', '"0.34 mH"').replace('"5300 rpm"', '"2500 rpm"')
+    # 20 ohm per phase: the noise-limited 3300 rad/s gives Ki Ts I_FS / V_FS = 1.05, beyond Q15
+    HIGH_R = (HURST_TOML.replace('"5.34 ohm"', '"40 ohm"').replace('"3.84 mH"', '"4 mH"')
+              .replace('"7.3 V/krpm"', '"20 V/krpm"').replace('"2700 rpm"', '"800 rpm"')
+              .replace('"5300 rpm"', '"800 rpm"').replace('"1.64 A"', '"0.3 A"')
+              .replace('peak_current = "3.0 A"\n', "").replace('fw_load_current = "0.1 A"\n', "")
+              .replace('"7.5e-6 kg m^2"', '"2e-5 kg m^2"'))
+    # the Hurst with 15 mH per phase: the ripple Vbus / (12 L fpwm) is 6.7 mA, 50 Q15 counts of
+    # the 4.4 A scale, fewer than the dead time's 80 (the compensation's in-band slope >= 1)
+    LARGE_L = HURST_TOML.replace('"3.84 mH"', '"30 mH"')
+    # a 500 rpm motor: 1.5 x its top speed is a 1000 rpm scale, the stall detector's speed
+    # error (UserParms.h) is 1500 rpm
+    SLOW = (HURST_TOML.replace('"7.3 V/krpm"', '"30 V/krpm"').replace('"2700 rpm"', '"500 rpm"')
+            .replace('max_speed = "5300 rpm"\n', "").replace('fw_load_current = "0.1 A"\n', "")
+            .replace('"7.5e-6 kg m^2"', '"5e-5 kg m^2"'))
+
+    def setUp(self):
+        self.dir = scratch()
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def generate(self, text, *opts):
+        """(exit code, stderr lines, the header's path): the tool run on text, compile check included."""
+        p = os.path.join(self.dir, "m.toml")
+        with open(p, "w") as f:
+            f.write(text)
+        h = os.path.join(self.dir, "motor_m.h")
+        r = run_tune(*opts, "-o", h, p)
+        return r.returncode, r.stderr.strip().splitlines(), h
+
+    def accepted_by_the_core(self, text, macro, board="mclv"):
+        code, lines, h = self.generate(text)
+        measured("%s: exit %d: %s", macro, code, " / ".join(lines))
+        self.assertEqual(code, 0, lines)
+        self.assertTrue(any(ln.startswith("tune: note: " + macro) for ln in lines), lines)
+        self.assertEqual(cheader.derive_core(cheader.profile_env(h, board)).failures, [])
+        self.assertEqual(run_tune("--check", h).returncode, 0)
+
+    def test_sig_up_should_never_round_below(self):
+        for x in (1.0029, 1.0, 0.98400001, 2.3006, 123456.0, 4.4e-5):
+            with self.subTest(x):
+                self.assertGreaterEqual(derive.sig_up(x, 3), x)
+                self.assertLess(derive.sig_up(x, 3), x * 1.01)
+        self.assertEqual(derive.sig_up(1.0, 3), 1.0)
+
+    def test_the_lock_current_should_round_up_to_what_the_dead_time_measurement_needs(self):
+        t = derive.derive(desc_from(self.LOWL_1A))
+        need = derive.DTM_LOCK_BANDS * 24.0 / (12.0 * 0.23025e-3 * 20000.0)
+        measured("lock current %.4g A, the measurement needs %.4f A", t["MOTOR_LOCK_CURRENT_A"], need)
+        self.assertGreaterEqual(t["MOTOR_LOCK_CURRENT_A"], need)
+        code, lines, h = self.generate(self.LOWL_1A)
+        self.assertEqual(code, 0, lines)
+        # the replay checks it too, so --check --no-compile refuses the old 1.0 A
+        with open(h) as f:
+            text = f.read().replace(f"#define MOTOR_LOCK_CURRENT_A {t['MOTOR_LOCK_CURRENT_A']}",
+                                    "#define MOTOR_LOCK_CURRENT_A 1.0")
+        with open(h, "w") as f:
+            f.write(text)
+        r = run_tune("--check", h, "--no-compile")
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("MOTOR_LOCK_CURRENT_A: must be at least 2.31 dead-time bands", r.stderr)
+
+    def test_the_lock_time_should_fit_the_cores_period_count(self):
+        t = derive.derive(desc_from(self.HEAVY_40K))
+        self.assertLessEqual(t["MOTOR_LOCK_TIME_S"] * 40000, 65000)
+        self.accepted_by_the_core(self.HEAVY_40K, "MOTOR_LOCK_TIME_S", "mchv")
+
+    def test_the_open_loop_damping_should_fit_the_cores_range(self):
+        t = derive.derive(desc_from(self.HEAVY_40K))
+        self.assertLessEqual(t["MOTOR_OL_DAMP_S"] * 40000, 1000)
+        self.assertTrue(any(n.startswith("MOTOR_OL_DAMP_S") for n in t.limited), t.limited)
+
+    def test_the_observer_band_should_stay_below_the_current_scale(self):
+        t = derive.derive(desc_from(self.LOW_L))
+        self.assertLess(t["MOTOR_SMC_LINEAR_BAND_A"], 4.4)
+        self.accepted_by_the_core(self.LOW_L, "MOTOR_SMC_LINEAR_BAND_A")
+
+    def test_the_current_ki_should_fit_q15_or_be_refused_naming_the_bandwidth(self):
+        t = derive.derive(desc_from(self.HIGH_R))
+        ki_ = t["MOTOR_CURRENT_KI_V_PER_AS"] * 5e-5 * 4.4 / (24.0 / math.sqrt(3.0))
+        measured("20 ohm: wc %.0f rad/s, Ki %.5g V/(A s) = %.3f of the core's Q15 range",
+                 t["MOTOR_CURRENT_LOOP_BW_RAD_S"], t["MOTOR_CURRENT_KI_V_PER_AS"], ki_)
+        self.assertLess(ki_, 1.0)
+        self.assertAlmostEqual(t["MOTOR_CURRENT_KP_V_PER_A"] / t["MOTOR_CURRENT_KI_V_PER_AS"], 2e-3 / 20.0,
+                               delta=1e-3 * 2e-3 / 20.0)  # the zero still cancels the winding pole
+        self.accepted_by_the_core(self.HIGH_R, "MOTOR_CURRENT_LOOP_BW_RAD_S")
+        # a bandwidth the user gives is not changed: refused naming it
+        code, lines, _ = self.generate(self.HIGH_R + 'current_bandwidth = "4000 rad/s"\n')
+        measured("error line: %s", lines[0] if lines else "")
+        self.assertEqual(code, 1, lines)
+        self.assertEqual(len(lines), 1)
+        self.assertIn(": application.current_bandwidth: ", lines[0])
+        self.assertIn("Q15 range [0, 1)", lines[0])
+
+    def test_a_pwm_rate_the_boards_voltage_scaling_cannot_take_should_name_pwm_frequency(self):
+        # 40 kHz on the MCLV: 1000 duty counts put MC_VAPP_K at 42620, beyond int16
+        with self.assertRaises(InputError) as cm:
+            derive.derive(desc_from(HURST_TOML.replace('"20 kHz"', '"40 kHz"')))
+        measured("error: %s", cm.exception)
+        self.assertEqual(cm.exception.field, "pwm_frequency")
+
+    def test_a_large_inductance_should_get_the_narrowest_dead_time_band_the_core_takes(self):
+        t = derive.derive(desc_from(self.LARGE_L))
+        self.assertGreater(t["MC_DEADTIME_BAND_A"] / 4.4 * 32768.0, 80.0)
+        self.accepted_by_the_core(self.LARGE_L, "MC_DEADTIME_BAND_A")
+
+    def test_a_slow_motor_should_get_a_speed_scale_above_the_stall_detectors_error(self):
+        t = derive.derive(desc_from(self.SLOW))
+        self.assertGreater(t["MOTOR_SPEED_FULLSCALE_RPM"], 1500.0)
+        self.accepted_by_the_core(self.SLOW, "MOTOR_SPEED_FULLSCALE_RPM")
+
+    def test_gain_counts_should_count_ki_as_plain_q15(self):
+        self.assertEqual(derive.gain_counts(1.5), cheader.mant_shift(1.5)[0])  # Kp: mantissa and shift
+        self.assertEqual(derive.gain_counts(1.5, integral=True), -1)  # Ki: no shift, beyond the range
+        self.assertEqual(derive.gain_counts(0.5, integral=True), 16384)
+
+
 class BadInput(unittest.TestCase):
     """Each bad description: exit code non-zero, exactly one line on stderr naming the field,
     no header written."""
@@ -394,6 +526,7 @@ class BadInput(unittest.TestCase):
         self.assertFalse(os.path.exists(out))
         self.assertEqual([f for f in os.listdir(self.dir) if f.endswith(".h")], [], "no temp file left")
         print("measured: error line: " + lines[0])
+        self.last_line = lines[0]
 
     def test_missing_field(self):
         self.expect_error(HURST_TOML.replace('rated_speed = "2700 rpm"\n', ""), "motor.rated_speed", "missing")
@@ -433,6 +566,12 @@ class BadInput(unittest.TestCase):
 
     def test_not_toml(self):
         self.expect_error("name = \n", "file", "not valid TOML")
+        line = self.last_line
+        self.assertEqual(line.count("m.toml"), 1, line)  # the file named once, not twice
+
+    def test_an_empty_key_should_be_named_as_one(self):
+        self.expect_error('"" = 1\n' + HURST_TOML, '""', "empty key")
+        self.expect_error(HURST_TOML.replace("[motor]\n", '[motor]\n"" = 1\n'), 'motor.""', "empty key")
 
     def test_hand_tuned_names_are_refused(self):
         p = os.path.join(self.dir, "m.toml")
@@ -458,7 +597,7 @@ class HeaderExpressions(unittest.TestCase):
         return cexpr.evaluate(text, lookup)
 
     def test_literals_should_read_as_c_reads_them(self):
-        for text, want in (("20000L", 20000), ("40000000L", 40000000), ("3000UL", 3000), ("7.5e-06", 7.5e-6),
+        for text, want in (("20000L", 20000), ("40000000L", 40000000), ("3000L", 3000), ("7.5e-06", 7.5e-6),
                            ("2.5f", 2.5), ("0x1F", 31), ("010", 8), (".5", 0.5), ("5.", 5.0), ("(-1)", -1)):
             with self.subTest(text):
                 got = self.value(text)
@@ -477,6 +616,50 @@ class HeaderExpressions(unittest.TestCase):
         self.assertEqual(self.value("1 ? 2 : 1 / 0"), 2)
         self.assertEqual(self.value("0 && 1 / 0"), 0)
         self.assertEqual(self.value("1 || 1 / 0"), 1)
+
+    def test_the_conditional_should_take_the_usual_arithmetic_conversions(self):
+        # C: the result of ?: has the common type of both arms, the one not taken included
+        self.assertEqual(self.value("(1 ? 3 : 2.0) / 2"), 1.5)
+        self.assertEqual(self.value("(0 ? 2.0 : 3) / 2"), 1.5)
+        self.assertEqual(self.value("(1 ? 3 : F) / 2", {"F": 2.5}), 1.5)
+        self.assertEqual(self.value("(1 ? 3 : (0 ? 1 : 2.0) * 1 / 0) / 2"), 1.5)  # typed, not computed
+        self.assertEqual(self.value("(1 ? 3 : 2) / 2"), 1)
+        self.assertIs(type(self.value("1 ? 3 : 2.0")), float)
+
+    def test_unsigned_constants_and_casts_should_be_refused(self):
+        # C gives 1 for 1u < -1 (the -1 converts to unsigned); no header the tool reads has one
+        from motortune import cexpr
+        for text in ("1u < -1", "3000UL", "0x1Fu", "(unsigned)1 < -1", "(uint16_t)5"):
+            with self.subTest(text), self.assertRaises(cexpr.ExprError) as cm:
+                self.value(text)
+            self.assertIn("unsigned", str(cm.exception))
+
+    def test_shipped_headers_should_hold_no_unsigned_constant(self):
+        import re
+        for sub in ("boards", "motors"):
+            for fn in os.listdir(os.path.join(REPO, "firmware", sub)):
+                if fn.endswith(".h"):
+                    paths = [os.path.join(REPO, "firmware", sub, fn)]
+                    with open(paths[0]) as f:
+                        self.assertIsNone(re.search(r"\b(0[xX][0-9A-Fa-f]+|\d+)[lL]*[uU]", f.read()), fn)
+        self.assertEqual(cheader.profile_env(os.path.join(REPO, "firmware", "motors", "motor_hurst.h"),
+                                             "mclv").get("MOTOR_POLE_PAIRS"), 5)
+
+    def test_if_should_refuse_floating_constants_as_the_preprocessor_does(self):
+        d = scratch()
+        try:
+            for label, text in (("a literal", "#if 1.5 > 1\n#define A 1\n#endif\n"),
+                                ("through a macro", "#define F 1.5\n#if F > 1\n#define A 1\n#endif\n"),
+                                ("a cast", "#if (int)1\n#endif\n")):
+                with self.subTest(label):
+                    h = os.path.join(d, "c.h")
+                    with open(h, "w") as f:
+                        f.write(text)
+                    with self.assertRaises(InputError) as cm:
+                        cheader.read_defines([h])
+                    self.assertIn("#if", str(cm.exception))
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
 
     def test_the_headers_computed_defaults_should_equal_a_hand_calculation(self):
         # UserParms.h: MC_DEADTIME_BAND_A = Vbus / (12 L fpwm); MC_ID_MIN_A = min(4 bands, 0.4 Iq max)
@@ -514,6 +697,42 @@ class UnitsAndKinds(unittest.TestCase):
         for x in (b, c):
             self.assertAlmostEqual(x.r_ph, a.r_ph, places=12)
             self.assertAlmostEqual(x.l_ph, a.l_ph, places=15)
+
+    def test_si_prefixes_should_be_case_sensitive_and_the_ohm_signs_read(self):
+        from motortune import units
+        for text, want in (("5.34 mOhm", 5.34e-3), ("5.34 m\u2126", 5.34e-3), ("5.34 m\u03a9", 5.34e-3),
+                           ("5.34 \u2126", 5.34), ("5.34 \u03a9", 5.34), ("5.34 OHM", 5.34), ("5.34 milliohm", 5.34e-3)):
+            with self.subTest(text):
+                self.assertAlmostEqual(units.parse("motor.resistance", text, "resistance"), want, places=15)
+        self.assertEqual(units.parse("pwm_frequency", "20 KHz", "frequency"), 20e3)  # K is no other prefix
+        self.assertEqual(units.parse("motor.rated_speed", "2700 RPM", "speed"), 2700.0)
+        self.assertAlmostEqual(units.parse("motor.inductance", "3.84 \u00b5H", "inductance"), 3.84e-6, places=18)
+        for text in ("5.34 MOhm", "5.34 M\u2126"):  # mega, never milli
+            with self.subTest(text), self.assertRaises(InputError) as cm:
+                units.parse("motor.resistance", text, "resistance")
+            self.assertIn("case-sensitive", str(cm.exception))
+        with self.assertRaises(InputError):
+            units.parse("application.start_load", "5 MN m", "torque")
+
+    def test_a_bare_number_should_get_a_hint_in_the_unit_its_key_needs(self):
+        from motortune import units
+        with self.assertRaises(InputError) as cm:
+            units.parse("pwm_frequency", 20000, "frequency")
+        msg = str(cm.exception)
+        measured("hint: %s", msg)
+        self.assertIn('"20 kHz"', msg)
+        self.assertNotIn("20000 kHz", msg)
+        self.assertIn("pwm_frequency_hz", msg)
+
+    def test_a_unit_in_the_key_and_in_the_string_should_agree(self):
+        from motortune import units
+        self.assertEqual(units.parse("motor.resistance_ohm", "5.34 ohm", "resistance"), 5.34)
+        self.assertAlmostEqual(units.parse("motor.resistance_mohm", "5.34", "resistance"), 5.34e-3, places=15)
+        with self.assertRaises(InputError) as cm:
+            units.parse("motor.resistance_mohm", "5.34 ohm", "resistance")
+        self.assertIn("give the unit once", str(cm.exception))
+        b = desc_from(HURST_TOML.replace('resistance = "5.34 ohm"', 'resistance_ohm = "5.34 ohm"'))
+        self.assertAlmostEqual(b.r_ph, 2.67, places=12)
 
     def test_per_phase_and_rms_kinds_should_convert(self):
         a = desc_from(HURST_TOML)

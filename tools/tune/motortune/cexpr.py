@@ -9,11 +9,16 @@ are numbers, other macros and a little arithmetic on them:
 
 This module accepts exactly that kind of text and nothing else: C integer and
 floating literals (with their suffixes), names that the caller resolves (the
-macro table), parentheses, casts to arithmetic types, unary + - !, binary
-* / % + -, the comparisons, && || and ?:. Anything else (strings, member
-access, calls, indexing, Python's **, the bitwise operators no header uses) is
-refused with one line saying what and where. A header is data, never code: it
-used to go to Python's eval, which ran what a header put there.
+macro table), parentheses, casts to signed arithmetic types, unary + - !,
+binary * / % + -, the comparisons, && || and ?: (whose result takes C's usual
+arithmetic conversions: `(1 ? 3 : 2.0) / 2` is 1.5). Anything else (strings,
+member access, calls, indexing, Python's **, the bitwise operators no header
+uses) is refused with one line saying what and where, and so are unsigned
+constants and casts (`1u < -1` is 1 in C: the -1 converts to unsigned, at 16
+bits on the dsPIC and 32 on the host; no header the tool reads has one). In
+an #if (integer_only) a floating constant or a cast is refused, as the C
+preprocessor refuses it. A header is data, never code: it used to go to
+Python's eval, which ran what a header put there.
 
 The work is bounded: MAX_TOKENS tokens per expression, MAX_NESTING levels of
 parentheses, unary operators, ?: and macro expansion together (one counter,
@@ -109,19 +114,23 @@ def _show(text: str, limit: int = 24) -> str:
 def _number(text: str) -> Number:
     if len(text) > MAX_LITERAL:
         raise ExprError(f"number literal {_show(text)} is too long")
-    if _HEX_RE.fullmatch(text):
-        value: Number = int(text[2:].rstrip("uUlL"), 16)
-    elif _OCT_RE.fullmatch(text):
-        value = int(text.rstrip("uUlL"), 8)
-    elif _DEC_RE.fullmatch(text):
-        value = int(text.rstrip("uUlL"))
-    elif _FLOAT_RE.fullmatch(text):
+    if _FLOAT_RE.fullmatch(text):
         value = float(text.rstrip("fFlL"))
         if not math.isfinite(value):
             raise ExprError(f"{_show(text)} is not a finite number")
         return value
+    if _HEX_RE.fullmatch(text):
+        base, digits = 16, text[2:]
+    elif _OCT_RE.fullmatch(text):
+        base, digits = 8, text
+    elif _DEC_RE.fullmatch(text):
+        base, digits = 10, text
     else:
         raise ExprError(f"{_show(text)} is not a C number literal")
+    if "u" in text.lower():  # no hex digit is a u: this is the suffix
+        raise ExprError(f"unsigned constant {_show(text)} is not supported (C converts the other operand to "
+                        f"unsigned, at the dsPIC's widths or the host's; no header the tool reads has one)")
+    value = int(digits.rstrip("lL"), base)
     if value >= INT_LIMIT:
         raise ExprError(f"{_show(text)} does not fit in 64 bits")
     return value
@@ -220,13 +229,26 @@ _PREC = {"||": 1, "&&": 2, "==": 3, "!=": 3, "<": 4, ">": 4, "<=": 4, ">=": 4, "
          "*": 6, "/": 6, "%": 6}
 
 
+# How the parser treats an operand: VALUE computes it; TYPE (the arm of ?: not taken) only
+# types it, int or float, since the result of ?: takes the usual arithmetic conversions
+# of both arms (its names are looked up for their type, nothing is computed: no division
+# by zero); SKIP (the right of a decided && or ||, whose type does not matter) parses it.
+VALUE, TYPE, SKIP = "value", "type", "skip"
+
+
+def _typed(x: Number) -> Number:
+    """A value standing for x's type only (an operand of TYPE)."""
+    return 0.0 if isinstance(x, float) else 0
+
+
 class _Parser:
     """Precedence climbing that evaluates as it parses. Operands that C would not
-    evaluate (the other arm of ?:, the right of a decided && or ||) are parsed
-    with active=False: checked for syntax, never looked up or computed."""
+    evaluate are parsed in the TYPE or SKIP mode: checked for syntax, never computed."""
 
-    def __init__(self, toks: list[_Tok], lookup: Lookup, defined: Optional[Defined], depth: int):
+    def __init__(self, toks: list[_Tok], lookup: Lookup, defined: Optional[Defined], depth: int,
+                 integer_only: bool = False):
         self.toks, self.pos, self.lookup, self.defined, self.depth = toks, 0, lookup, defined, depth
+        self.integer_only = integer_only
 
     def peek(self) -> _Tok:
         return self.toks[self.pos]
@@ -250,36 +272,48 @@ class _Parser:
     def leave(self) -> None:
         self.depth -= 1
 
-    def expr(self, active: bool) -> Number:
+    def expr(self, mode: str) -> Number:
         self.enter()
-        cond = self.binary(1, active)
+        cond = self.binary(1, mode)
         if self.peek().text == "?" and self.peek().kind == "op":
             self.take()
-            take_first = active and _truth(cond)
-            a = self.expr(take_first)
+            take_first = mode == VALUE and _truth(cond)
+            arm = {VALUE: TYPE, TYPE: TYPE, SKIP: SKIP}[mode]  # the arm not taken
+            a = self.expr(VALUE if take_first else arm)
             self.expect(":")
-            b = self.expr(active and not take_first)
+            b = self.expr(VALUE if mode == VALUE and not take_first else arm)
             cond = a if take_first else b
+            if isinstance(a, float) or isinstance(b, float):  # C's usual arithmetic conversions
+                cond = float(cond)
         self.leave()
         return cond
 
-    def binary(self, min_prec: int, active: bool) -> Number:
-        lhs = self.unary(active)
+    def binary(self, min_prec: int, mode: str) -> Number:
+        lhs = self.unary(mode)
         while True:
             t = self.peek()
             prec = _PREC.get(t.text) if t.kind == "op" else None
             if prec is None or prec < min_prec:
                 return lhs
             self.take()
-            if t.text == "&&":
-                rhs = self.binary(prec + 1, active and _truth(lhs))
-                lhs = int(_truth(lhs) and _truth(rhs)) if active else 0
-            elif t.text == "||":
-                rhs = self.binary(prec + 1, active and not _truth(lhs))
-                lhs = int(_truth(lhs) or _truth(rhs)) if active else 0
+            if t.text in ("&&", "||"):
+                # 0 && x and 1 || x are decided: x is not evaluated (an int either way)
+                decided = mode != VALUE or _truth(lhs) == (t.text == "||")
+                rhs = self.binary(prec + 1, SKIP if decided else VALUE)
+                if mode == VALUE:
+                    lhs = int(t.text == "||") if decided else int(_truth(rhs))
+                else:
+                    lhs = 0
             else:
-                rhs = self.binary(prec + 1, active)
-                lhs = _binary(t.text, lhs, rhs) if active else 0
+                rhs = self.binary(prec + 1, mode)
+                if mode == VALUE:
+                    lhs = _binary(t.text, lhs, rhs)
+                elif t.text in ("+", "-", "*", "/", "%"):
+                    if t.text == "%" and mode == TYPE and (isinstance(lhs, float) or isinstance(rhs, float)):
+                        raise ExprError("% needs integer operands")  # a type error, evaluated or not
+                    lhs = _typed(lhs) + _typed(rhs)  # float if either is
+                else:
+                    lhs = 0  # a comparison is an int
 
     def cast_type(self) -> Optional[str]:
         """At '(': the type name of a cast, consumed with its ')', or None (a parenthesis)."""
@@ -293,36 +327,47 @@ class _Parser:
         name = " ".join(words)
         if name not in _CASTS:
             raise ExprError(f"cast to {_show(name)} is not supported")
+        if self.integer_only:
+            raise ExprError(f"cast to {_show(name)} in #if (the preprocessor reads a type name as 0)")
+        if not _CASTS[name][2]:
+            raise ExprError(f"cast to {_show(name)}: unsigned types are not supported (C's unsigned conversions "
+                            f"differ between the dsPIC and the host; no header the tool reads has one)")
         self.pos = i + 1
         return name
 
-    def unary(self, active: bool) -> Number:
+    def unary(self, mode: str) -> Number:
         t = self.peek()
         if t.kind == "op" and t.text in ("+", "-", "!"):
             self.take()
             self.enter()
-            v = self.unary(active)
+            v = self.unary(mode)
             self.leave()
-            if not active:
-                return 0
-            return v if t.text == "+" else _check(-v) if t.text == "-" else int(not _truth(v))
+            if t.text == "!":
+                return int(not _truth(v)) if mode == VALUE else 0
+            if mode != VALUE:
+                return _typed(v)
+            return v if t.text == "+" else _check(-v)
         if t.kind == "op" and t.text == "(":
             type_name = self.cast_type()
             if type_name is not None:
                 self.enter()
-                v = self.unary(active)
+                v = self.unary(mode)
                 self.leave()
-                return _cast(type_name, v) if active else 0
+                if mode == VALUE:
+                    return _cast(type_name, v)
+                return 0.0 if _CASTS[type_name][0] else 0
             self.take()
-            v = self.expr(active)
+            v = self.expr(mode)
             self.expect(")")
             return v
-        return self.primary(active)
+        return self.primary(mode)
 
-    def primary(self, active: bool) -> Number:
+    def primary(self, mode: str) -> Number:
         t = self.take()
         if t.kind == "num":
-            return t.value
+            if self.integer_only and isinstance(t.value, float):
+                raise ExprError(f"floating constant {_show(t.text)} in #if (C allows integers only)")
+            return t.value if mode == VALUE else _typed(t.value)
         if t.kind == "id":
             if t.text == "defined" and self.defined is not None:
                 paren = self.peek().text == "("
@@ -333,29 +378,31 @@ class _Parser:
                     raise ExprError(f"defined needs a macro name, found {_show(name.text)}")
                 if paren:
                     self.expect(")")
-                return int(self.defined(name.text)) if active else 0
+                return int(self.defined(name.text)) if mode == VALUE else 0
             if self.peek().text == "(" and self.peek().kind == "op":
                 raise ExprError(f"{_show(t.text)}(...): calls are not supported")
             if t.text in _TYPE_WORDS:
                 raise ExprError(f"{_show(t.text)} is a type name, not a value")
-            if not active:
+            if mode == SKIP:
                 return 0
-            return self.lookup(t.text, self.depth + 1)
+            v = self.lookup(t.text, self.depth + 1)
+            return v if mode == VALUE else _typed(v)
         if t.kind == "end":
             raise ExprError("the expression ends too early" if self.pos else "empty expression")
         raise ExprError(f"unexpected {_show(t.text)}")
 
 
 def evaluate(text: str, lookup: Lookup, depth: int = 0, defined: Optional[Defined] = None,
-             budget: Optional[Budget] = None) -> Number:
+             budget: Optional[Budget] = None, integer_only: bool = False) -> Number:
     """The value of the C constant expression `text`. Names go to lookup(name, depth)
     (depth: the nesting so far, to pass back here for the name's own expression). With
-    `defined` (the #if form), `defined X` and `defined(X)` are recognised."""
+    `defined` (the #if form), `defined X` and `defined(X)` are recognised; integer_only
+    (#if, and the macros it expands) refuses floating constants and casts."""
     if depth > MAX_NESTING:
         raise ExprError(f"macros nested more than {MAX_NESTING} deep")
     toks = tokenize(text, budget)
-    p = _Parser(toks, lookup, defined, depth)
-    v = p.expr(True)
+    p = _Parser(toks, lookup, defined, depth, integer_only)
+    v = p.expr(VALUE)
     t = p.peek()
     if t.kind != "end":
         raise ExprError(f"unexpected {_show(t.text)} after the expression")

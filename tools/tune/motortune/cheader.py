@@ -6,7 +6,9 @@ way the preprocessor sees them: line splices, comments, and the conditionals
 honoured, so a value inside #if 0 is not read and, through each value's
 #ifndef guard, the first definition wins (the board, then the motor profile,
 then UserParms.h's defaults; the build includes them in that order). A
-directive it does not know stops the read with one line. The X-macro
+directive it does not know stops the read with one line, and so does an
+#include in a motor profile (the build would read that file, this reader
+does not). An #if takes integers only, as the C preprocessor does. The X-macro
 field-weakening table is read too. Values are computed by cexpr (numbers,
 macros and C arithmetic only, never Python's eval). `derive_core` replays the
 arithmetic of firmware/mc_derived.h, smc_estimator/smc.h (SMC_PARAMS_INIT)
@@ -24,12 +26,10 @@ from typing import Optional, Union
 
 from . import cexpr, safeio
 from .cexpr import ExprError, Number
-from .units import InputError, NAME_RE
+from .units import NAME_RE, SQRT3, TWO_PI, InputError
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 FIRMWARE = os.path.join(REPO, "firmware")
-SQRT3 = 1.7320508075688772
-TWO_PI = 6.283185307179586
 
 MAX_HEADER_BYTES = 1 << 20  # the shipped headers are 3..25 kB
 MAX_IF_NESTING = 64  # conditionals open at once in one file
@@ -164,8 +164,9 @@ class _Cond:
 
 def _pp_condition(expr: str, defs: Defines, where: str, budget: cexpr.Budget) -> bool:
     """#if / #elif: an integer constant expression with defined(X); a name that is not
-    a macro counts 0 (C's rule)."""
-    env = Env(defs, budget=budget)
+    a macro counts 0 (C's rule); a floating constant, in it or in a macro it expands, is
+    refused (as gcc refuses `#if 1.5 > 1`)."""
+    env = Env(defs, budget=budget, integer_only=True)
 
     def lookup(name: str, depth: int) -> Number:
         if not defs.defined(name):
@@ -176,7 +177,7 @@ def _pp_condition(expr: str, defs: Defines, where: str, budget: cexpr.Budget) ->
         return v
 
     try:
-        v = cexpr.evaluate(expr, lookup, defined=defs.defined, budget=budget)
+        v = cexpr.evaluate(expr, lookup, defined=defs.defined, budget=budget, integer_only=True)
     except ExprError as e:
         raise InputError(where, f"#if {_short(expr)}: {e}") from None
     if isinstance(v, float):
@@ -217,8 +218,10 @@ def _define(body: str, name: str, params: Optional[str], defs: Defines, where: s
     defs.origin[name] = where
 
 
-def read_into(defs: Defines, path: str, label: str, budget: cexpr.Budget) -> None:
-    """Adds what `path` defines to defs, honouring its conditionals (see the module doc)."""
+def read_into(defs: Defines, path: str, label: str, budget: cexpr.Budget, profile: bool = False) -> None:
+    """Adds what `path` defines to defs, honouring its conditionals (see the module doc).
+    A motor profile (`profile`) may not #include: the build would read that file and the
+    tool would not, so --check would judge values the build does not use."""
     text = read_text(path, label)
     stack: list[_Cond] = []
     for lineno, line in logical_lines(text, label):
@@ -269,9 +272,12 @@ def read_into(defs: Defines, path: str, label: str, budget: cexpr.Budget) -> Non
             if mm is None:
                 raise InputError(where, "#undef needs one macro name")
             defs.undef(mm.group(1))
+        elif word == "include" and profile:
+            raise InputError(where, f"#include {_short(rest)}: a motor profile holds its own values (the build "
+                                    f"would read the included file, tools/tune does not)")
         elif word in ("include", "pragma", "warning", "line", "ident", ""):
-            # #include: the board and the motor profile are read by the caller, in the
-            # build's order, never by following a path a header names.
+            # #include (UserParms.h's of the board and the profile): the caller reads them,
+            # in the build's order, never by following a path a header names.
             continue
         elif word == "error":
             raise InputError(where, f"#error {_short(rest)}")
@@ -281,16 +287,18 @@ def read_into(defs: Defines, path: str, label: str, budget: cexpr.Budget) -> Non
         raise InputError(stack[-1].where, "#if without #endif")
 
 
-def read_headers(paths: list[str], predefined: Optional[dict[str, str]] = None) -> Defines:
+def read_headers(paths: list[str], predefined: Optional[dict[str, str]] = None,
+                 profile: Optional[str] = None) -> Defines:
     """Defines of `paths` read in order (one macro table, as one translation unit sees
-    them), after `predefined` (the -D options of the build)."""
+    them), after `predefined` (the -D options of the build); `profile`, one of the paths,
+    is a motor profile (read_into)."""
     defs = Defines()
     for name, body in (predefined or {}).items():
         defs.raw[name] = body
         defs.origin[name] = "<command line>"
     budget = cexpr.Budget()
     for p in paths:
-        read_into(defs, p, label(p), budget)
+        read_into(defs, p, label(p), budget, profile=p == profile)
     return defs
 
 
@@ -337,8 +345,8 @@ class Env:
     is computed once (cached); a macro met again while its own value is being computed
     is a cycle and refused."""
 
-    def __init__(self, defs: Defines, budget: Optional[cexpr.Budget] = None):
-        self.defs = defs
+    def __init__(self, defs: Defines, budget: Optional[cexpr.Budget] = None, integer_only: bool = False):
+        self.defs, self.integer_only = defs, integer_only
         self.raw, self.xtables = defs.raw, defs.xtables
         self.cache: dict[str, Value] = {}
         self.budget = budget if budget is not None else cexpr.Budget()
@@ -355,12 +363,16 @@ class Env:
         or cannot be computed."""
         return self.value(name, 0)
 
-    def num(self, name: str) -> float:
-        """A macro that must be a number (finite: cexpr refuses anything else)."""
+    def number(self, name: str) -> Number:
+        """A macro that must be a number, int or float as C types it (finite: cexpr
+        refuses anything else)."""
         v = self.get(name)
         if isinstance(v, str):
-            raise InputError(name, f"is the string {v!r}; a number is needed ({self.where(name)})")
-        return float(v)
+            raise InputError(name, f"is the string {v[:40]!r}; a number is needed ({self.where(name)})")
+        return v
+
+    def num(self, name: str) -> float:
+        return float(self.number(name))
 
     def value(self, name: str, depth: int) -> Value:
         if name in self.cache:
@@ -382,7 +394,7 @@ class Env:
             if body.startswith('"'):
                 val = _c_string(body, name)
             else:
-                val = cexpr.evaluate(body, self._lookup, depth, budget=self.budget)
+                val = cexpr.evaluate(body, self._lookup, depth, budget=self.budget, integer_only=self.integer_only)
         except ExprError as e:
             raise InputError(name, f"{e} ({self.where(name)})") from None
         finally:
@@ -434,7 +446,8 @@ def profile_env(motor_header: str, board: str) -> Env:
     # gives the same values; the motor's overrides of UserParms defaults
     # (PWM_FREQUENCY_HZ...) must come before UserParms.h.
     pre = {f"MC_BOARD_{board.upper()}": "1", "MC_MOTOR_HEADER": '"motor.h"'}
-    return Env(read_headers([board_h, motor_header, os.path.join(FIRMWARE, "UserParms.h")], pre))
+    return Env(read_headers([board_h, motor_header, os.path.join(FIRMWARE, "UserParms.h")], pre,
+                            profile=motor_header))
 
 
 def board_env(board: str) -> Env:
@@ -446,14 +459,17 @@ def board_env(board: str) -> Env:
 # ---- the core's arithmetic --------------------------------------------------
 
 
-def duty_sample_max(fcy: float, fpwm: float, trig_tcy: float, deadtime_ns: float, min_on_ns: float) -> int:
+def duty_sample_max(fcy: float, fpwm: float, trig_tcy: float, deadtime_ns: float, min_on_ns: float) -> float:
     """mc_derived.h MC_DUTY_SAMPLE_MAX: the largest duty (counts) of a measured
     phase that leaves its low-side switch on min_on_ns before the ADC trigger,
-    trig_tcy after the centre-aligned period's midpoint, and still on at it."""
+    trig_tcy after the centre-aligned period's midpoint, and still on at it.
+    Truncated toward zero like the core's (int16_t); a header's 1e308 gives -inf
+    (which its range check then refuses), never an exception."""
     ptper = fcy // fpwm / 2.0 - 1.0
     dt = deadtime_ns * 1e-9 * fcy
     on = min_on_ns * 1e-9 * fcy
-    return int(min(2.0 * (ptper - trig_tcy) - 2.0, 2.0 * (ptper + trig_tcy - dt - on)))
+    win = min(2.0 * (ptper - trig_tcy) - 2.0, 2.0 * (ptper + trig_tcy - dt - on))
+    return float(math.trunc(win)) if math.isfinite(win) else -math.inf
 
 
 def q15_round(x: float) -> int:
@@ -489,12 +505,10 @@ class Derived:
     def __init__(self) -> None:
         self.rows: list[tuple[str, float, str, Optional[int], Optional[float], str]] = []
         self.failures: list[tuple[str, str]] = []
-        self.values: dict[str, float] = {}
 
     def row(self, name: str, eng: float, unit: str, q: Optional[int] = None, decoded: Optional[float] = None,
             note: str = "") -> None:
         self.rows.append((name, eng, unit, q, decoded, note))
-        self.values[name] = q if q is not None else eng
 
     def check(self, param: str, cond: bool, msg: str) -> bool:
         if not cond:
@@ -502,18 +516,10 @@ class Derived:
         return cond
 
 
-def _number(env: Env, name: str) -> Number:
-    """A macro's value that must be a number (int or float as C types it; finite)."""
-    v = env.get(name)
-    if isinstance(v, str):
-        raise InputError(name, f"is the string {v[:40]!r}; a number is needed ({env.where(name)})")
-    return v
-
-
 def scale_value(env: Env, name: str, why: str, whole: bool = False, hi: float = math.inf) -> Number:
     """A value every other one is divided by or scaled with: without it nothing can be
     computed, so a bad one is an InputError (one line) rather than a failed check."""
-    v = _number(env, name)
+    v = env.number(name)
     if not 0 < v <= hi or (whole and v != int(v)):
         kind = "a whole number" if whole else "a number"
         rng = f"in 1..{hi:g}" if hi != math.inf else "> 0"
@@ -527,8 +533,7 @@ def derive_core(env: Env) -> Derived:
     core divides by), raises InputError naming it; every other problem is a failed check."""
     d = Derived()
 
-    def g(name: str) -> Number:
-        return _number(env, name)
+    g = env.number
 
     fcy = scale_value(env, "BOARD_FCY_HZ", "the instruction clock", whole=True)
     fpwm = scale_value(env, "PWM_FREQUENCY_HZ", "the PWM and current-loop rate")
@@ -586,10 +591,10 @@ def derive_core(env: Env) -> Derived:
     q_rpm("MOTOR_SPEED_NOMINAL_RPM", n_nom, "field weakening starts above")
     q_rpm("MOTOR_SPEED_FW_MAX_RPM", n_fw, "top of the field-weakening table")
     step = g("MC_SPEED_RAMP_RPM_PER_S") / loop_hz / fs_rpm * 32768.0
-    d.check("MC_SPEED_RAMP_RPM_PER_S", 1.0 <= step < 32767.0, "must give 1..32767 Q15 counts per speed-loop run")
-    step_q = int(step + 0.5)
-    d.row("MC_SPEED_RAMP_STEP", g("MC_SPEED_RAMP_RPM_PER_S"), "rpm/s", step_q,
-          step_q / 32768.0 * fs_rpm * loop_hz, "speed-reference slew, counts per speed-loop run")
+    if d.check("MC_SPEED_RAMP_RPM_PER_S", 1.0 <= step < 32767.0, "must give 1..32767 Q15 counts per speed-loop run"):
+        step_q = int(step + 0.5)
+        d.row("MC_SPEED_RAMP_STEP", g("MC_SPEED_RAMP_RPM_PER_S"), "rpm/s", step_q,
+              step_q / 32768.0 * fs_rpm * loop_hz, "speed-reference slew, counts per speed-loop run")
 
     # currents
     i_max, trip = g("MOTOR_CURRENT_MAX_A"), g("MC_OVERCURRENT_A")
@@ -603,12 +608,21 @@ def derive_core(env: Env) -> Derived:
     q_amp("MC_OVERCURRENT_A", trip, "software trip, any phase")
     q_amp("total |I| limit in FW", 0.9 * trip, "mc.c MC_I_TOTAL: 90 % of the trip")
     q_amp("MOTOR_LOCK_CURRENT_A", i_lock, "Iq during the lock")
+    if env.has("MC_DEADTIME_MEASURE") and g("MC_DEADTIME_MEASURE") != 0 and env.has("MC_DEADTIME_BAND_A"):
+        # mc.c note 4: the lock's dead-time measurement needs 1.5 bands at 3/4 of the lock current
+        # in phases B and C (cos 30 deg): MC_CHECK_FOR(MOTOR_LOCK_CURRENT_A, MC_DEADTIME_BAND_A)
+        band = g("MC_DEADTIME_BAND_A")
+        d.check("MOTOR_LOCK_CURRENT_A", i_lock >= 1.5 * band / (0.75 * SQRT3 / 2.0),
+                f"must be at least 2.31 dead-time bands (MC_DEADTIME_BAND_A = {band:.4g} A) to measure the dead "
+                f"time at the lock (mc.c note 4)")
     q_amp("MOTOR_RAMP_CURRENT_A", i_ramp, "Iq during the open-loop ramp")
     damp, damp_max = g("MOTOR_OL_DAMP_S"), g("MC_OL_DAMP_MAX_DEG")
-    d.check("MOTOR_OL_DAMP_S", 0.0 <= damp and damp * fpwm <= 1000.0, "must be 0..1000 PWM periods")
+    # mc_derived.h MC_CHECK(MOTOR_OL_DAMP_S): 0 (off) or one Q4 count (1/16 period) .. 1000 periods
+    if d.check("MOTOR_OL_DAMP_S", 0.0 <= damp and damp * fpwm <= 1000.0 and (damp == 0.0 or damp * fpwm * 16.0 >= 0.5),
+               "must be 0 (off) or 1/16..1000 PWM periods"):
+        d.row("MOTOR_OL_DAMP_S", damp, "s", int(damp * fpwm * 16.0 + 0.5), None,
+              "open-loop damping, MC_OL_DAMP_K (Q4 periods)")
     d.check("MC_OL_DAMP_MAX_DEG", 0.0 <= damp_max <= 90.0, "must be 0..90 deg")
-    d.row("MOTOR_OL_DAMP_S", damp, "s", int(damp * fpwm * 16.0 + 0.5), None,
-          "open-loop damping, MC_OL_DAMP_K (Q4 periods)")
 
     # bus
     uv, ov = g("MC_VBUS_UNDERVOLTAGE_V"), g("MC_VBUS_OVERVOLTAGE_V")
@@ -733,7 +747,7 @@ def derive_core(env: Env) -> Derived:
     f_min = est_min * pp / 60.0
     ok = d.check("MC_ESTIMATOR_MIN_RPM", 0.0 < f_min < w_fs and TWO_PI * f_min * ts >= 1.0 / 32768.0,
                  "smc: min speed must be in (0, omega_fs)")
-    if ok:
+    if ok and kpw < 1.0:  # below omega_fs, whose own step 2 pi omega_fs Ts is checked above
         q = q15_round(TWO_PI * f_min * ts)
         d.row("smc K floor (filter floor)", est_min, "rpm", q, q / 32768.0 / (TWO_PI * ts) * 60.0 / pp,
               f"Kslf floor 2 pi f_min Ts = {TWO_PI * f_min * ts:.5f} at MC_ESTIMATOR_MIN_RPM")
@@ -749,11 +763,27 @@ def derive_core(env: Env) -> Derived:
     d.check("MOTOR_KE_VPK_LL_PER_KRPM", 0.0 <= emfg < 8.0, "smc: Ke omega_fs / E_FS gain must be in [0, 8)")
     # mc.c
     d.check("MC_SPEED_FULLSCALE_RPM", 3.0 * w_fs * ts < 1.0, "3 omega_fs Ts must be < 1 (PWM too slow)")
+    # the applied-voltage scale (mc_derived.h MC_VAPP_K_): fewer duty counts, a larger factor
+    vapp = SQRT3 / (3.0 * duty_max) * vbus_fs / vbus_nom * 33554432.0 if duty_max > 0 else math.inf
+    d.check("PWM_FREQUENCY_HZ", 1024.0 <= vapp < 32767.0,
+            "BOARD_VBUS_FULLSCALE_V / BOARD_VBUS_NOMINAL_V / PWM_DUTY_MAX out of the applied-voltage scaling's range")
     # dead time
     dt = g("PWM_DEADTIME_NS") * 1e-9 * fcy
-    d.check("PWM_DEADTIME_NS", 0.0 <= dt < 0.1 * duty_max, "must be below 10 % of the PWM period")
+    dt_ok = d.check("PWM_DEADTIME_NS", 0.0 <= dt < 0.1 * duty_max, "must be below 10 % of the PWM period")
+    if env.has("MC_DEADTIME_BAND_A"):  # mc_derived.h MC_CHECK_FOR(MC_DEADTIME_BAND_A, MOTOR_LS_H), twice
+        band = g("MC_DEADTIME_BAND_A")
+        if d.check("MC_DEADTIME_BAND_A", 0.5 <= band / i_fs * 32768.0 and band < 0.25 * i_fs,
+                   "must be in [1 Q15 count, BOARD_I_FULLSCALE_A / 4) (the dead-time band, from MOTOR_LS_H)") and dt_ok:
+            d.check("MC_DEADTIME_BAND_A", int(dt + 0.5) * 32768.0 / q15_round(band / i_fs) < 32767.0,
+                    "too narrow for the dead-time counts (in-band slope >= 1): MOTOR_LS_H too large for the default")
+    if env.has("MC_STALL_SPEED_ERROR_RPM"):
+        d.check("MC_STALL_SPEED_ERROR_RPM", 0.0 < g("MC_STALL_SPEED_ERROR_RPM") < fs_rpm,
+                "must be in (0, MC_SPEED_FULLSCALE_RPM)")
     # shunt window
-    win = duty_sample_max(fcy, fpwm, g("PWM_ADC_TRIGGER_TCY"), g("PWM_DEADTIME_NS"), g("BOARD_SHUNT_MIN_ON_NS"))
+    trig = g("PWM_ADC_TRIGGER_TCY")
+    d.check("PWM_ADC_TRIGGER_TCY", 0.0 <= trig and trig * 2.0 * fpwm < fcy,
+            "the trigger must fall in the second half of the period")
+    win = duty_sample_max(fcy, fpwm, trig, g("PWM_DEADTIME_NS"), g("BOARD_SHUNT_MIN_ON_NS"))
     d.check("BOARD_SHUNT_MIN_ON_NS", g("BOARD_SHUNT_MIN_ON_NS") >= 0.0 and win >= 0.75 * duty_max,
             "with PWM_ADC_TRIGGER_TCY and PWM_DEADTIME_NS it must leave the measured phases at least 75 % duty")
     d.row("MC_DUTY_SAMPLE_MAX", win, "counts", note="largest duty of a measured phase (shunt window)")

@@ -13,6 +13,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from typing import NoReturn, Optional
 
 from . import cheader, derive, describe, emit, safeio
@@ -36,23 +37,36 @@ def find_cc() -> Optional[str]:
     return shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
 
 
+# The name the compile check gives its copy of the profile: MC_MOTOR_HEADER names it in a
+# string literal, which gcc's #include takes as it is (no escapes: a path with '"', a
+# backslash or a newline cannot be written there), so the profile is copied under this name.
+CC_PROFILE = "tune_check_profile.h"
+
+
 def compile_check(header: str, board: str) -> Optional[str]:
     """gcc -fsyntax-only of firmware/mc.c with this profile: the core's own
     compile-time checks. Returns None when it passes (or no gcc), else the
-    first error line."""
+    first error line (the copy's path shown as the profile's)."""
     cc = find_cc()
     if cc is None:
         return None
     repo = cheader.REPO
-    cmd = [cc, "-std=c99", "-fsyntax-only", "-Wall", "-Wextra", "-Werror", "-Wconversion", "-Wsign-conversion",
-           "-Wshadow", f"-I{repo}/firmware", f"-I{repo}/foc", f"-I{repo}/smc_estimator",
-           f"-DMC_BOARD_{board.upper()}", f'-DMC_MOTOR_HEADER="{os.path.abspath(header)}"',
-           os.path.join(repo, "firmware", "mc.c")]
-    p = subprocess.run(cmd, capture_output=True, text=True, errors="replace")
+    with tempfile.TemporaryDirectory(prefix="tune_cc_") as tmp:
+        copy = os.path.join(tmp, CC_PROFILE)
+        try:
+            shutil.copyfile(header, copy)
+        except OSError as e:
+            raise InputError(cheader.label(header), f"cannot copy it for the compile check: {e.strerror}") from None
+        cmd = [cc, "-std=c99", "-fsyntax-only", "-Wall", "-Wextra", "-Werror", "-Wconversion", "-Wsign-conversion",
+               "-Wshadow", f"-I{repo}/firmware", f"-I{repo}/foc", f"-I{repo}/smc_estimator", "-iquote", tmp,
+               f"-DMC_BOARD_{board.upper()}", f'-DMC_MOTOR_HEADER="{CC_PROFILE}"',
+               os.path.join(repo, "firmware", "mc.c")]
+        p = subprocess.run(cmd, capture_output=True, text=True, errors="replace")
     if p.returncode == 0:
         return None
     errs = [ln for ln in p.stderr.splitlines() if "error" in ln]
-    return (errs[0] if errs else p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "compile failed")
+    line = errs[0] if errs else p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "compile failed"
+    return line.replace(copy, cheader.label(header))
 
 
 def clang_format(text: str) -> str:
@@ -69,13 +83,11 @@ def clang_format(text: str) -> str:
     return text
 
 
-def _target(name: str, out: Optional[str], out_dir: Optional[str]) -> safeio.Output:
+def _target(name: str, out: Optional[str]) -> safeio.Output:
     """Where the header goes: -o as given (anywhere the user names), else
     firmware/motors/motor_<name>.h (name checked: it cannot leave that folder)."""
     if out is not None:
         return safeio.Output(out, "-o")
-    if out_dir is not None:
-        return safeio.Output(os.path.join(out_dir, f"motor_{name}.h"), "name")
     motors = os.path.join(cheader.FIRMWARE, "motors")
     target = os.path.join(motors, f"motor_{name}.h")
     if os.path.basename(target) in HAND_TUNED:
@@ -83,15 +95,15 @@ def _target(name: str, out: Optional[str], out_dir: Optional[str]) -> safeio.Out
     return safeio.Output(target, "name", root=cheader.REPO)
 
 
-def generate(path: str, out_dir: Optional[str] = None, out: Optional[str] = None, name: Optional[str] = None,
-             compile_: bool = True, quiet: bool = False) -> tuple[int, Optional[str]]:
+def generate(path: str, out: Optional[str] = None, name: Optional[str] = None, compile_: bool = True,
+             quiet: bool = False) -> tuple[int, Optional[str]]:
     """Returns (exit code, header path or None)."""
     try:
         d = describe.load(path)
         if name is not None:
             d.name = describe.check_name(name, "--name")
         t = derive.derive(d)
-        dest = _target(d.name, out, out_dir)
+        dest = _target(d.name, out)
     except (InputError, Infeasible) as e:
         return _fail(f"{path}: ", str(e), 2 if isinstance(e, InputError) else 1), None
     rel_src = os.path.relpath(os.path.abspath(path), cheader.REPO)
@@ -116,9 +128,11 @@ def generate(path: str, out_dir: Optional[str] = None, out: Optional[str] = None
         dest.discard(tmp)
     target = dest.path
     if not quiet:
-        for w in t.warnings:
-            print(f"tune: note: {w}", file=sys.stderr)
-        print(f"tune: wrote {os.path.relpath(target)} ({d.desc}, board {d.board})")
+        for w in t.warnings + t.limited:
+            print("tune: note: " + one_line(w), file=sys.stderr)
+        # the path as the user gave it, escaped: a newline or a byte that is not UTF-8 in a
+        # file name must neither reach the terminal raw nor fail the print after the write
+        print(f"tune: wrote {one_line(os.path.relpath(target), 4096)} ({d.desc}, board {d.board})")
         print(f"   nominal {t['MOTOR_SPEED_NOMINAL_RPM']:.0f} rpm (bus limit {t.n_bus:.0f} rpm), top "
               f"{t['MOTOR_SPEED_FW_MAX_RPM']:.0f} rpm, min {t['MOTOR_SPEED_MIN_RPM']:.0f} rpm, Iq max "
               f"{t['MOTOR_CURRENT_MAX_A']:.3g} A, trip {t['MOTOR_OVERCURRENT_A']:.3g} A, FW Id at top "
@@ -131,7 +145,7 @@ def check_profile(profile: str, board: Optional[str] = None) -> tuple[cheader.De
     """The core's values for a profile header: (derived, profile name, board). InputError
     for anything that keeps it from being computed."""
     if board is None:
-        own = cheader.read_headers([profile])
+        own = cheader.read_headers([profile], profile=profile)
         board = "mclv"
         if "MOTOR_TUNE_BOARD" in own.raw:
             v = cheader.Env(own).get("MOTOR_TUNE_BOARD")
@@ -191,10 +205,18 @@ def _main(argv: Optional[list[str]]) -> int:
                     help="skip the compile check of firmware/mc.c with the profile (the core's own checks)")
     a = ap.parse_args(argv)
     if a.check is not None:
+        # --check reads a profile and writes nothing: a description, -o or --name would be
+        # ignored, so the user would not get what they asked for
+        for given, what in ((a.description, "a description"), (a.output, "-o"), (a.name, "--name")):
+            if given is not None:
+                return _fail("", f"--check: {what} does not go with --check (it reads a profile and writes "
+                                 f"nothing; usage: tools/tune/tune --help)", 2)
         return check(a.check, a.board, compile_=not a.no_compile)
+    if a.board is not None:
+        return _fail("", "--board: goes with --check only (a description names its board; usage: "
+                         "tools/tune/tune --help)", 2)
     if not a.description:
-        ap.print_usage(sys.stderr)
-        return 2
+        return _fail("", "no description given (usage: tools/tune/tune --help)", 2)
     code, _ = generate(a.description, out=a.output, name=a.name, compile_=not a.no_compile)
     return code
 

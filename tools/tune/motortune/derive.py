@@ -17,29 +17,36 @@ import math
 from typing import Any
 
 from . import cheader
-from .units import InputError
+from .units import RPM, SQRT3, TWO_PI, InputError
 
-SQRT3 = math.sqrt(3.0)
-TWO_PI = 2.0 * math.pi
-RPM = TWO_PI / 60.0  # rad/s per rpm
 SPEED_PM_DEG = 40.0  # the speed loop's phase margin at the lightest claimed rotor
 SPEED_ZERO_RATIO = 8.0  # the speed PI's zero at the crossover / this
 SPEED_J_MIN_SCALE = 0.5  # the lightest rotor the profile claims, x the stated inertia (make robust draws 0.5..20)
 START_LOAD_SHARE = 0.6  # the start load's share of the forced current's torque Kt I_ramp
 # Lock current, in dead-time bands, the lock's dead-time measurement needs
 # (mc_derived.h: 1.5 bands at 3/4 of the lock current times sqrt(3)/2).
-DTM_LOCK_BANDS = 1.5 / (0.75 * math.sqrt(3.0) / 2.0)
+DTM_LOCK_BANDS = 1.5 / (0.75 * SQRT3 / 2.0)
 OL_DAMP_ZETA = 0.35  # open-loop damping ratio MOTOR_OL_DAMP_S is computed for (UserParms.h: why low)
 # The fewest counts a PI gain may have in the core's Q15 form (mc_derived.h: a mantissa
 # with a shift above 1): at 16 counts rounding alone moves it by up to 3 %; at 0 the loop
 # does nothing. Fewer is a unit slip upstream (the shipped examples have 392 or more).
 MIN_GAIN_COUNTS = 16
+# The core's ranges of what this module derives (firmware/mc_derived.h, MC_CHECK):
+KP_RANGE = 128.0  # MC_CUR_KP_, MC_SPD_KP_ < 128 (a Q15 mantissa shifted by at most 7)
+KI_RANGE = 1.0  # MC_CUR_KI_, MC_SPD_KI_ < 1 (plain Q15, no shift)
+LOCK_PERIODS_MAX = 65000.0  # MOTOR_LOCK_TIME_S x PWM_FREQUENCY_HZ <= 65000 (a uint16_t count)
+OL_DAMP_PERIODS = (1.0 / 16.0, 1000.0)  # MOTOR_OL_DAMP_S x fpwm: one Q4 count .. 1000 periods
+RAMP_STEP_INC_MIN = 8.0  # MC_RAMP_STEP_INC_: the 32-bit angle step grows by >= 8 a period
+GAIN_MARGIN = 0.9  # a gain the tool lowers to fit a range stays this far inside it (rounding)
 
 
-def gain_counts(x: float) -> int:
-    """The integer the core stores for a gain of x full-scale units (0 <= x < 128):
-    MC_CUR_KP / MC_SPD_KP as mantissa and shift, MC_CUR_KI / MC_SPD_KI (x < 1) alike."""
-    return cheader.mant_shift(x)[0] if 0.0 <= x < 128.0 else 32767
+def gain_counts(x: float, integral: bool = False) -> int:
+    """The integer the core stores for a gain of x full-scale units: Kp (MC_CUR_KP,
+    MC_SPD_KP) as a Q15 mantissa with a shift, 0 <= x < 128; Ki (MC_CUR_KI, MC_SPD_KI)
+    as plain Q15, 0 <= x < 1 (mc_derived.h). -1 outside the core's range."""
+    if not 0.0 <= x < (KI_RANGE if integral else KP_RANGE):
+        return -1
+    return cheader.q15_round(x) if integral else cheader.mant_shift(x)[0]
 
 
 class Infeasible(Exception):
@@ -53,9 +60,6 @@ class Infeasible(Exception):
 class Value:
     def __init__(self, macro: str, number: float, unit: str, reason: str, fmt: str = "{:.4g}") -> None:
         self.macro, self.number, self.unit, self.reason, self.fmt = macro, number, unit, reason, fmt
-
-    def text(self) -> str:
-        return fmt_num(self.number, self.fmt)
 
 
 def fmt_num(x: float, fmt: str = "{:.4g}") -> str:
@@ -80,6 +84,15 @@ def sig_down(x, n=3):
     return float(f"{math.floor(x / 10.0**e + 1e-9)}e{e}")
 
 
+def sig_up(x, n=3):
+    """x rounded up to n significant digits: a value the core bounds from below (the lock
+    current's dead-time bands) never rounds under its bound."""
+    if x <= 0:
+        return 0.0
+    e = math.floor(math.log10(x)) - (n - 1)
+    return float(f"{math.ceil(x / 10.0**e - 1e-9)}e{e}")
+
+
 def round_up(x, step):
     return math.ceil(x / step - 1e-9) * step
 
@@ -93,8 +106,9 @@ class Tuning:
 
     def __init__(self) -> None:
         self.values: list[Value] = []
-        self.notes: list[str] = []
-        self.warnings: list[str] = []
+        self.notes: list[str] = []  # the header's introduction
+        self.warnings: list[str] = []  # derating: printed, and in the header
+        self.limited: list[str] = []  # values held to the core's ranges: printed, and in the header
         self.fw_table: list[float] = []
         self.fw_speeds: list[float] = []
         self.by: dict[str, Value] = {}
@@ -102,9 +116,8 @@ class Tuning:
         self.desc: Any = None
         self.board = self.board_name = ""
         self.fpwm = 0
-        self.i_fs = self.v_fs = self.vbus = self.psi = self.kt = self.v_ss = self.headroom = 0.0
+        self.i_fs = self.v_fs = self.vbus = self.psi = self.kt = self.v_ss = 0.0
         self.i_peak = self.i_qmax = self.trip = self.i_load = self.n_bus = self.id_limit = 0.0
-        self.n_emf = self.v_dt = self.ws = self.n_top = self.e_top = self.e_per_rpm = 0.0
 
     def add(self, macro: str, number: float, unit: str, reason: str, fmt: str = "{:.4g}") -> float:
         v = Value(macro, number, unit, reason, fmt)
@@ -114,6 +127,40 @@ class Tuning:
 
     def __getitem__(self, macro: str) -> float:
         return self.by[macro].number
+
+    def held(self, macro: str, value: float, lo: float, hi: float, why: str) -> float:
+        """value held to [lo, hi], the core's range for macro (why: where it is checked); a
+        value that had to move is noted, so the user learns the rule did not give it."""
+        if lo <= value <= hi:
+            return value
+        held = lo if value < lo else hi
+        self.limited.append(f"{macro} {value:.4g} held to {held:.4g}: {why}")
+        return held
+
+
+def dead_time_band(t: Tuning, fcy: int, fpwm: int, vbus: float, l: float, i_fs: float, dt_ns: float) -> float:
+    """The dead-time compensation's band (A): UserParms.h's default Vbus / (12 L fpwm), the
+    phase current's ripple. The core (mc_derived.h MC_CHECK_FOR(MC_DEADTIME_BAND_A,
+    MOTOR_LS_H)) wants it below I_FS / 4 and, in Q15 counts of current, above the dead
+    time's counts (the in-band slope < 1): a large L (15 mH at 20 kHz on the MCLV) gets the
+    narrowest band it allows, written into the profile (a wider band under-compensates a
+    little; UserParms.h); an L so small that the ripple is a quarter of the scale is refused."""
+    band = vbus / (12.0 * l * fpwm)
+    if band >= 0.25 * i_fs:
+        raise Infeasible("motor.inductance", f"the current ripple Vbus / (12 L fpwm) = {band:.3g} A is a quarter of "
+                         f"the {i_fs:g} A current scale or more (MC_DEADTIME_BAND_A < I_FS / 4): L is too small "
+                         f"for this board at {fpwm} Hz")
+    counts = int(dt_ns * 1e-9 * fcy + 0.5)  # MC_DT_COUNTS
+    band_min = sig_up((counts + 1.5) * i_fs / 32768.0, 3)  # Q15 counts of the band > MC_DT_COUNTS, rounding kept
+    if band < band_min:
+        band = t.held("MC_DEADTIME_BAND_A", band, band_min, math.inf,
+                      f"above the {counts} dead-time counts in Q15 of the current scale (mc_derived.h "
+                      f"MC_CHECK_FOR(MC_DEADTIME_BAND_A, MOTOR_LS_H): the in-band slope < 1)")
+        t.add("MC_DEADTIME_BAND_A", band, "A",
+              f"dead-time compensation band (UserParms.h): the ripple Vbus / (12 L fpwm) = "
+              f"{vbus / (12.0 * l * fpwm):.3g} A is narrower than the core can represent against {counts} dead-time "
+              f"counts: the narrowest it allows")
+    return band
 
 
 def bisect_last(pred, lo, hi, steps):
@@ -174,6 +221,13 @@ def derive(desc: Any) -> Tuning:
     fpwm = int(round(desc.pwm_hz)) if desc.pwm_hz is not None else int(benv.num("PWM_FREQUENCY_HZ"))
     if not 4000 <= fpwm <= 40000 or fcy % fpwm != 0:
         raise InputError("pwm_frequency", f"{fpwm} Hz: must be 4..40 kHz and divide the {fcy} Hz instruction clock")
+    # mc_derived.h MC_CHECK_FOR(BOARD_VBUS_FULLSCALE_V, PWM_FREQUENCY_HZ): the applied-voltage
+    # scale MC_VAPP_K = sqrt 3 / (3 PWM_DUTY_MAX) x VBUS_FS / VBUS_NOMINAL x 2^25 in [1024, 32767)
+    # (a faster PWM has fewer duty counts: the MCLV's 52.8 V scale over 24 V stops at 30.7 kHz)
+    vapp = SQRT3 / 3.0 * benv.num("BOARD_VBUS_FULLSCALE_V") / vbus * 33554432.0  # x 1 / PWM_DUTY_MAX
+    if not 1024.0 <= vapp / (fcy // fpwm) < 32767.0:
+        raise InputError("pwm_frequency", f"{fpwm} Hz: the {board_name}'s applied-voltage scaling needs "
+                         f"{fcy / (vapp / 1024.0):.0f}..{fcy / (vapp / 32767.0):.0f} Hz (mc_derived.h MC_VAPP_K)")
     loop_hz = int(cheader.scale_value(benv, "MC_SPEED_LOOP_HZ", "the speed-loop rate", whole=True))
     if fpwm % loop_hz != 0 or not 1 <= fpwm // loop_hz <= 256:
         raise InputError("pwm_frequency", f"{fpwm} Hz: must be 1..256 times the {loop_hz} Hz speed loop")
@@ -207,7 +261,7 @@ def derive(desc: Any) -> Tuning:
                                   benv.num("BOARD_SHUNT_MIN_ON_NS")) / (fcy // fpwm)
     vfrac_ss = min(vfrac, win)
     v_ss = vfrac_ss * v_fs * headroom
-    t.v_ss, t.headroom = v_ss, headroom
+    t.v_ss = v_ss
     if vfrac_ss < vfrac:
         limit = (f"{vfrac_ss:.3f} (the shunt window: the measured phases' duties stay at or below "
                  f"{100 * win:.1f} %, MC_DUTY_SAMPLE_MAX; MC_VOLTAGE_LIMIT_FRACTION is {vfrac:g})")
@@ -315,10 +369,20 @@ def derive(desc: Any) -> Tuning:
     fs_max = min(fpwm * 60.0 / (TWO_PI * pp) * 0.95,  # smc: 2 pi omega_fs Ts < 1
                  fpwm * 60.0 / (3.0 * pp) * 0.95,  # mc.c: 3 omega_fs Ts < 1
                  32767.0 * benv.num("MC_SPEED_RAMP_RPM_PER_S") / loop_hz)  # slew >= 1 count
+    # The stall detector's speed error is a fixed number of rpm (UserParms.h, 1500) the core
+    # wants inside the speed scale (mc_derived.h MC_CHECK_FOR(MC_STALL_SPEED_ERROR_RPM,
+    # MC_SPEED_FULLSCALE_RPM)): a slow motor (top speed under 1000 rpm) gets a wider scale.
+    stall_err = benv.num("MC_STALL_SPEED_ERROR_RPM")
+    fs = t.held("MOTOR_SPEED_FULLSCALE_RPM", fs, round_up(stall_err + 1.0, 1000.0), math.inf,
+                f"above MC_STALL_SPEED_ERROR_RPM = {stall_err:g} rpm (mc_derived.h "
+                f"MC_CHECK_FOR(MC_STALL_SPEED_ERROR_RPM, MC_SPEED_FULLSCALE_RPM))")
     fs = min(fs, round_down(fs_max, 100.0))
     if fs < n_fw / 0.95:
         raise Infeasible(top_field, f"{n_fw:.0f} rpm x {pp} pole pairs is too fast for {fpwm} Hz PWM "
                          f"(speed full scale would have to exceed {fs_max:.0f} rpm); raise pwm_frequency")
+    if fs <= stall_err:
+        raise Infeasible("pwm_frequency", f"{fpwm} Hz with {pp} pole pairs limits the speed scale to {fs_max:.0f} rpm, "
+                         f"not above the stall detector's {stall_err:g} rpm (MC_STALL_SPEED_ERROR_RPM)")
     t.add("MOTOR_SPEED_FULLSCALE_RPM", fs, "rpm",
           "Q15 full scale of every speed: 1.5 x the top speed rounded up to 1000 rpm (room for overshoot, "
           "core check FW max <= 0.95 x full scale)", "{:.1f}")
@@ -337,7 +401,6 @@ def derive(desc: Any) -> Tuning:
            f"max(back-EMF = 3 x the dead-time voltage error {v_dt:.2f} V -> {n_emf:.0f} rpm, 8 % of the top "
            f"speed), rounded up to 50 rpm; the estimator's filter floor (MC_ESTIMATOR_MIN_RPM) is 0.8 x the "
            f"ramp end"), "{:.1f}")
-    t.n_emf, t.v_dt = n_emf, v_dt
 
     # ---- start-up -----------------------------------------------------------
     # The start-up current: the load must take at most START_LOAD_SHARE of the
@@ -352,7 +415,8 @@ def derive(desc: Any) -> Tuning:
                              f"{desc.t_start:g} N m needs {i_need:.3g} A of start-up current (the load at most "
                              f"{START_LOAD_SHARE:.0%} of Kt I, Kt = {kt * 1000:.2f} mN m/A), above the Iq limit "
                              f"{i_qmax:.3g} A: the motor cannot start this load")
-        i_lock = max(i_default, sig(i_need * 1.0005, 3))
+        # rounded up, less 0.05 %: the 60 % share is the tool's margin, not a limit of the core
+        i_lock = max(i_default, sig_up(i_need / 1.0005, 3))
         lock_reason = (f"the start load {desc.t_start * 1000:.3g} mN m at {START_LOAD_SHARE:.0%} of Kt I "
                        f"(Kt = {kt * 1000:.2f} mN m/A) -> {i_need:.3g} A, at least 0.6 x the continuous current "
                        f"{min(desc.i_rated, i_qmax):.3g} A: the lock pulls the rotor against the same load")
@@ -365,23 +429,27 @@ def derive(desc: Any) -> Tuning:
         t_start = START_LOAD_SHARE * kt * i_lock
     # The firmware measures the inverter's dead time at the lock (mc.c note 4,
     # MC_DEADTIME_MEASURE): 3/4 of the lock current must put 1.5 dead-time
-    # bands (UserParms.h MC_DEADTIME_BAND_A = Vbus / (12 L fpwm)) into phases
-    # B and C, I_lock >= 2.31 bands; mc_derived.h refuses less.
-    i_dtm = DTM_LOCK_BANDS * vbus / (12.0 * l * fpwm)
+    # bands (MC_DEADTIME_BAND_A) into phases B and C, I_lock >= 2.31 bands;
+    # mc_derived.h refuses less.
+    band_dt = dead_time_band(t, fcy, fpwm, vbus, l, i_fs, benv.num("PWM_DEADTIME_NS"))
+    i_dtm = DTM_LOCK_BANDS * band_dt
     if i_lock < i_dtm:
         if i_dtm > i_qmax:
             raise Infeasible("motor.inductance",
                              f"measuring the dead time at the lock needs {i_dtm:.3g} A of lock current "
-                             f"({DTM_LOCK_BANDS:.2f} x Vbus / (12 L fpwm)), above the Iq limit {i_qmax:.3g} A: "
-                             f"L is too small for this bus (or build with MC_DEADTIME_MEASURE 0)")
-        i_lock = sig(i_dtm * 1.0005, 3)
-        lock_reason += (f"; raised to {i_lock:.3g} A, {DTM_LOCK_BANDS:.2f} dead-time bands (Vbus / (12 L fpwm) = "
-                        f"{i_dtm / DTM_LOCK_BANDS:.3g} A), the least the lock's dead-time measurement needs")
+                             f"({DTM_LOCK_BANDS:.2f} x the dead-time band {band_dt:.3g} A), above the Iq limit "
+                             f"{i_qmax:.3g} A: L is too small for this bus (or build with MC_DEADTIME_MEASURE 0)")
+        i_lock = sig_up(i_dtm, 3)
+        lock_reason += (f"; raised to {i_lock:.3g} A, {DTM_LOCK_BANDS:.2f} dead-time bands (MC_DEADTIME_BAND_A = "
+                        f"{band_dt:.3g} A), the least the lock's dead-time measurement needs")
     t.add("MOTOR_LOCK_CURRENT_A", i_lock, "A", lock_reason)
     j = desc.j
     if j is not None:
         wn = math.sqrt(pp * kt * i_lock / j)  # rotor swing in the lock torque spring, rad/s
         t_lock = min(max(round_up(8.0 * TWO_PI / wn, 0.01), 0.1), 2.0)
+        # the core counts the lock in a uint16_t of periods (2 s is 80000 at 40 kHz)
+        t_lock = t.held("MOTOR_LOCK_TIME_S", t_lock, 0.0, round_down(LOCK_PERIODS_MAX / fpwm, 0.01),
+                        f"at most {LOCK_PERIODS_MAX:.0f} PWM periods (mc_derived.h MC_CHECK(MOTOR_LOCK_TIME_S))")
         t.add("MOTOR_LOCK_TIME_S", t_lock, "s",
               f"8 periods of the rotor's small swing about the lock angle, w = sqrt(p Kt I_lock / J) = {wn:.0f} "
               f"rad/s (Kt = {kt * 1000:.2f} mN m/A, J = {j:.3g} kg m^2), within 0.1..2 s: a rotor that starts "
@@ -403,6 +471,17 @@ def derive(desc: Any) -> Tuning:
     else:
         t_ramp = 1.0
         ramp_reason = "no inertia given: 1 s to the ramp end (AN1078 used 5 s with a brake attached)"
+    # The forced angle's 32-bit step grows by MC_RAMP_STEP_INC_ = end step / ramp periods each
+    # period, at least 8 counts: a low ramp end (1 pole pair, 40 kHz) needs a shorter ramp.
+    t_ramp_max = round_down(n_end * pp / 60.0 * 4294967296.0 / (RAMP_STEP_INC_MIN * fpwm * fpwm), 0.05)
+    if t_ramp_max < 100.0 / fpwm:  # and at least 100 periods; 9 rpm x pole pairs at 40 kHz still fits
+        raise Infeasible("application.min_speed" if desc.n_min is not None else top_field,
+                         f"the open-loop ramp to {n_end:.0f} rpm cannot be 100 PWM periods long with the forced "
+                         f"angle's step growing >= {RAMP_STEP_INC_MIN:.0f} counts a period (mc_derived.h "
+                         f"MC_CHECK(MOTOR_RAMP_TIME_S))")
+    t_ramp = t.held("MOTOR_RAMP_TIME_S", t_ramp, 0.0, t_ramp_max,
+                    f"the forced angle's step must grow by >= {RAMP_STEP_INC_MIN:.0f} counts a period "
+                    f"(mc_derived.h MC_CHECK(MOTOR_RAMP_TIME_S))")
     t.add("MOTOR_RAMP_TIME_S", t_ramp, "s", ramp_reason)
     t.add("MOTOR_RAMP_END_RPM", n_end, "rpm", "hand-off to closed loop at the lowest closed-loop speed", "{:.1f}")
     t.add("MOTOR_RAMP_CURRENT_A", i_ramp, "A", "Iq during the open-loop ramp: the lock current")
@@ -410,7 +489,10 @@ def derive(desc: Any) -> Tuning:
           "the load torque the start-up is sized for (data for tools: the robustness campaign draws loads up to it)")
     if j is not None:
         wn_ol = math.sqrt(pp * kt * i_ramp / j)
-        t.add("MOTOR_OL_DAMP_S", sig(2.0 * OL_DAMP_ZETA / wn_ol, 3), "s",
+        lo, hi = OL_DAMP_PERIODS
+        damp = t.held("MOTOR_OL_DAMP_S", sig(2.0 * OL_DAMP_ZETA / wn_ol, 3), sig_up(lo / fpwm, 3),
+                      sig_down(hi / fpwm, 3), f"{lo:g}..{hi:g} PWM periods (mc_derived.h MC_CHECK(MOTOR_OL_DAMP_S))")
+        t.add("MOTOR_OL_DAMP_S", damp, "s",
               f"open-loop damping (UserParms.h): zeta {OL_DAMP_ZETA} for the rotor's swing about the forced angle, "
               f"w = sqrt(p Kt I_ramp / J) = {wn_ol:.0f} rad/s: 2 zeta / w")
 
@@ -432,6 +514,17 @@ def derive(desc: Any) -> Tuning:
     f_ex = math.exp(-ts * r / l)
     g_si = (1.0 - f_ex) / r  # A per V per period
     band = sig(ks * g_si / f_ex, 3)
+    # The core wants the band below the current scale (mc_derived.h
+    # MC_CHECK_FOR(MOTOR_SMC_LINEAR_BAND_A, BOARD_I_FULLSCALE_A)); a small L at a large Ts R/L
+    # asks for more. A narrower band only raises the linear band's loop gain c = G Kslide / band
+    # above F (smc.h note 3: still linear below 1 + F, relay mode above, which the core allows).
+    band_max = sig_down(0.99 * i_fs, 3)
+    if band > band_max:
+        c = ks * g_si / band_max
+        mode = f"linear, c < 1 + F = {1.0 + f_ex:.3f}" if c < 1.0 + f_ex else "relay mode, c >= 1 + F (smc.h note 4)"
+        band = t.held("MOTOR_SMC_LINEAR_BAND_A", band, 0.0, band_max,
+                      f"below the {i_fs:g} A current scale (mc_derived.h MC_CHECK_FOR(MOTOR_SMC_LINEAR_BAND_A)); "
+                      f"the band's loop gain c = {c:.3f} instead of the dead-beat F = {f_ex:.3f} ({mode})")
     t.add("MOTOR_SMC_LINEAR_BAND_A", band, "A",
           f"MaxSMCError = Kslide G / F (smc.h SMC_MAXERR_DEADBEAT: the linear band's loop gain G Kslide/MaxSMCError "
           f"equals F, a dead-beat correction), G = (1 - F)/R = {g_si:.5f} A/V, F = {f_ex:.5f}")
@@ -461,20 +554,25 @@ def derive(desc: Any) -> Tuning:
                      f"2 % of the back-EMF at the lowest closed-loop speed ({e_per_rpm * n_min:.2f} V), "
                      f"{wc_noise:.0f} rad/s), rounded down to 100 rad/s (in the simulator the delay limit "
                      f"alone, 4600 rad/s, lost the Hurst's 500 rpm operation)")
+        # The gains' Q15 ranges (Ki = R wc Ts I_FS / V_FS < 1: a high-resistance motor on a
+        # board with a large current scale): the bandwidth is lowered, the zero still cancels.
+        wc_q = GAIN_MARGIN * min(KI_RANGE * v_fs / (i_fs * r * ts), KP_RANGE * v_fs / (i_fs * l))
+        if wc_q < wc:
+            wc = t.held("MOTOR_CURRENT_LOOP_BW_RAD_S", wc, 0.0, round_down(wc_q, 100.0),
+                        "the current PI's Q15 ranges, Ki Ts I_FS / V_FS < 1 and Kp I_FS / V_FS < 128 "
+                        "(mc_derived.h MC_CHECK(MOTOR_CURRENT_KI_V_PER_AS))")
+            wc_reason += f"; lowered to {wc:.0f} rad/s so the gains fit the core's Q15 ranges"
     t.add("MOTOR_CURRENT_LOOP_BW_RAD_S", wc, "rad/s",
           f"current-loop bandwidth, {wc / TWO_PI:.0f} Hz: {wc_reason}", "{:.1f}")
     t.add("MOTOR_CURRENT_KP_V_PER_A", sig(l * wc, 4), "V/A",
           f"Kp = L wc = {l * 1e3:.4g} mH x wc: pole-zero cancellation (the PI zero Ki/Kp = R/L cancels the "
           f"winding pole, tau = {l / r * 1e3:.3g} ms), leaving a first-order loop of bandwidth wc")
     t.add("MOTOR_CURRENT_KI_V_PER_AS", sig(r * wc, 4), "V/(A s)", f"Ki = R wc = {r:.4g} ohm x wc", "{:.6g}")
-    for macro, x, fld in (("MOTOR_CURRENT_KP_V_PER_A", t["MOTOR_CURRENT_KP_V_PER_A"] * i_fs / v_fs, "motor.inductance"),
-                          ("MOTOR_CURRENT_KI_V_PER_AS", t["MOTOR_CURRENT_KI_V_PER_AS"] * ts * i_fs / v_fs,
-                           "motor.resistance")):
+    for macro, x, fld, integral in (
+            ("MOTOR_CURRENT_KP_V_PER_A", t["MOTOR_CURRENT_KP_V_PER_A"] * i_fs / v_fs, "motor.inductance", False),
+            ("MOTOR_CURRENT_KI_V_PER_AS", t["MOTOR_CURRENT_KI_V_PER_AS"] * ts * i_fs / v_fs, "motor.resistance", True)):
         fld = "application.current_bandwidth" if desc.wc is not None else fld
-        n = gain_counts(x)
-        if n < MIN_GAIN_COUNTS:
-            raise InputError(fld, f"gives {macro} = {t[macro]:g}, {n} counts in the core's Q15 form (at least "
-                             f"{MIN_GAIN_COUNTS}): the current loop could not act; check the value and its unit")
+        _gain_fits(t, macro, x, integral, fld, "the current loop could not act; check the value and its unit")
 
     # ---- speed PI ------------------------------------------------------------
     # Gain schedule of the core (mc.c): Kp is full above MOTOR_SPEED_KP_FULL_RPM and scaled
@@ -518,7 +616,6 @@ def derive(desc: Any) -> Tuning:
               f"Ki = Kp ws / {zr:g}: the PI zero {zr:g} x below the crossover, integral action quick enough to "
               f"recover a half-rated load step within 100 ms, slow enough to keep the margin at 20 x the stated J "
               f"(docs/tune.md)")
-        t.ws = ws
     else:
         kp_rpm = i_qmax / (0.4 * n_fw)
         t.add("MOTOR_SPEED_KP_A_PER_RPM", sig(kp_rpm, 3), "A/rpm",
@@ -529,14 +626,24 @@ def derive(desc: Any) -> Tuning:
     # Both speed gains as the core stores them: counts that round to (nearly) 0 are an inertia
     # in the wrong unit (g cm^2 read as kg m^2 gives gains 1e7 times too small).
     fld = "motor.inertia" if j is not None else "motor.rated_current"
-    for macro, x in (("MOTOR_SPEED_KP_A_PER_RPM", t["MOTOR_SPEED_KP_A_PER_RPM"] * fs / i_fs),
-                     ("MOTOR_SPEED_KI_A_PER_RPM_S", t["MOTOR_SPEED_KI_A_PER_RPM_S"] / loop_hz * fs / i_fs)):
-        n = gain_counts(x)
-        if n < MIN_GAIN_COUNTS:
-            hint = ("did you mean kg cm^2 or g cm^2 for a value written in kg m^2, or the reverse?" if j is not None
-                    else "check the value and its unit")
-            raise InputError(fld, f"gives {macro} = {t[macro]:g}, {n} counts in the core's Q15 form (at least "
-                             f"{MIN_GAIN_COUNTS}): the speed loop could not act; {hint}")
-
-    t.n_top, t.e_top, t.e_per_rpm = n_top, e_top, e_per_rpm
+    hint = ("the speed loop could not act; did you mean kg cm^2 or g cm^2 for a value written in kg m^2, or "
+            "the reverse?" if j is not None else "the speed loop could not act; check the value and its unit")
+    for macro, x, integral in (("MOTOR_SPEED_KP_A_PER_RPM", t["MOTOR_SPEED_KP_A_PER_RPM"] * fs / i_fs, False),
+                               ("MOTOR_SPEED_KI_A_PER_RPM_S", t["MOTOR_SPEED_KI_A_PER_RPM_S"] / loop_hz * fs / i_fs,
+                                True)):
+        _gain_fits(t, macro, x, integral, fld, hint)
     return t
+
+
+def _gain_fits(t: Tuning, macro: str, x: float, integral: bool, fld: str, hint: str) -> None:
+    """A gain of x full-scale units as the core stores it (gain_counts): beyond the core's
+    range the board cannot take it (Infeasible); too few counts is a unit slip (InputError);
+    both name the description's field."""
+    n = gain_counts(x, integral)
+    if n < 0:
+        hi = KI_RANGE if integral else KP_RANGE
+        raise Infeasible(fld, f"gives {macro} = {t[macro]:g}, {x:.3g} in the core's units, outside its Q15 range "
+                         f"[0, {hi:g}) (mc_derived.h MC_CHECK({macro}))")
+    if n < MIN_GAIN_COUNTS:
+        raise InputError(fld, f"gives {macro} = {t[macro]:g}, {n} counts in the core's Q15 form (at least "
+                         f"{MIN_GAIN_COUNTS}): {hint}")

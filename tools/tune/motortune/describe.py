@@ -36,18 +36,14 @@ with characters that do not belong in a C string or comment.
 from __future__ import annotations
 
 import difflib
-import math
 import tomllib
 from typing import Any, Optional
 
 from . import safeio, units
-from .units import NAME_RE, InputError
+from .units import NAME_RE, RPM, SQRT2, SQRT3, InputError
 
 MAX_TOML_BYTES = 64 * 1024  # the examples are 1..2 kB
 MAX_DESCRIPTION = 100  # characters of `description` (MOTOR_NAME, and the header's first line)
-
-SQRT2 = math.sqrt(2.0)
-SQRT3 = math.sqrt(3.0)
 
 # field -> (quantity, required)
 TOP = {"name": ("text", True), "description": ("text", False), "board": ("text", True),
@@ -161,10 +157,13 @@ def _match_key(section: str, key: str, fields: dict[str, tuple[str, bool]]) -> t
         return key, key
     shown = key if len(key) <= 40 else key[:40] + "..."
     where = f"{section}.{shown}" if section else shown
+    if not key:  # "" = 1: a field with no name
+        raise InputError(f'{section}.""' if section else '""',
+                         f"an empty key is not a field (known: {', '.join(fields)})")
     if len(key) > 64:  # no field is that long; and difflib's work grows with the length
         raise InputError(where, "unknown field")
     for f, (q, _) in fields.items():
-        if q in units._SUFFIX_UNITS and units.base_key(key, q) == f and key != f:
+        if q in units._SUFFIX_UNITS and units.base_key(key, q) == f:
             return f, key
     close = difflib.get_close_matches(key, list(fields), n=1, cutoff=0.6)
     hint = f" (did you mean {close[0]}?)" if close else f" (known: {', '.join(fields)})"
@@ -187,22 +186,23 @@ def load(path: str) -> Description:
     """The description in the TOML file at path: a regular file of at most MAX_TOML_BYTES."""
     if not path:
         raise InputError("file", "no description file given")
-    d = parse(loads(safeio.read_utf8(path, "file", MAX_TOML_BYTES), path))
+    d = parse(loads(safeio.read_utf8(path, "file", MAX_TOML_BYTES)))
     d.source = path
     return d
 
 
-def loads(text: str, path: str = "<text>") -> dict[str, Any]:
+def loads(text: str) -> dict[str, Any]:
     """TOML text to a dict; every problem (syntax, an integer of thousands of digits,
-    arrays nested thousands deep) an InputError naming the file."""
+    arrays nested thousands deep) an InputError on the field "file" (the caller names
+    the file itself, once)."""
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
-        raise InputError("file", f"{path}: not valid TOML ({e})") from None
+        raise InputError("file", f"not valid TOML ({e})") from None
     except ValueError:  # tomllib: an integer of more than 4300 digits (Python's int-from-text limit)
-        raise InputError("file", f"{path}: a number with too many digits") from None
+        raise InputError("file", "a number with too many digits") from None
     except (RecursionError, MemoryError):  # arrays or inline tables nested thousands deep
-        raise InputError("file", f"{path}: nested too deeply") from None
+        raise InputError("file", "nested too deeply") from None
 
 
 def _inertia_check(d: Description, given: Any) -> None:
@@ -211,9 +211,9 @@ def _inertia_check(d: Description, given: Any) -> None:
     put the same number inside are suggested."""
     if d.j is None:
         return
-    psi = d.ke_ll / SQRT3 / (1000.0 * 2.0 * math.pi / 60.0 * d.pole_pairs)  # Wb
+    psi = d.ke_ll / SQRT3 / (1000.0 * RPM * d.pole_pairs)  # Wb
     torque = 1.5 * d.pole_pairs * psi * d.i_rated  # N m at the rated current
-    w = d.n_rated * 2.0 * math.pi / 60.0  # rad/s
+    w = d.n_rated * RPM  # rad/s
     t_acc = d.j * w / torque
     lo, hi = ACCEL_TIME_S
     if lo <= t_acc <= hi:
@@ -241,7 +241,7 @@ def parse(data: dict[str, Any]) -> Description:
         if sec and not isinstance(table, dict):
             raise InputError(sec, "must be a [section]")
         for key, value in table.items():
-            if sec == "" and key in SECTIONS:
+            if sec == "" and key and key in SECTIONS:
                 if isinstance(value, dict):
                     continue
                 raise InputError(key, f"must be a [{key}] section, got {type(value).__name__}")

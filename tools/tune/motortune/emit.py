@@ -46,6 +46,7 @@ SECTIONS = [
     ("start-up (AN1078 \"Motor start-up\")", ["MOTOR_LOCK_TIME_S", "MOTOR_LOCK_CURRENT_A", "MOTOR_RAMP_TIME_S",
                                               "MOTOR_RAMP_END_RPM", "MOTOR_RAMP_CURRENT_A", "MOTOR_OL_DAMP_S"]),
     ("sliding-mode observer", ["MOTOR_SMC_GAIN_V", "MOTOR_SMC_LINEAR_BAND_A", "MC_SPEED_FILTER_HZ"]),
+    ("dead-time compensation", ["MC_DEADTIME_BAND_A"]),  # only when UserParms.h's default does not fit
     ("current PI (d and q)", ["MOTOR_CURRENT_LOOP_BW_RAD_S", "MOTOR_CURRENT_KP_V_PER_A",
                               "MOTOR_CURRENT_KI_V_PER_AS"]),
     ("speed PI", ["MOTOR_SPEED_KP_FULL_RPM", "MOTOR_SPEED_KP_A_PER_RPM", "MOTOR_SPEED_KI_A_PER_RPM_S"]),
@@ -114,6 +115,8 @@ def render(desc: Any, t: Any, tool_cmd: str) -> str:
     )
     if t.warnings:
         intro += "\n\nDERATED: " + "; ".join(t.warnings) + "."
+    if t.limited:
+        intro += "\n\nHELD TO THE CORE'S RANGES: " + "; ".join(t.limited) + "."
     lines += _comment_block(intro)
     lines += [" */", "", f"#define MOTOR_NAME {c_string(d.desc)}", "#ifndef MOTOR_TUNE_BOARD",
               f"#define MOTOR_TUNE_BOARD {c_string(t.board)} /* the board these values were derived for */",
