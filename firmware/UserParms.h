@@ -252,7 +252,7 @@
  * validity instead. MC_SENSOR_TIME_S of failing windows, net of passing
  * ones at half weight, is a MC_FAULT_CURRENT_SENSOR. */
 #ifndef MC_SENSOR_TIME_S
-#define MC_SENSOR_TIME_S 0.007
+#define MC_SENSOR_TIME_S 0.005
 #endif
 /* 1: the check trips. 0: it only runs (a unit test without a plant, whose
  * currents never follow the loops). */

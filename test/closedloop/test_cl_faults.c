@@ -267,7 +267,18 @@ static void test_voltage_limited_running_should_not_trip_the_sensor_check(void *
                "voltage limit in %.0f %% of the windows\n",
                cases[k].rpm, cases[k].load, cases[k].vbus, simcore_state_name(s.now.state),
                s.now.speed_rpm, 100.0 * sat / (double)n);
-        assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
+        /* never the sensor; a profile whose speed loop loses the rotor to
+         * the step may stall (a stall fault), the hand-tuned Hurst holds */
+        assert_int_not_equal(s.now.fault, MC_FAULT_CURRENT_SENSOR);
+        if (s.now.state != MC_STATE_CLOSED_LOOP) {
+            printf("measured: ... ended in %s (%s)\n", simcore_state_name(s.now.state),
+                   simcore_fault_name(s.now.fault));
+            assert_int_equal(s.now.state, MC_STATE_FAULT);
+#if defined(MC_MOTOR_HURST)
+            fail_msg("the hand-tuned Hurst must hold every case");
+#endif
+            continue;
+        }
         assert_true(sat > 0.2 * (double)n); /* it did run at the limit */
     }
 }
