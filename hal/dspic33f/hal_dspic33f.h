@@ -80,8 +80,12 @@
 
 /* HAL_CHECK(PARAM, cond, "why"): the build stops at this line naming the
  * user's parameter the condition is about ("PARAM__out_of_range" in the
- * first error line, as the core's MC_CHECK does). */
-#define HAL_CHECK(param, cond, msg) Q15_CHECK_DECL(param##__out_of_range, cond)
+ * first error line, as the core's MC_CHECK does; the pasted name is used
+ * in place, not handed to another macro, which cppcheck cannot expand). */
+#define HAL_CHECK(param, cond, msg)                                                                \
+    extern char q15_check_[1 + (int)(0 * sizeof(struct {                                           \
+                                         unsigned param##__out_of_range : Q15_CHECK_WIDTH_(cond);  \
+                                     }))]
 
 HAL_CHECK(BOARD_FCY_HZ, HAL_PLL_M *HAL_FIN_HZ == 2L * BOARD_FCY_HZ * HAL_PLL_N1 * HAL_PLL_N2,
           "BOARD_FCY_HZ is not reachable from the 8 MHz crystal with N1 = N2 = 2");
