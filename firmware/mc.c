@@ -731,6 +731,7 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     if (si->state != MC_STATE_LOCK && si->state != MC_STATE_OPEN_LOOP &&
         si->state != MC_STATE_CLOSED_LOOP) {
         mc->sens_cnt = 0U;
+        mc->sens_emf_low = 0U;
         so->sensor_fault = false;
         return;
     }
@@ -754,7 +755,24 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     } else {
         bad = ed > thr || eq > thr;
     }
-    if (bad && MC_SENSOR_CHECK) {
+    /* A rotor stopped in CLOSED_LOOP (locked, stalled) leaves the
+     * estimate spinning with no back-EMF behind it: the frame turns under
+     * the current loops and their errors look like a failed sensor's. The
+     * stall check owns that case; while the back-EMF has read below
+     * MC_STALL_BEMF_LO_Q12 of the speed's for MC_SENSOR_DEFER_WINDOWS
+     * windows running, a failing window is held, neither counted nor
+     * forgiven. A failed sensor on a turning rotor leaves its back-EMF
+     * behind (the ratio swings, it does not stay low). */
+    if (si->state == MC_STATE_CLOSED_LOOP && si->emf_ratio < MC_STALL_BEMF_LO_Q12) {
+        if (mc->sens_emf_low < MC_SENSOR_DEFER_WINDOWS) {
+            mc->sens_emf_low++;
+        }
+    } else {
+        mc->sens_emf_low = 0U;
+    }
+    if (bad && mc->sens_emf_low >= MC_SENSOR_DEFER_WINDOWS) {
+        /* held */
+    } else if (bad && MC_SENSOR_CHECK) {
         if (mc->sens_cnt < MC_SENSOR_TRIP) {
             mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
         }
@@ -1044,6 +1062,7 @@ static void mc_window_end(mc_t *mc)
     si->sens_qsat = mc->sens_qsat;
     si->sens_ref = mc->i_ref_frame;
     si->est_valid = smc_valid(&mc->smc);
+    si->emf_ratio = smc_emf_ratio(&mc->smc);
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;

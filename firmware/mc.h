@@ -219,7 +219,8 @@ typedef struct {
     int32_t sens_d, sens_q; /* the window's current-error sums (mc.c note 5) ... */
     uint16_t sens_qsat;     /* ... periods with the q PI at its limit ... */
     dq_q15_t sens_ref;      /* ... the current reference at the window end ... */
-    bool est_valid;         /* ... and whether the estimator vouches for its estimate */
+    bool est_valid;         /* ... whether the estimator vouches for its estimate ... */
+    q15_t emf_ratio;        /* ... and its back-EMF against the speed's, Q12 (smc.h) */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -338,6 +339,7 @@ typedef struct {
     /* LOCK: the dead-time measurement (mc.c note 4), per window */
     int32_t sens_fd, sens_fq; /* current-sensor check: the error sums low-passed over windows */
     uint8_t sens_cnt;         /* ... failing windows x 2, less passing ones */
+    uint8_t sens_emf_low;     /* ... consecutive windows of a back-EMF too low for the speed */
     int32_t dtm_sum;          /* the windows' beta sums (lock_vb), Q15 of V_FS */
     int32_t dtm_mean;         /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
     int32_t dtm_hi;           /* the largest and smallest alpha sum in the windows */

@@ -446,6 +446,10 @@ MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
  * cannot hold, averages out; in CLOSED_LOOP the window's own 1 ms average
  * is enough against a low-inductance motor's current noise. */
 #define MC_SENSOR_START_WINDOWS 8
+/* Windows of a back-EMF below the stall check's low fraction, running, after
+ * which the sensor check defers to the stall check (mc.c, mc_slow_sensor): 3,
+ * where a failed sensor on a turning rotor has shown at most 2 in a row. */
+#define MC_SENSOR_DEFER_WINDOWS 3
 
 /* Open-loop damping (UserParms.h): the forced angle's shift in angle
  * counts = (forced - estimated step, counts per period) * MC_OL_DAMP_K / 16,
