@@ -422,6 +422,28 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     assert_false(sim_rig_apply(&rig, &ev));
     ev.kind = SIM_EV_HW_FAULT;
     assert_false(sim_rig_apply(&rig, &ev));
+    /* sensor drift: 2.2 A/s on phase A for 0.1 s builds 0.22 A (26 codes of
+     * 4.4 A / 512); a rate of 0 then holds it; sensor_ok clears it */
+    ev.kind = SIM_EV_SENSOR_DRIFT;
+    ev.v1 = 0.0;
+    ev.v2 = 2.2;
+    assert_true(sim_rig_apply(&rig, &ev));
+    for (n = 0; n < 2000; n++) {
+        sim_rig_advance(&rig, d, false);
+    }
+    sim_rig_sample(&rig, &f);
+    assert_int_equal(f.ia, (int16_t)(64 * 26));
+    ev.v2 = 0.0;
+    assert_true(sim_rig_apply(&rig, &ev));
+    for (n = 0; n < 2000; n++) {
+        sim_rig_advance(&rig, d, false);
+    }
+    sim_rig_sample(&rig, &f);
+    assert_int_equal(f.ia, (int16_t)(64 * 26));
+    ev.kind = SIM_EV_SENSOR_OK;
+    assert_true(sim_rig_apply(&rig, &ev));
+    sim_rig_sample(&rig, &f);
+    assert_int_equal(f.ia, 0);
 }
 
 int main(void)

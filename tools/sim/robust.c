@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "sim_core.h"
 #include "sim_parse.h"
@@ -564,26 +565,61 @@ int main(int argc, char **argv)
     if (from >= 0 && csv_path != NULL) {
         return refuse("--csv", "only with --seed (one run's trace)");
     }
+    {
+        /* the motor and board exist for this build, before any output */
+        static simcore_t probe;
+        simcore_cfg_t cfg;
+        simcore_cfg_default(&cfg);
+        cfg.motor = motor;
+        cfg.board = board;
+        cfg.progress = false;
+        if (simcore_init(&probe, &cfg) != 0) {
+            return 2;
+        }
+    }
     if (one >= 0) {
         run_draw_t d;
         run_result_t r;
         FILE *csv = NULL;
+        char part[4096]; /* the trace is written here and renamed over --csv once complete,
+                            so a refused or failed run leaves an earlier trace as it was */
+        char pq[256];    /* the path, quoted */
         draw((uint32_t)one, motor, board, &d);
         if (csv_path != NULL) {
-            csv = fopen(csv_path, "w");
+            struct stat st;
+            if (stat(csv_path, &st) == 0 && !S_ISREG(st.st_mode)) {
+                snprintf(part, sizeof(part), "%s", csv_path); /* a device: written in place */
+            } else if (snprintf(part, sizeof(part), "%s.part", csv_path) >= (int)sizeof(part)) {
+                return refuse("--csv", "path too long");
+            }
+            csv = fopen(part, "w");
             if (csv == NULL) {
-                char pq[256]; /* the path, quoted */
                 sim_parse_msg(why, sizeof(why), "cannot write '%s'",
-                              sim_parse_quote(csv_path, pq, sizeof(pq)));
+                              sim_parse_quote(part, pq, sizeof(pq)));
                 return refuse("--csv", why);
             }
             simcore_csv_header(csv);
         }
         if (run_one(&d, &r, csv, true) != 0) {
+            if (csv != NULL) {
+                fclose(csv);
+                if (strcmp(part, csv_path) != 0) {
+                    remove(part);
+                }
+            }
             return 2;
         }
         if (csv != NULL) {
-            fclose(csv);
+            bool ok = (ferror(csv) == 0);
+            ok = (fclose(csv) == 0) && ok;
+            if (!ok || (strcmp(part, csv_path) != 0 && rename(part, csv_path) != 0)) {
+                if (strcmp(part, csv_path) != 0) {
+                    remove(part);
+                }
+                sim_parse_msg(why, sizeof(why), "writing '%s' failed (disk full?)",
+                              sim_parse_quote(csv_path, pq, sizeof(pq)));
+                return refuse("--csv", why);
+            }
         }
         print_header();
         print_row(motor, &d, &r);

@@ -103,6 +103,15 @@ static const sim_motor_profile_t *motor_from_firmware(const char *name)
 {
 #if defined(MOTOR_RS_OHM) && defined(MOTOR_LS_H) && defined(MOTOR_KE_VPK_LL_PER_KRPM)
     static sim_motor_profile_t mp;
+#if defined(MC_MOTOR_HEADER)
+    /* only the motor this core was built for: a misspelt name is refused,
+     * not simulated as the build's motor under another name */
+    char header[96];
+    snprintf(header, sizeof(header), "motors/motor_%s.h", name);
+    if (strcmp(header, MC_MOTOR_HEADER) != 0) {
+        return NULL;
+    }
+#endif
     mp.name = name;
     mp.alias = NULL;
 #if defined(MOTOR_INERTIA_KGM2)
@@ -143,6 +152,11 @@ static const sim_board_profile_t *board_from_firmware(const char *name)
 {
 #if defined(BOARD_VBUS_NOMINAL_V) && defined(BOARD_DEADTIME_NS)
     static sim_board_profile_t bp;
+#if defined(MC_BOARD_NAME)
+    if (strcmp(name, MC_BOARD_NAME) != 0) {
+        return NULL; /* only the board this core was built for */
+    }
+#endif
     bp.name = name;
     bp.desc = "firmware board data, amplifier offsets and noise assumed";
     bp.vbus_v = (double)BOARD_VBUS_NOMINAL_V;
@@ -177,8 +191,9 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
         s->bp = board_from_firmware(cfg->board);
     }
     if (s->mp == NULL || s->bp == NULL) {
-        fprintf(stderr, "sim: unknown %s '%s' (%s)\n", (s->mp == NULL) ? "motor" : "board",
-                (s->mp == NULL) ? cfg->motor : cfg->board, sim_profiles_list());
+        fprintf(stderr, "sim: unknown %s '%s': neither a simulator profile nor this build's (%s)\n",
+                (s->mp == NULL) ? "motor" : "board", (s->mp == NULL) ? cfg->motor : cfg->board,
+                sim_profiles_list());
         return -1;
     }
     if (s->mp->pole_pairs != (int)MOTOR_POLE_PAIRS) {
@@ -552,10 +567,12 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     int n_fault = 0;
 
     fprintf(f,
-            "\n== sim: scenario %s | motor %s (%s) | board %s, Vbus %.1f V, dead time %.1f us, "
-            "ADC noise %.1f LSB\n",
-            name, s->mp->name, s->mp->desc, s->bp->name, s->bp->vbus_v,
-            s->rig.inv.prm.deadtime_s * 1e6, s->rig.adc.prm.noise_codes);
+            "\n== sim: scenario %s | motor %s (%s) | board %s, at the start: Vbus %.1f V, dead "
+            "time %.1f us, ADC noise %.1f LSB\n",
+            name, s->mp->name, s->mp->desc, s->bp->name,
+            (s->cfg.vbus_v >= 0.0) ? s->cfg.vbus_v : s->bp->vbus_v,
+            1e6 * ((s->cfg.deadtime_s >= 0.0) ? s->cfg.deadtime_s : s->bp->deadtime_s),
+            (s->cfg.noise_codes >= 0.0) ? s->cfg.noise_codes : s->bp->noise_codes);
     if (s->cfg.rs_scale != 1.0 || s->cfg.l_scale != 1.0 || s->cfg.ke_scale != 1.0) {
         fprintf(f, "   plant mismatch vs UserParms.h: R x%.2f, L x%.2f, Ke x%.2f\n",
                 s->cfg.rs_scale, s->cfg.l_scale, s->cfg.ke_scale);
@@ -582,9 +599,8 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     fprintf(f,
             "   peak phase current        %.2f A at %.3f s (rated %.2f A, ADC full scale %.2f A)\n",
             s->i_peak_a, s->t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
-    fprintf(f, "   dead time compensated     %.2f us (the inverter's: %.2f us)\n",
-            (double)s->st.deadtime / (double)BOARD_FCY_HZ * 1e6,
-            (s->cfg.deadtime_s < 0.0) ? s->bp->deadtime_s * 1e6 : s->cfg.deadtime_s * 1e6);
+    fprintf(f, "   dead time compensated     %.2f us (the inverter's at the end: %.2f us)\n",
+            (double)s->st.deadtime / (double)BOARD_FCY_HZ * 1e6, s->rig.inv.prm.deadtime_s * 1e6);
     if (s->rig.amp_tau_s > 0.0) {
         fprintf(f,
                 "   shunt window              %ld samples short of the amplifiers' settling "

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "sim_core.h"
@@ -392,6 +393,13 @@ int main(int argc, char **argv)
         return 2;
     }
     if (csv_path != NULL) {
+        struct stat a, b;
+        if (stat(csv_path, &a) == 0 && stat(scen_path, &b) == 0 && a.st_dev == b.st_dev &&
+            a.st_ino == b.st_ino) {
+            sim_parse_msg(why, sizeof(why), "'%s' is the scenario file",
+                          sim_parse_quote(csv_path, pq, sizeof(pq)));
+            return refuse("--csv", why);
+        }
         s.cfg.csv = fopen(csv_path, "w");
         if (s.cfg.csv == NULL) {
             sim_parse_msg(why, sizeof(why), "cannot write '%s'",

@@ -4,6 +4,8 @@
 #define _XOPEN_SOURCE 600
 #include "sim_pty.h"
 
+#include "sim_parse.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -72,6 +74,9 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     static monitor_t mon;
     const long periods_per_ms = PWM_FREQUENCY_HZ / 1000L;
     const double bytes_per_ms = (double)cfg->baud / 10.0 / 1000.0;
+    /* what the line may bank: 64 bytes, or two milliseconds' worth at a
+     * rate that sends more than 32 a millisecond (up to --baud's 1 MBd) */
+    const double tx_cap = (2.0 * bytes_per_ms > 64.0) ? 2.0 * bytes_per_ms : 64.0;
     double tx_credit = 0.0, t0_wall, ms = 0.0;
     int master, slave;
     const char *name;
@@ -79,6 +84,17 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     long rec_no = -1, k;
     int pending = -1; /* a byte taken from the monitor that the pty did not take yet */
     struct sigaction sa;
+
+    if (cfg->truth_path != NULL) {
+        truth = fopen(cfg->truth_path, "w");
+        if (truth == NULL) {
+            char pq[256]; /* the path, quoted: one line whatever it holds */
+            fprintf(stderr, "sim: --truth: cannot write '%s'\n",
+                    sim_parse_quote(cfg->truth_path, pq, sizeof(pq)));
+            return 2;
+        }
+        fprintf(truth, "rec,index,t_s,speed_true_rpm,speed_est_rpm,state\n");
+    }
 
     master = posix_openpt(O_RDWR | O_NOCTTY);
     if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0 ||
@@ -95,14 +111,7 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     }
     make_raw(slave);
     fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
-    if (cfg->truth_path != NULL) {
-        truth = fopen(cfg->truth_path, "w");
-        if (truth == NULL) {
-            fprintf(stderr, "sim: cannot write %s\n", cfg->truth_path);
-            return 2;
-        }
-        fprintf(truth, "rec,index,t_s,speed_true_rpm,speed_est_rpm,state\n");
-    }
+
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
@@ -145,8 +154,8 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
         monitor_tick_1ms(&mon);
         monitor_poll(&mon);
         tx_credit += bytes_per_ms;
-        if (tx_credit > 64.0) {
-            tx_credit = 64.0; /* an idle line does not bank a burst */
+        if (tx_credit > tx_cap) {
+            tx_credit = tx_cap; /* an idle line does not bank a burst */
         }
         while (tx_credit >= 1.0) {
             uint8_t b;

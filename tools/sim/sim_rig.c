@@ -35,6 +35,7 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
         r->sensor[k].gain = 1.0;
         r->sensor[k].drift_a_s = 0.0;
         r->sensor[k].drift_t0_s = 0.0;
+        r->sensor[k].drift_a = 0.0;
     }
     for (k = 0; k < 3; k++) {
         r->floating[k] = true;
@@ -58,7 +59,7 @@ static double sensor_reading(const sim_rig_t *r, int k, double i)
     if (s->mode == SIM_SENSOR_OPEN) {
         return 0.0;
     }
-    return i * s->gain + s->drift_a_s * (r->t - s->drift_t0_s);
+    return i * s->gain + s->drift_a + s->drift_a_s * (r->t - s->drift_t0_s);
 }
 
 void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
@@ -387,10 +388,10 @@ bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
             return true;
         case SIM_EV_SENSOR_DRIFT: {
             sim_sensor_t *s = &r->sensor[(ev->v1 > 0.5) ? 1 : 0];
-            /* the drift so far is kept: it continues at the new rate */
-            double sofar = s->drift_a_s * (r->t - s->drift_t0_s);
+            /* the offset built up so far is kept (a rate of 0 holds it) */
+            s->drift_a += s->drift_a_s * (r->t - s->drift_t0_s);
             s->drift_a_s = ev->v2;
-            s->drift_t0_s = r->t - ((ev->v2 != 0.0) ? sofar / ev->v2 : 0.0);
+            s->drift_t0_s = r->t;
             return true;
         }
         case SIM_EV_SENSOR_OK: {
@@ -398,6 +399,7 @@ bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
             s->mode = SIM_SENSOR_OK;
             s->gain = 1.0;
             s->drift_a_s = 0.0;
+            s->drift_a = 0.0;
             return true;
         }
         default:

@@ -44,8 +44,9 @@ typedef struct {
     sim_sensor_mode_t mode;
     double stuck_a;    /* SIM_SENSOR_STUCK: the frozen reading, A */
     double gain;       /* reading / current (1 healthy) */
-    double drift_a_s;  /* offset drift, A/s */
-    double drift_t0_s; /* when the drift started, s */
+    double drift_a_s;  /* offset drift, A/s ... */
+    double drift_t0_s; /* ... since this time, s ... */
+    double drift_a;    /* ... on top of the offset it had built up by then, A */
 } sim_sensor_t;
 
 typedef struct {
