@@ -204,6 +204,20 @@ class ScopeFailsInOneLine(unittest.TestCase):
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
         self.assertIn((mp.CMD_MOTOR, bytes([mp.MOTOR_STOP])), dev.seen)
 
+    def test_written_files_should_get_the_umask_or_keep_their_mode(self) -> None:
+        old = os.umask(0o022)
+        try:
+            csv_path, png_path = self.path("new.csv"), self.existing("old.png")
+            os.chmod(png_path, 0o640)
+            code, _, err, _ = run(["--port", "fake", "--headless", "--channels", "speed_est", "--decim", "100",
+                                   "--duration", "0.05", "--csv", csv_path, "--png", png_path],
+                                  FakePort(FakeDevice()))
+            self.assertEqual((code, err), (0, ""))
+            self.assertEqual(os.stat(csv_path).st_mode & 0o777, 0o644)  # a new file: 0666 less the umask
+            self.assertEqual(os.stat(png_path).st_mode & 0o777, 0o640)  # a replaced one keeps its mode
+        finally:
+            os.umask(old)
+
     # ---- short, corrupt and missing replies ----
     def test_a_short_info_reply_should_end_in_one_line_and_leave_the_csv_alone(self) -> None:
         csv_path = self.existing("run.csv")
@@ -341,7 +355,8 @@ class ScopeFailsInOneLine(unittest.TestCase):
         cases = [["--duration", "nan"], ["--duration", "inf"], ["--duration", "1e300"], ["--baud", "0"],
                  ["--baud", "9600.5"], ["--decim", "20000"], ["--decim", "-1"], ["--start-rpm", "inf"],
                  ["--start-rpm", "40000"], ["--window", "nan"], ["--reply-timeout", "0"], ["--set", "cur_kp"],
-                 ["--set", "cur_kp=abc"], ["--set", "=5"], ["--frob"]]
+                 ["--set", "cur_kp=abc"], ["--set", "=5"], ["--frob"], ["--baud", "+-5"],
+                 ["--set", "cur_kp=99999999999"], ["--set", "cur_kp=0x10"], ["--set", "cur_kp=40000"]]
         for extra in cases:
             with self.subTest(extra):
                 code, _, err, opened = run(["--port", "fake"] + extra, FakePort(FakeDevice()))

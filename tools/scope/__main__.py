@@ -16,6 +16,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import sys
 import tempfile
 import time
@@ -60,7 +61,7 @@ def whole(lo: int, hi: int, what: str) -> Callable[[str], int]:
 
     def conv(s: str) -> int:
         t = s.strip()
-        if not (t.lstrip("+-").isdigit() and t.isascii()):
+        if re.fullmatch(r"[+-]?[0-9]+", t) is None:
             raise argparse.ArgumentTypeError(f"{s!r} is not a whole number")
         v = int(t)
         if not lo <= v <= hi:
@@ -109,12 +110,11 @@ def parse_sets(items: list[str]) -> list[tuple[str, int]]:
     out = []
     for s in items:
         name, eq, val = s.partition("=")
-        try:
-            v = int(val, 0)
-        except ValueError:
-            v = None
+        v = int(val) if re.fullmatch(r"[+-]?[0-9]{1,6}", val.strip()) else None
         if not eq or not name or v is None:
-            raise mp.MonitorError(f"--set {s!r}: want NAME=VALUE with a whole number")
+            raise mp.MonitorError(f"--set {s!r}: want NAME=VALUE with a decimal whole number")
+        if not -32768 <= v <= 32767:
+            raise mp.MonitorError(f"--set {s!r}: {v} is outside the parameters' 16-bit range")
         out.append((name, v))
     return out
 
@@ -163,7 +163,14 @@ def replacing(path: str) -> Iterator[str]:
     fd, tmp = tempfile.mkstemp(prefix=".scope-", suffix=".tmp", dir=os.path.dirname(real) or ".")
     os.close(fd)
     try:
+        mode = os.stat(real).st_mode & 0o777  # a file replaced keeps its mode
+    except OSError:
+        umask = os.umask(0)  # a new one gets what open() would give it (mkstemp's is 0600)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    try:
         yield tmp
+        os.chmod(tmp, mode)
         os.replace(tmp, real)
     except BaseException:
         with suppress(OSError):
@@ -212,8 +219,9 @@ def choose_decim(args: argparse.Namespace, mon: mp.Monitor, nch: int) -> int:
 
 
 def start_motor(args: argparse.Namespace, mon: mp.Monitor) -> None:
+    fs = mon.var("speed_ref").fs  # before the start: a device without it is refused with the motor still
+    target = int(round(args.start_rpm * 32768.0 / fs)) if fs else 0
     mon.run_motor(args.start_rpm)
-    target = int(round(args.start_rpm * 32768.0 / mon.var("speed_ref").fs)) if mon.var("speed_ref").fs else 0
     t_end = time.monotonic() + args.start_timeout
     while True:
         st = mon.status()

@@ -9,6 +9,8 @@ duties, state with load torque and bus voltage. Right column, a close-up of
 the first `zoom` window of the scenario (every PWM period): estimated versus
 true electrical angle, phase currents, duties.
 """
+import contextlib
+import os
 import sys
 
 import matplotlib
@@ -23,11 +25,40 @@ FAULTS = ["none", "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE", "STA
           "CURRENT_SENSOR"]
 
 
+def fail(msg):
+    """One line on stderr, exit status 1: never a traceback."""
+    sys.exit("plot.py: " + msg.replace("\n", " "))
+
+
 def load(path):
-    d = np.genfromtxt(path, delimiter=",", names=True)
-    if d.size == 0:
-        sys.exit("plot.py: %s is empty" % path)
-    return np.atleast_1d(d)
+    try:
+        d = np.genfromtxt(path, delimiter=",", names=True)
+    except (OSError, ValueError) as e:
+        fail("%r: cannot read the trace (%s)" % (path, e))
+    if d.size == 0 or d.dtype.names is None or "t_s" not in d.dtype.names:
+        fail("%r: not a simulator trace" % path)
+    d = np.atleast_1d(d)
+    # a run stopped on a diverged plant may end in a non-finite row: the plot
+    # covers what came before it
+    finite = np.isfinite(d["speed_rpm"]) & np.isfinite(d["iq_A"]) & np.isfinite(d["t_s"])
+    if not np.all(finite):
+        d = d[: int(np.argmin(finite))]
+        if d.size == 0:
+            fail("%r: no finite row" % path)
+    return d
+
+
+def save(fig, out):
+    """Written beside out under a temporary name and renamed over it: a
+    failure leaves an earlier plot as it was."""
+    tmp = os.path.join(os.path.dirname(out) or ".", ".%s.tmp.png" % os.path.basename(out))
+    try:
+        fig.savefig(tmp, bbox_inches="tight", format="png")
+        os.replace(tmp, out)
+    except OSError as e:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        fail("%r: cannot write the plot (%s)" % (out, e))
 
 
 def zoom_window(d):
@@ -58,7 +89,10 @@ def shade_states(ax, t, state):
 
 def main():
     if len(sys.argv) < 3:
-        sys.exit(__doc__)
+        fail("usage: plot.py <trace.csv> <out.png> [title]")
+    if not sys.argv[2].lower().endswith(".png"):
+        # matplotlib would pick the format from the name: a file not asked for
+        fail("%r: the output name must end in .png" % sys.argv[2])
     d = load(sys.argv[1])
     title = sys.argv[3] if len(sys.argv) > 3 else sys.argv[1]
     t = d["t_s"]
@@ -201,7 +235,7 @@ def main():
     zax.legend(loc="upper right", fontsize=8)
     zax.grid(alpha=0.3)
 
-    fig.savefig(sys.argv[2], bbox_inches="tight")
+    save(fig, sys.argv[2])
 
 
 if __name__ == "__main__":
