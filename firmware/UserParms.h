@@ -249,8 +249,10 @@
  * floor stands above a low-inductance motor's current ringing). In
  * CLOSED_LOOP, with the q PI at the voltage limit, the bus may hold q short
  * by any amount: such a window is judged on d and on the estimator's
- * validity instead. MC_SENSOR_TIME_S of failing windows, net of passing
- * ones at half weight, is a MC_FAULT_CURRENT_SENSOR. */
+ * validity instead; a window whose two measured phases' mean squares
+ * differ by more than 8:1 (a turning rotor's phases are balanced) fails
+ * too. MC_SENSOR_TIME_S of failing windows, net of passing ones at half
+ * weight, is a MC_FAULT_CURRENT_SENSOR. */
 #ifndef MC_SENSOR_TIME_S
 #define MC_SENSOR_TIME_S 0.005
 #endif

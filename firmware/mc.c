@@ -715,6 +715,33 @@ int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
 
 /* Current-sensor plausibility, once per window (note 5): did the measured
  * current follow the current loops? */
+/* The phase balance (note 5), CLOSED_LOOP, once per window: true when the
+ * two measured phases' mean squares differ by more than 4:1 while the larger
+ * is above the error floor's square. A turning rotor's healthy phases carry
+ * the same RMS current; a stuck, open or dead sensor's reading stops
+ * following its phase. */
+static bool mc_sensor_unbalanced(mc_t *mc, const mc_slow_in_t *si)
+{
+    /* halves of ia = alpha and ib = sqrt3/2 beta - alpha/2 (Q15, |.| < 2^15) */
+    q15_t ah = (q15_t)(si->i_ab.alpha / 2);
+    q15_t bh = q15_sub_sat(q15_mul(si->i_ab.beta, MC_SQRT3_2 / 2), (q15_t)(si->i_ab.alpha / 4));
+    q15_t r = (q15_t)(q15_abs_sat(si->speed_est) % MC_SENSOR_BAL_SYNC16);
+    int32_t big, small;
+    /* squares of the halves, Q15: <= 2^13; the filters stay below 2^(13 + MC_SENSOR_BAL_SHIFT) */
+    mc->sens_sa += (int32_t)q15_mul(ah, ah) - (mc->sens_sa >> MC_SENSOR_BAL_SHIFT);
+    mc->sens_sb += (int32_t)q15_mul(bh, bh) - (mc->sens_sb >> MC_SENSOR_BAL_SHIFT);
+    if (r < MC_SENSOR_BAL_BAND16 || r > MC_SENSOR_BAL_UPPER16) {
+        return false; /* one sample per window cannot tell the phases apart here */
+    }
+    if (mc->sens_bal_n < 2U << MC_SENSOR_BAL_SHIFT) {
+        mc->sens_bal_n++; /* the filters fill from 0 in CLOSED_LOOP's first windows */
+        return false;
+    }
+    big = (mc->sens_sa > mc->sens_sb) ? mc->sens_sa : mc->sens_sb;
+    small = (mc->sens_sa > mc->sens_sb) ? mc->sens_sb : mc->sens_sa;
+    return big >> MC_SENSOR_BAL_SHIFT > MC_SENSOR_BAL_FLOOR && small < big / 8;
+}
+
 static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
 {
     int32_t ed = si->sens_d; /* window sums: |.| < MC_SLOW_STEP_PERIODS x 2^16 */
@@ -727,11 +754,14 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     int32_t flr = (si->state == MC_STATE_CLOSED_LOOP) ? (int32_t)MC_SENSOR_FLOOR_Q15
                                                       : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
     int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + flr) * (int32_t)MC_SLOW_STEP_PERIODS;
-    bool bad;
+    bool bad, unbalanced = false, hold = false;
     if (si->state != MC_STATE_LOCK && si->state != MC_STATE_OPEN_LOOP &&
         si->state != MC_STATE_CLOSED_LOOP) {
         mc->sens_cnt = 0U;
         mc->sens_emf_low = 0U;
+        mc->sens_sa = 0;
+        mc->sens_sb = 0;
+        mc->sens_bal_n = 0U;
         so->sensor_fault = false;
         return;
     }
@@ -755,6 +785,13 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     } else {
         bad = ed > thr || eq > thr;
     }
+    if (si->state == MC_STATE_CLOSED_LOOP) {
+        unbalanced = mc_sensor_unbalanced(mc, si);
+    } else {
+        mc->sens_sa = 0;
+        mc->sens_sb = 0;
+        mc->sens_bal_n = 0U;
+    }
     /* A rotor stopped in CLOSED_LOOP (locked, stalled) leaves the
      * estimate spinning with no back-EMF behind it: the frame turns under
      * the current loops and their errors look like a failed sensor's. The
@@ -770,13 +807,17 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     } else {
         mc->sens_emf_low = 0U;
     }
-    if (bad && mc->sens_emf_low >= MC_SENSOR_DEFER_WINDOWS) {
-        /* held */
-    } else if (bad && MC_SENSOR_CHECK) {
+    if (unbalanced) {
+        bad = true; /* a stopped rotor's healthy phases stay balanced: no deferring */
+    } else if (bad && mc->sens_emf_low >= MC_SENSOR_DEFER_WINDOWS) {
+        bad = false;
+        hold = true;
+    }
+    if (bad && MC_SENSOR_CHECK) {
         if (mc->sens_cnt < MC_SENSOR_TRIP) {
             mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
         }
-    } else if (mc->sens_cnt > 0U) {
+    } else if (mc->sens_cnt > 0U && !hold) {
         mc->sens_cnt--;
     }
     so->sensor_fault = mc->sens_cnt >= MC_SENSOR_TRIP;
@@ -1063,6 +1104,7 @@ static void mc_window_end(mc_t *mc)
     si->sens_ref = mc->i_ref_frame;
     si->est_valid = smc_valid(&mc->smc);
     si->emf_ratio = smc_emf_ratio(&mc->smc);
+    si->speed_est = smc_omega(&mc->smc);
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
@@ -1463,7 +1505,29 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    does not vouch for its estimate at the window end (smc_valid: the
  *    speed above its minimum and the back-EMF within its band of what Ke
  *    predicts), which a model fed a failed sensor's currents soon stops
- *    doing, while a healthy drive held at the circle keeps it. Failing
+ *    doing, while a healthy drive held at the circle keeps it. In
+ *    CLOSED_LOOP a window also fails when the two measured phases are out
+ *    of balance (mc_sensor_unbalanced): a turning rotor's phases carry the
+ *    same RMS current, a failed sensor's reading stops following its
+ *    phase, so the mean squares of ia and ib (one sample per window,
+ *    low-passed over 8) differ by more than 8:1 while the larger is above
+ *    a quarter of the floor (an unloaded motor's current stays below the
+ *    floor itself). This is what catches a sensor that fails at light load or
+ *    low speed, where the current errors stay small for tens of
+ *    milliseconds. It rests near electrical frequencies that are multiples
+ *    of half the window rate (one sample per window then sees one phase of
+ *    the sine), for the filters' first two time constants in CLOSED_LOOP,
+ *    and it needs the 8:1: a current vector that swings in the rotor frame
+ *    at the electrical frequency (a hand-off or a step on a heavy rotor)
+ *    pulsates in the stator instead of turning and unbalances the phases
+ *    by up to 5:1 for a while. A rotor stopped in CLOSED_LOOP (locked,
+ *    stalled) leaves the estimate spinning on no back-EMF, and its frame
+ *    turning under the current loops makes errors like a failed sensor's:
+ *    while the back-EMF ratio has read below the stall check's low
+ *    fraction for MC_SENSOR_DEFER_WINDOWS windows, failing windows are
+ *    held and the stall check decides, unless the phases are out of
+ *    balance (a stopped rotor's healthy phases are not; a sensor failed at
+ *    low speed, whose estimate also loses its back-EMF, is). Failing
  *    windows count 2, passing ones -1: MC_SENSOR_TIME_S of failure net sets
  *    slow_out.sensor_fault, applied as MC_FAULT_CURRENT_SENSOR. A phase-A
  *    sensor failed during LOCK reads what the phase carries there (the

@@ -209,7 +209,7 @@ typedef struct {
     bool preset;            /* closed loop entered in this window: */
     q15_t preset_iq;        /* the speed PI's integral, Q15 current */
     q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
-    ab_q15_t i_ab;          /* OPEN_LOOP: the window end's current ... */
+    ab_q15_t i_ab;          /* the window end's current (OPEN_LOOP, the sensor check) ... */
     angle_q15_t theta_est;  /* ... and estimated angle (the load's share, mc.c note 1) */
     int32_t lock_va;        /* LOCK: the window's sums of the estimator's alpha and beta */
     int32_t lock_vb;        /* voltage, Q15 of V_FS (mc.c note 4) */
@@ -220,7 +220,8 @@ typedef struct {
     uint16_t sens_qsat;     /* ... periods with the q PI at its limit ... */
     dq_q15_t sens_ref;      /* ... the current reference at the window end ... */
     bool est_valid;         /* ... whether the estimator vouches for its estimate ... */
-    q15_t emf_ratio;        /* ... and its back-EMF against the speed's, Q12 (smc.h) */
+    q15_t emf_ratio;        /* ... its back-EMF against the speed's, Q12 (smc.h) ... */
+    q15_t speed_est;        /* ... and its speed, Q15 */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -340,9 +341,12 @@ typedef struct {
     int32_t sens_fd, sens_fq; /* current-sensor check: the error sums low-passed over windows */
     uint8_t sens_cnt;         /* ... failing windows x 2, less passing ones */
     uint8_t sens_emf_low;     /* ... consecutive windows of a back-EMF too low for the speed */
-    int32_t dtm_sum;          /* the windows' beta sums (lock_vb), Q15 of V_FS */
-    int32_t dtm_mean;         /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
-    int32_t dtm_hi;           /* the largest and smallest alpha sum in the windows */
+    int32_t sens_sa,
+        sens_sb;        /* ... ia^2 and ib^2 low-passed, Q15 of I_FS^2 << MC_SENSOR_BAL_SHIFT */
+    uint8_t sens_bal_n; /* ... CLOSED_LOOP windows they have filtered, up to 2 time constants */
+    int32_t dtm_sum;    /* the windows' beta sums (lock_vb), Q15 of V_FS */
+    int32_t dtm_mean;   /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
+    int32_t dtm_hi;     /* the largest and smallest alpha sum in the windows */
     int32_t dtm_lo;
     int32_t dtm_range1; /* the first level's alpha range (dtm_hi - dtm_lo) */
     uint16_t dtm_cnt;   /* windows in the phase */

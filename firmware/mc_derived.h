@@ -450,6 +450,28 @@ MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
  * which the sensor check defers to the stall check (mc.c, mc_slow_sensor): 3,
  * where a failed sensor on a turning rotor has shown at most 2 in a row. */
 #define MC_SENSOR_DEFER_WINDOWS 3
+/* The phase balance (mc.c note 5): the mean squares of ia and ib, one
+ * sample per window, low-passed over 2^MC_SENSOR_BAL_SHIFT windows (8 ms at
+ * 1 kHz: a 50 Hz sine's square ripples by about 20 % there, a failed phase
+ * decays to an eighth in 17 ms). Samples one per window are blind near an
+ * electrical frequency of a multiple of half the window rate (the samples
+ * then fall at one phase of the sine): the test rests within a tenth of it
+ * of each multiple (and below a tenth), in Q15 speed; a speed scale that
+ * never reaches the first multiple needs no modulus (32767). The floor:
+ * the squared half of MC_SENSOR_FLOOR_Q15. */
+#define MC_SENSOR_BAL_SHIFT 3
+#define MC_SENSOR_BAL_SYNC_                                                                        \
+    ((double)MC_SPEED_LOOP_HZ / 2.0 * 60.0 / (double)MOTOR_POLE_PAIRS /                            \
+     (double)MC_SPEED_FULLSCALE_RPM * 32768.0)
+#define MC_SENSOR_BAL_SYNC16                                                                       \
+    ((q15_t)((MC_SENSOR_BAL_SYNC_ < 32767.0) ? MC_SENSOR_BAL_SYNC_ + 0.5 : 32767.0))
+#define MC_SENSOR_BAL_BAND16                                                                       \
+    ((q15_t)((MC_SENSOR_BAL_SYNC_ / 10.0 < 32767.0) ? MC_SENSOR_BAL_SYNC_ / 10.0 + 0.5 : 32767.0))
+#define MC_SENSOR_BAL_UPPER16                                                                      \
+    ((q15_t)((MC_SENSOR_BAL_SYNC_ * 0.9 < 32767.0) ? MC_SENSOR_BAL_SYNC_ * 0.9 + 0.5 : 32767.0))
+MC_CHECK(MC_SPEED_LOOP_HZ, MC_SENSOR_BAL_SYNC_ / 10.0 >= 1.0,
+         "too low for the sensor check's phase balance at this speed scale");
+#define MC_SENSOR_BAL_FLOOR ((int32_t)(MC_SENSOR_FLOOR_ / 8.0 * (MC_SENSOR_FLOOR_ / 8.0) / 32768.0))
 
 /* Open-loop damping (UserParms.h): the forced angle's shift in angle
  * counts = (forced - estimated step, counts per period) * MC_OL_DAMP_K / 16,
