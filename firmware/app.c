@@ -41,16 +41,13 @@ void app_init(app_t *app)
 
 int16_t app_speed_from_pot(int16_t pot, bool doubled)
 {
-    const int32_t lo = MC_SPEED_REF_MIN_Q15;
-    const int32_t hi = MC_SPEED_REF_MAX_Q15;
-    int32_t p = pot < 0 ? 0 : pot;
-    /* 0 <= hi - lo < 2^16 and p < 2^15: the product fits in 31 bits;
-     * rounded to nearest. */
-    int32_t ref = lo + ((hi - lo) * p + (int32_t)16383) / (int32_t)32767;
+    /* the core's map (mc.h), doubled within the pot's range: 0 <= min <= max
+     * < 2^15 (the check above), so twice it fits in 17 bits */
+    int32_t ref = mc_pot_to_speed(pot);
     if (doubled) {
         ref *= 2;
     }
-    return (int16_t)(ref > hi ? hi : ref);
+    return (int16_t)(ref > MC_SPEED_REF_MAX_Q15 ? MC_SPEED_REF_MAX_Q15 : ref);
 }
 
 bool app_led_run_on(mc_state_t state, uint16_t phase_ms)

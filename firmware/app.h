@@ -107,8 +107,8 @@ void app_tick_1ms(app_t *app);
 void app_service_uart(app_t *app);
 
 /* Speed reference for a pot reading (0..32767), Q15 of MC_SPEED_FULLSCALE_RPM:
- * linear from SPEED_REF_MIN_RPM at 0 to SPEED_REF_MAX_RPM at 32767, times 2
- * when doubled, never above SPEED_REF_MAX_RPM. */
+ * the core's map (mc_pot_to_speed), times 2 when doubled, never above
+ * SPEED_REF_MAX_RPM. */
 int16_t app_speed_from_pot(int16_t pot, bool doubled);
 
 /* LED levels for a state / fault code at a pattern phase (ms). */

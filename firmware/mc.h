@@ -386,6 +386,15 @@ void mc_slow_step(mc_t *mc);
 /* Post a request; mc_step() acts on it at its next call. */
 void mc_request(mc_t *mc, mc_request_t r);
 
+/* The pot's map, as the core applies it (one map: the application's S3
+ * doubles this one). Speed reference (Q15 speed) for a reading 0..32767:
+ * SPEED_REF_MIN + pot (SPEED_REF_MAX - SPEED_REF_MIN) / 32768, floor (full
+ * pot is one count under SPEED_REF_MAX: a multiply and a shift in the
+ * 50 us path, no division). Iq reference (Q15 current, TORQUEMODE):
+ * pot * MC_IQ_MAX_Q15 / 32768, floor. Negative readings count as 0. */
+q15_t mc_pot_to_speed(int16_t pot);
+q15_t mc_pot_to_torque(int16_t pot);
+
 /* Remote reference, replacing the pot until MC_REQUEST_REF_POT:
  * speed mode: mechanical speed, Q15 of MC_SPEED_FULLSCALE_RPM, clamped to
  * [SPEED_REF_MIN_RPM, SPEED_REF_MAX_RPM]; TORQUEMODE: Iq reference, Q15 of

@@ -70,14 +70,8 @@ Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
     return v;
 }
 
-/* Speed reference (Q15 speed) for a pot reading 0..32767 (speed mode):
- * SPEED_REF_MIN + pot (SPEED_REF_MAX - SPEED_REF_MIN) / 32768, floor;
- * negative readings count as 0. */
-q15_t mc_pot_to_speed(int16_t pot);
-
-/* Iq reference (Q15 current) for a pot reading (TORQUEMODE):
- * pot * MC_IQ_MAX_Q15 / 32768, floor; negative readings count as 0. */
-q15_t mc_pot_to_torque(int16_t pot);
+/* mc_pot_to_speed and mc_pot_to_torque: mc.h (the application maps the pot
+ * as the core does). */
 
 /* Inputs of one stall check (one speed-loop run in CLOSED_LOOP). */
 typedef struct {

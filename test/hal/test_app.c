@@ -225,17 +225,20 @@ static void test_speed_from_pot_should_map_linearly_and_clamp_when_doubled(void 
     err_stats_init(&e1);
     err_stats_init(&e2);
     for (pot = 0; pot <= 32767; pot++) {
-        double ref = lo + (hi - lo) * (double)pot / 32767.0;
+        double ref = lo + (hi - lo) * (double)pot / 32768.0; /* mc.h: the core's map */
         double ref2 = 2.0 * ref > hi ? hi : 2.0 * ref;
         err_stats_add(&e1, app_speed_from_pot((int16_t)pot, false) - ref, (double)pot);
         err_stats_add(&e2, app_speed_from_pot((int16_t)pot, true) - ref2, (double)pot);
     }
     err_stats_print("app_speed_from_pot vs linear map", &e1, "LSB");
     err_stats_print("app_speed_from_pot doubled vs min(2 map, max)", &e2, "LSB");
-    assert_true(e1.max_abs <= 0.5);
-    assert_true(e2.max_abs <= 1.0);
+    assert_true(e1.max_abs < 1.0); /* the core's floor: under one count */
+    assert_true(e2.max_abs < 2.0);
+    /* one map: the core's, everywhere (the two used to differ on 25,395 readings) */
+    for (pot = 0; pot <= 32767; pot++) {
+        assert_int_equal(app_speed_from_pot((int16_t)pot, false), mc_pot_to_speed((int16_t)pot));
+    }
     assert_int_equal(app_speed_from_pot(0, false), MC_SPEED_REF_MIN_Q15);
-    assert_int_equal(app_speed_from_pot(32767, false), MC_SPEED_REF_MAX_Q15);
     assert_int_equal(app_speed_from_pot(32767, true), MC_SPEED_REF_MAX_Q15);
     assert_int_equal(app_speed_from_pot(-5, false), MC_SPEED_REF_MIN_Q15);
 }
