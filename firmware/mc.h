@@ -103,14 +103,19 @@ typedef enum {
 
 /* ---- states -------------------------------------------------------------- */
 
-typedef enum {
-    MC_STATE_STOPPED,     /* outputs off, duties 50 %, waiting for START */
-    MC_STATE_CALIBRATE,   /* outputs off, averaging the current-amplifier offsets */
-    MC_STATE_LOCK,        /* outputs on, rotor aligned at a fixed angle with controlled current */
-    MC_STATE_OPEN_LOOP,   /* forced angle at constant acceleration, d/q current loops running */
-    MC_STATE_CLOSED_LOOP, /* sensorless: angle and speed from the estimator, speed loop running */
-    MC_STATE_FAULT /* outputs off, duties 50 %; left only by a START once the cause is gone */
-} mc_state_t;
+/* The one list of states, in their order (tools read the names from here:
+ * mc_state_name, tools/sim/plot.py, tools/scope). */
+#define MC_STATE_LIST(X)                                                                           \
+    X(STOPPED)     /* outputs off, duties 50 %, waiting for START */                               \
+    X(CALIBRATE)   /* outputs off, averaging the current-amplifier offsets */                      \
+    X(LOCK)        /* outputs on, rotor aligned at a fixed angle with controlled current */        \
+    X(OPEN_LOOP)   /* forced angle at constant acceleration, d/q current loops running */          \
+    X(CLOSED_LOOP) /* sensorless: angle and speed from the estimator, speed loop running */        \
+    X(FAULT)       /* outputs off, duties 50 %; left only by a START once the cause is gone */
+
+#define MC_STATE_ENUM_(name) MC_STATE_##name,
+typedef enum { MC_STATE_LIST(MC_STATE_ENUM_) MC_STATE_COUNT } mc_state_t;
+#undef MC_STATE_ENUM_
 
 /* ---- fault codes (mc_status_t.fault) ------------------------------------ *
  * The code of the first fault that tripped; it stays until a START clears
@@ -119,19 +124,23 @@ typedef enum {
  * threshold (code 2), at or above the overvoltage one (code 3). The core
  * cannot see the FLTA pin: the HAL posts MC_REQUEST_HW_FAULT again while
  * the pin is still asserted. */
-#define MC_FAULT_NONE         0U  /* no fault */
-#define MC_FAULT_OVERCURRENT  1U  /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */
-#define MC_FAULT_UNDERVOLTAGE 2U  /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */
-#define MC_FAULT_OVERVOLTAGE  3U  /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */
-#define MC_FAULT_HARDWARE     4U  /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */
-#define MC_FAULT_START_FAILED 5U  /* no valid estimate at the end of the ramp, retries used up */
-#define MC_FAULT_STALL_SPEED  6U  /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, persisting */
-#define MC_FAULT_STALL_BEMF   7U  /* closed loop: back-EMF inconsistent with speed, persisting */
-#define MC_FAULT_STALL_TRACK  8U  /* closed loop: speed error with the speed PI saturated */
-#define MC_FAULT_OFFSET       9U  /* current offset out of range at calibration (amplifier) */
-#define MC_FAULT_OVERRUN      10U /* mc_slow_step of a window not finished at the next window end */
-#define MC_FAULT_CURRENT_SENSOR                                                                    \
-    11U /* measured currents do not follow the current loops (mc.c note 5) */
+#define MC_FAULT_LIST(X)                                                                           \
+    X(NONE, 0)            /* no fault */                                                           \
+    X(OVERCURRENT, 1)     /* |ia|, |ib| or |ic| >= MC_OVERCURRENT_A in one sample */               \
+    X(UNDERVOLTAGE, 2)    /* Vbus <= MC_VBUS_UNDERVOLTAGE_V, outputs on or at START */             \
+    X(OVERVOLTAGE, 3)     /* Vbus >= MC_VBUS_OVERVOLTAGE_V (any state) */                          \
+    X(HARDWARE, 4)        /* MC_REQUEST_HW_FAULT: the FLTA pin tripped */                          \
+    X(START_FAILED, 5)    /* no valid estimate at the end of the ramp, retries used up */          \
+    X(STALL_SPEED, 6)     /* closed loop: |speed| < MC_STALL_SPEED_MIN_RPM, persisting */          \
+    X(STALL_BEMF, 7)      /* closed loop: back-EMF inconsistent with speed, persisting */          \
+    X(STALL_TRACK, 8)     /* closed loop: speed error with the speed PI saturated */               \
+    X(OFFSET, 9)          /* current offset out of range at calibration (amplifier) */             \
+    X(OVERRUN, 10)        /* mc_slow_step of a window not finished at the next window end */       \
+    X(CURRENT_SENSOR, 11) /* measured currents do not follow the current loops (mc.c note 5) */
+
+#define MC_FAULT_ENUM_(name, code) MC_FAULT_##name = code,
+enum { MC_FAULT_LIST(MC_FAULT_ENUM_) MC_FAULT_COUNT };
+#undef MC_FAULT_ENUM_
 
 /* ---- status ---------------------------------------------------------------- */
 
@@ -355,6 +364,13 @@ typedef struct {
     bool dtm_pos;       /* the alpha sum was above its mean last window */
     bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
 } mc_t;
+
+/* The names of a state and of a fault code, as MC_STATE_LIST and
+ * MC_FAULT_LIST spell them ("none" for no fault, "?" for a number outside
+ * them): for tools and tests (tools/sim/mc_names.c, not linked into the
+ * dsPIC image). */
+const char *mc_state_name(unsigned state);
+const char *mc_fault_name(unsigned fault);
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */
 void mc_init(mc_t *mc);

@@ -15,6 +15,8 @@ protocol says that is safe (docs/monitor.md, "Host side").
 """
 
 import math
+import os
+import re
 import struct
 import time
 from typing import Protocol, TypedDict
@@ -46,7 +48,17 @@ TRIG_NOW, TRIG_CMD, TRIG_STATE = 0, 1, 2
 MOTOR_STOP, MOTOR_START, MOTOR_POT = 0, 1, 2
 DATA_LAST, DATA_OVERFLOW = 0x01, 0x02
 
-STATES = ["STOPPED", "CALIBRATE", "LOCK", "OPEN_LOOP", "CLOSED_LOOP", "FAULT"]
+
+
+def _mc_states() -> list[str]:
+    """The core's states in order, from their one list in firmware/mc.h (MC_STATE_LIST)."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "firmware", "mc.h")
+    with open(header) as f:
+        block = f.read().split("#define MC_STATE_LIST(X)")[1].split("\n\n")[0]
+    return re.findall(r"^\s*X\((\w+)\)", block, re.M)
+
+
+STATES = _mc_states()
 STATE_CLOSED_LOOP, STATE_FAULT = STATES.index("CLOSED_LOOP"), STATES.index("FAULT")
 KIND_Q15, KIND_INT = 0, 1
 

@@ -11,6 +11,7 @@ true electrical angle, phase currents, duties.
 """
 import contextlib
 import os
+import re
 import sys
 
 import matplotlib
@@ -19,10 +20,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-STATES = ["STOPPED", "CALIBRATE", "LOCK", "OPEN_LOOP", "CLOSED_LOOP", "FAULT"]
-FAULTS = ["none", "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE", "START_FAILED",
-          "STALL_SPEED", "STALL_BEMF", "STALL_TRACK", "OFFSET", "OVERRUN",
-          "CURRENT_SENSOR"]
+def mc_names(header=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "firmware", "mc.h")):
+    """The states and fault codes in order, from their one list in firmware/mc.h
+    (MC_STATE_LIST, MC_FAULT_LIST); fault 0 reads "none" as the core's tools print it."""
+    with open(header) as f:
+        text = f.read()
+    states = re.findall(r"^\s*X\((\w+)\)", text.split("#define MC_STATE_LIST(X)")[1].split("\n\n")[0], re.M)
+    faults = re.findall(r"^\s*X\((\w+), \d+\)", text.split("#define MC_FAULT_LIST(X)")[1].split("\n\n")[0], re.M)
+    return states, ["none"] + faults[1:]
+
+
+STATES, FAULTS = mc_names()
 
 
 def fail(msg):

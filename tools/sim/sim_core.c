@@ -49,30 +49,12 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
 
 const char *simcore_state_name(int state)
 {
-    switch (state) {
-        case MC_STATE_STOPPED:
-            return "STOPPED";
-        case MC_STATE_CALIBRATE:
-            return "CALIBRATE";
-        case MC_STATE_LOCK:
-            return "LOCK";
-        case MC_STATE_OPEN_LOOP:
-            return "OPEN_LOOP";
-        case MC_STATE_CLOSED_LOOP:
-            return "CLOSED_LOOP";
-        case MC_STATE_FAULT:
-            return "FAULT";
-        default:
-            return "?";
-    }
+    return (state < 0) ? "?" : mc_state_name((unsigned)state);
 }
 
 const char *simcore_fault_name(unsigned fault)
 {
-    static const char *const names[] = {
-        "none",        "OVERCURRENT", "UNDERVOLTAGE", "OVERVOLTAGE", "HARDWARE", "START_FAILED",
-        "STALL_SPEED", "STALL_BEMF",  "STALL_TRACK",  "OFFSET",      "OVERRUN",  "CURRENT_SENSOR"};
-    return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
+    return mc_fault_name(fault);
 }
 
 double simcore_pot_for_rpm(double rpm)

@@ -1,0 +1,22 @@
+/* mc_names.c - the names of the core's states and fault codes (mc.h), from
+ * their one list. Beside the simulator, not in firmware/: the dsPIC image
+ * has no use for the strings. */
+#include "mc.h"
+
+#define MC_STATE_NAME_(name)       #name,
+#define MC_FAULT_NAME_(name, code) #name,
+
+const char *mc_state_name(unsigned state)
+{
+    static const char *const names[] = {MC_STATE_LIST(MC_STATE_NAME_)};
+    return (state < sizeof(names) / sizeof(names[0])) ? names[state] : "?";
+}
+
+const char *mc_fault_name(unsigned fault)
+{
+    static const char *const names[] = {MC_FAULT_LIST(MC_FAULT_NAME_)};
+    if (fault == MC_FAULT_NONE) {
+        return "none";
+    }
+    return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
+}
