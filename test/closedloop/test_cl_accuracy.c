@@ -56,9 +56,9 @@ static void check_speed(double rpm, double load_nm, double ang_max_deg)
            rpm, load_nm, cl_speed_err_pct(&w), cl_speed(&w), cl_ref(&w), cl_est(&w),
            cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max, w.left_closed_loop ? "no" : "yes");
     assert_false(w.left_closed_loop);
-    assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
-    assert_true(fabs(cl_ang_mean(&w)) <= 0.3);
-    assert_true(w.ang_max <= ang_max_deg);
+    assert_cmp(fabs(cl_speed_err_pct(&w)), <=, 1.0);
+    assert_cmp(fabs(cl_ang_mean(&w)), <=, 0.3);
+    assert_cmp(w.ang_max, <=, ang_max_deg);
 }
 
 static void test_angle_and_speed_error_should_be_small_at_1000_rpm(void **state)
@@ -136,7 +136,7 @@ static void test_angle_bias_should_exceed_its_bound_when_the_plant_timing_differ
            "angle error mean %+.2f deg\n",
            (double)MC_SAMPLE_AT, cl_ang_mean(&w));
     assert_false(w.left_closed_loop);
-    assert_true(fabs(cl_ang_mean(&w)) > 0.3);
+    assert_cmp(fabs(cl_ang_mean(&w)), >, 0.3);
 }
 
 /* The same core on the switching-level inverter (sim_inverter.h): every
@@ -158,8 +158,8 @@ static void test_angle_bias_on_the_switching_inverter(void **state)
                "angle error mean %+.2f deg, rms %.2f deg, max %.2f deg\n",
                rpm[k], load[k], cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max);
         assert_false(w.left_closed_loop);
-        assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
-        assert_true(fabs(cl_ang_mean(&w)) <= 1.0);
+        assert_cmp(fabs(cl_speed_err_pct(&w)), <=, 1.0);
+        assert_cmp(fabs(cl_ang_mean(&w)), <=, 1.0);
     }
 }
 

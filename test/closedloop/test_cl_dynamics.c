@@ -18,7 +18,7 @@ static void test_core_should_recover_from_a_half_rated_load_step_within_100_ms(v
     cl_setup(&s, &cfg, "hurst", "mclv");
     simcore_set_speed(&s, 2000.0);
     simcore_request(&s, MC_REQUEST_START);
-    assert_true(cl_run_until_at_speed(&s, 2000.0, 1.0, 0.3, 10.0) > 0.0);
+    assert_cmp(cl_run_until_at_speed(&s, 2000.0, 1.0, 0.3, 10.0), >, 0.0);
     ref = s.now.speed_ref_rpm;
     cl_event(&s, SIM_EV_LOAD, 0.5 * s.rated_nm, 0.0);
     t_step = s.rig.t;
@@ -44,8 +44,8 @@ static void test_core_should_recover_from_a_half_rated_load_step_within_100_ms(v
            0.5 * s.rated_nm, 100.0 * dip, dip * ref, (t_in > 0.0) ? 1000.0 * (t_in - t_step) : -1.0,
            left ? "no" : "yes", s.now.iq_true_a);
     assert_false(left);
-    assert_true(t_in > 0.0);
-    assert_true(t_in - t_step <= 0.100);
+    assert_cmp(t_in, >, 0.0);
+    assert_cmp(t_in - t_step, <=, 0.100);
 }
 
 /*
@@ -73,7 +73,7 @@ static void test_hurst_should_reach_5000_rpm_with_field_weakening_on_24_v(void *
            s.now.id_true_a, s.now.iq_true_a, cl_ang_mean(&w), w.ang_max,
            w.left_closed_loop ? "no" : "yes");
     assert_false(w.left_closed_loop);
-    assert_true(cl_speed(&w) >= 5000.0);
+    assert_cmp(cl_speed(&w), >=, 5000.0);
 }
 
 /*

@@ -65,8 +65,8 @@ static void test_locked_rotor_should_fault_and_switch_off(void **state)
     printf(
         "measured: locked rotor at 1000 rpm: FAULT %s after %.2f ms, peak phase current %.2f A\n",
         simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.i_peak_a);
-    assert_true(t_f >= 0.0);
-    assert_true(t_f - t_lock <= 0.050);
+    assert_cmp(t_f, >=, 0.0);
+    assert_cmp(t_f - t_lock, <=, 0.050);
     cl_event(&s, SIM_EV_UNLOCK_ROTOR, 0.0, 0.0);
     cl_run(&s, 0.1);
     restart_should_work(&s, 1000.0, "locked rotor");
@@ -124,7 +124,7 @@ static void test_stall_under_excessive_load_should_be_detected_within_50_ms(void
            "after %.1f ms (%.1f ms after the stall)\n",
            1000.0 * (t_stall - t_load), simcore_fault_name(s.now.fault), 1000.0 * (t_f - t_load),
            1000.0 * (t_f - t_stall));
-    assert_true(t_f >= 0.0);
+    assert_cmp(t_f, >=, 0.0);
     /* the fault is one of the stall detectors, not another protection */
     assert_true(s.now.fault == MC_FAULT_STALL_SPEED || s.now.fault == MC_FAULT_STALL_BEMF ||
                 s.now.fault == MC_FAULT_STALL_TRACK);
@@ -167,8 +167,8 @@ static void check_sensor_fault(simcore_t *s, sim_event_kind_t kind, double phase
     printf("measured: %s: FAULT %s after %.1f ms, peak true phase current %.2f A\n", what,
            simcore_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0,
            s->i_peak_a);
-    assert_true(t_f >= 0.0);
-    assert_true(t_f - t_ev <= 0.050);
+    assert_cmp(t_f, >=, 0.0);
+    assert_cmp(t_f - t_ev, <=, 0.050);
     if (own) {
         assert_int_equal(s->now.fault, MC_FAULT_CURRENT_SENSOR);
     }
@@ -273,7 +273,7 @@ static void test_failed_sensors_and_locked_rotors_across_speeds_should_be_told_a
            "lost the rotor to the load step before the event\n",
            n, speed_frac[0] * MOTOR_SPEED_NOMINAL_RPM, MOTOR_SPEED_NOMINAL_RPM, 1000.0 * worst,
            n_lock, n_skip);
-    assert_true(n >= 48); /* at least half the cases ran */
+    assert_cmp(n, >=, 48); /* at least half the cases ran */
 }
 
 /* In LOCK and OPEN_LOOP: START, run to `at_s` after it, fail the sensor. */
@@ -347,7 +347,7 @@ static void test_voltage_limited_running_should_not_trip_the_sensor_check(void *
 #endif
             continue;
         }
-        assert_true(sat > 0.2 * (double)n); /* it did run at the limit */
+        assert_cmp(sat, >, 0.2 * (double)n); /* it did run at the limit */
     }
 }
 

@@ -127,7 +127,7 @@ test_start_should_discard_the_first_conversions_calibrate_the_offsets_then_lock(
         assert_off();
         step_with((n < (long)MC_CALIB_SKIP_PERIODS) ? wild : f);
         n++;
-        assert_true(n <= (long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS + 1);
+        assert_cmp(n, <=, (long)MC_CALIB_SKIP_PERIODS + (long)MC_CALIB_PERIODS + 1);
     }
     printf("measured: calibration took %ld periods (%u discarded, MC_CALIB_PERIODS = %u)\n", n,
            (unsigned)MC_CALIB_SKIP_PERIODS, (unsigned)MC_CALIB_PERIODS);
@@ -190,7 +190,7 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
          * windows on) the dead-time measurement's second level, never back */
         if (st.iq_ref != MC_LOCK_CURRENT_Q15) {
             assert_int_equal(st.iq_ref, MC_DTM_CURRENT_Q15);
-            assert_true(n + 1 >= (long)MC_LOCK_PERIODS + (long)MC_DTM_N * MC_SLOW_STEP_PERIODS);
+            assert_cmp(n + 1, >=, (long)MC_LOCK_PERIODS + (long)MC_DTM_N * MC_SLOW_STEP_PERIODS);
             level2++;
         } else {
             assert_int_equal(level2, 0);
@@ -203,10 +203,11 @@ test_lock_should_hold_a_fixed_angle_with_the_lock_current_for_the_lock_time(void
            "%ld of them, at most %ld), %ld at the second level\n",
            n, (unsigned)MC_LOCK_PERIODS, n - (long)MC_LOCK_PERIODS, (long)MC_DTM_MAX_PERIODS,
            level2);
-    assert_true(n >= (long)MC_LOCK_PERIODS +
-                         (2L * MC_DTM_N + MC_DTM_SETTLE) * (long)MC_SLOW_STEP_PERIODS);
-    assert_true(n <= (long)MC_LOCK_PERIODS + MC_DTM_MAX_PERIODS);
-    assert_true(level2 >= (long)(MC_DTM_SETTLE + MC_DTM_N) * MC_SLOW_STEP_PERIODS);
+    assert_cmp(n, >=,
+               (long)MC_LOCK_PERIODS +
+                   (2L * MC_DTM_N + MC_DTM_SETTLE) * (long)MC_SLOW_STEP_PERIODS);
+    assert_cmp(n, <=, (long)MC_LOCK_PERIODS + MC_DTM_MAX_PERIODS);
+    assert_cmp(level2, >=, (long)(MC_DTM_SETTLE + MC_DTM_N) * MC_SLOW_STEP_PERIODS);
     assert_int_equal(st.state, MC_STATE_OPEN_LOOP);
 }
 
@@ -216,7 +217,7 @@ static void test_lock_should_drive_the_current_towards_its_reference(void **stat
     run_to(MC_STATE_LOCK);
     /* No current measured: the q PI must push Vq up, d stays at 0. */
     steps(50, nominal());
-    assert_true(st.vq > 0);
+    assert_cmp(st.vq, >, 0);
     assert_int_equal(st.vd, 0);
 }
 
@@ -238,13 +239,13 @@ static void test_voltage_circle_should_hold_when_vd_jumps_between_periods(void *
         double m = hypot((double)mc.pi_d.out, (double)mc.pi_q.out);
         over = fmax(over, m - MC_VMAX_Q15);
         near += (m > 0.875 * MC_VMAX_Q15);
-        assert_true(m <= MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
+        assert_cmp(m, <=, MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
     }
     printf("measured: %ld of 4000 periods with |V| >= 7/8 Vmax, |V| - Vmax at most %.2f LSB, "
            "%u redone at the circle\n",
            near, over, (unsigned)mc.circle_redos);
-    assert_true(near > 500);
-    assert_true(mc.circle_redos > 0U);
+    assert_cmp(near, >, 500);
+    assert_cmp(mc.circle_redos, >, 0U);
 }
 
 static void test_open_loop_should_advance_the_angle_at_constant_acceleration(void **state)
@@ -579,11 +580,11 @@ static void test_pot_should_map_linearly_onto_the_speed_reference_range(void **s
     }
     err_stats_print("pot -> speed reference vs linear map", &e, "rpm");
     /* Q15 quantisation of the two ends plus the floor: <= 1.5 LSB. */
-    assert_true(e.max_abs <= 1.5 * MC_SPEED_FULLSCALE_RPM / 32768.0);
+    assert_cmp(e.max_abs, <=, 1.5 * MC_SPEED_FULLSCALE_RPM / 32768.0);
     assert_int_equal(mc_pot_to_speed(0), MC_SPEED_REF_MIN_Q15);
     assert_int_equal(mc_pot_to_speed(-5), MC_SPEED_REF_MIN_Q15);
-    assert_true(mc_pot_to_speed(32767) <= MC_SPEED_REF_MAX_Q15);
-    assert_true(mc_pot_to_speed(32767) >= MC_SPEED_REF_MAX_Q15 - 1);
+    assert_cmp(mc_pot_to_speed(32767), <=, MC_SPEED_REF_MAX_Q15);
+    assert_cmp(mc_pot_to_speed(32767), >=, MC_SPEED_REF_MAX_Q15 - 1);
 }
 
 static void test_pot_should_map_linearly_onto_the_torque_reference_range(void **state)
@@ -597,7 +598,7 @@ static void test_pot_should_map_linearly_onto_the_torque_reference_range(void **
         err_stats_add(&e, got - ref, (double)p);
     }
     err_stats_print("pot -> Iq reference vs linear map", &e, "A");
-    assert_true(e.max_abs <= 1.5 * BOARD_I_FULLSCALE_A / 32768.0);
+    assert_cmp(e.max_abs, <=, 1.5 * BOARD_I_FULLSCALE_A / 32768.0);
     assert_int_equal(mc_pot_to_torque(-1), 0);
 }
 
@@ -684,7 +685,7 @@ static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_ba
             err_stats_add(&e, got - ref, (double)i);
         }
         err_stats_print("dead-time correction vs sign with linear band", &e, "counts");
-        assert_true(e.max_abs <= 0.51);
+        assert_cmp(e.max_abs, <=, 0.51);
         assert_int_equal(mc_deadtime_counts(0, dt, slope), 0);
         assert_int_equal(mc_deadtime_counts(32767, dt, slope), dt);
         assert_int_equal(mc_deadtime_counts(-32768, dt, slope), -dt);
@@ -756,7 +757,7 @@ static void test_duty_to_voltage_should_match_the_double_precision_reconstructio
     /* Bound: the final rounding (0.5) plus the 16-bit constants' own
      * rounding (0.5 in about 21,000 and 18,000: up to 0.9 LSB at 32,000);
      * the triple product itself is within 2^-10 LSB. */
-    assert_true(e.max_abs <= 1.1);
+    assert_cmp(e.max_abs, <=, 1.1);
     int16_t half[3] = {1000, 1000, 1000};
     ab_q15_t z = mc_duty_to_voltage(half, MC_VBUS_NOMINAL_Q15);
     assert_int_equal(z.alpha, 0);

@@ -30,7 +30,7 @@ static double start_at(double rpm)
     mc_bench_init(&b, &c);
     mc_request(&b.mc, MC_REQUEST_START);
     long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, PERIODS(4.0));
-    assert_true(n > 0);
+    assert_cmp(n, >, 0);
     return (double)n / (double)PWM_FREQUENCY_HZ;
 }
 
@@ -58,8 +58,9 @@ static void test_core_should_start_the_hurst_and_hold_the_pot_speed(void **state
     printf("measured: START -> CLOSED_LOOP in %.3f s (calibration %.4f s, lock %.2f s, ramp %.2f "
            "s)\n",
            t_cl, (double)MC_CALIB_PERIODS / PWM_FREQUENCY_HZ, MOTOR_LOCK_TIME_S, MOTOR_RAMP_TIME_S);
-    assert_true(t_cl < MC_OFFSET_CALIB_TIME_S + MOTOR_LOCK_TIME_S + MOTOR_RAMP_TIME_S +
-                           MC_HANDOFF_WAIT_S + 0.01);
+    assert_cmp(t_cl, <,
+               MC_OFFSET_CALIB_TIME_S + MOTOR_LOCK_TIME_S + MOTOR_RAMP_TIME_S + MC_HANDOFF_WAIT_S +
+                   0.01);
 
     /* The hand-off must not make the speed dip. */
     double rpm_min = 1e9;
@@ -71,7 +72,7 @@ static void test_core_should_start_the_hurst_and_hold_the_pot_speed(void **state
     }
     printf("measured: lowest speed in the 200 ms after hand-off: %.0f rpm (ramp end %.0f)\n",
            rpm_min, MOTOR_RAMP_END_RPM);
-    assert_true(rpm_min > 0.8 * MOTOR_RAMP_END_RPM);
+    assert_cmp(rpm_min, >, 0.8 * MOTOR_RAMP_END_RPM);
 
     run(2.0); /* ramp to 1500 rpm at MC_SPEED_RAMP_RPM_PER_S and settle */
     err_stats_t spd, ang;
@@ -86,12 +87,12 @@ static void test_core_should_start_the_hurst_and_hold_the_pot_speed(void **state
     }
     err_stats_print("speed at 1500 rpm (true - reference)", &spd, "rpm");
     err_stats_print("angle at 1500 rpm (used - true)", &ang, "deg");
-    assert_true(fabs(err_stats_mean(&spd)) < 0.01 * target);
-    assert_true(spd.max_abs < 0.05 * target);
+    assert_cmp(fabs(err_stats_mean(&spd)), <, 0.01 * target);
+    assert_cmp(spd.max_abs, <, 0.05 * target);
     /* The project's claim (README, test_cl_accuracy): 2 deg on every sample
      * at 1000..3000 rpm (measured 0.7 on this bench's seed). */
-    assert_true(fabs(err_stats_mean(&ang)) < 2.0);
-    assert_true(ang.max_abs < 2.0);
+    assert_cmp(fabs(err_stats_mean(&ang)), <, 2.0);
+    assert_cmp(ang.max_abs, <, 2.0);
 }
 
 static void test_core_should_reach_top_speed_with_field_weakening_from_the_table(void **state)
@@ -124,8 +125,8 @@ static void test_core_should_reach_top_speed_with_field_weakening_from_the_table
         err_stats_add(&e, b.st.id_ref - ref, s);
     }
     err_stats_print("Id reference vs table interpolation at the speed reference", &e, "LSB");
-    assert_true(n_fw > 1000);
-    assert_true(e.max_abs <= 1.0);
+    assert_cmp(n_fw, >, 1000);
+    assert_cmp(e.max_abs, <=, 1.0);
     err_stats_t spd, ang;
     err_stats_init(&spd);
     err_stats_init(&ang);
@@ -139,8 +140,8 @@ static void test_core_should_reach_top_speed_with_field_weakening_from_the_table
     printf("measured: Id at %.0f rpm: %.3f A (table end %.3f A)\n", SPEED_REF_MAX_RPM,
            b.st.id * BOARD_I_FULLSCALE_A / 32768.0, table[15] * BOARD_I_FULLSCALE_A / 32768.0);
     assert_int_equal(b.st.state, MC_STATE_CLOSED_LOOP);
-    assert_true(fabs(err_stats_mean(&spd)) < 0.02 * SPEED_REF_MAX_RPM);
-    assert_true(fabs(err_stats_mean(&ang)) < 10.0);
+    assert_cmp(fabs(err_stats_mean(&spd)), <, 0.02 * SPEED_REF_MAX_RPM);
+    assert_cmp(fabs(err_stats_mean(&ang)), <, 10.0);
 }
 
 static void
@@ -160,8 +161,8 @@ test_the_angle_should_hold_at_the_minimum_speed_with_dead_time_compensation(void
     /* The claim at the lowest speed: 2.5 deg, ADC-noise limited (measured
      * 1.95 on this bench's seed; 1.4..2.25 over eight seeds in
      * test_cl_accuracy). */
-    assert_true(fabs(err_stats_mean(&ang)) < 2.0);
-    assert_true(ang.max_abs < 2.5);
+    assert_cmp(fabs(err_stats_mean(&ang)), <, 2.0);
+    assert_cmp(ang.max_abs, <, 2.5);
 }
 
 static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_target(void **state)
@@ -177,7 +178,7 @@ static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_t
         int16_t d = (int16_t)(b.st.speed_ref - prev);
         /* At most one step per speed-loop run; a full step while the
          * target (the pot, with its ADC noise) is more than a step away. */
-        assert_true(abs(d) <= MC_SPEED_RAMP_STEP);
+        assert_cmp(abs(d), <=, MC_SPEED_RAMP_STEP);
         if (b.st.speed_target - prev > MC_SPEED_RAMP_STEP &&
             b.mc.slow_div == MC_SLOW_APPLY_PERIODS) {
             assert_int_equal(d, MC_SPEED_RAMP_STEP);
@@ -192,9 +193,9 @@ static void test_speed_reference_should_ramp_at_the_configured_rate_to_the_pot_t
     /* Arrived: within the pot's ADC noise (one pot code moves the target
      * by about 19 LSB of speed; 64 LSB = 16 rpm). The rate is the step
      * rounded to whole Q15 counts: 4 LSB per run = 977 rpm/s for 1000. */
-    assert_true(abs(b.st.speed_ref - b.st.speed_target) <= 64);
-    assert_true(fabs(rate - MC_SPEED_RAMP_RPM_PER_S) < 0.03 * MC_SPEED_RAMP_RPM_PER_S);
-    assert_true(fabs(b.rpm_sample - mc_rpm_of_q15(b.st.speed_target)) < 30.0);
+    assert_cmp(abs(b.st.speed_ref - b.st.speed_target), <=, 64);
+    assert_cmp(fabs(rate - MC_SPEED_RAMP_RPM_PER_S), <, 0.03 * MC_SPEED_RAMP_RPM_PER_S);
+    assert_cmp(fabs(b.rpm_sample - mc_rpm_of_q15(b.st.speed_target)), <, 30.0);
 }
 
 /* ---- voltage: ripple compensation and circle limit ------------------------------- */
@@ -234,7 +235,7 @@ static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(
     }
     err_stats_print("Vd, Vq after ripple compensation vs Equation 8 (double)", &e, "LSB");
     assert_true(n_up > 1000 && n_down > 1000);
-    assert_true(e.max_abs <= 1.0); /* ripple.h: one gain per period, then one product */
+    assert_cmp(e.max_abs, <=, 1.0); /* ripple.h: one gain per period, then one product */
 }
 
 static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_saturate(void **state)
@@ -251,8 +252,8 @@ static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_sat
         mc_bench_step(&b);
         double m = hypot((double)b.mc.pi_d.out, (double)b.mc.pi_q.out);
         over = fmax(over, m - MC_VMAX_Q15);
-        assert_true(m <= MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
-        assert_true(abs(b.mc.pi_d.out) <= MC_VMAX_Q15);
+        assert_cmp(m, <=, MC_VMAX_Q15 + 0.5); /* vlimit.h: lim rounded */
+        assert_cmp(abs(b.mc.pi_d.out), <=, MC_VMAX_Q15);
         if (m > MC_VMAX_Q15 - 2.0) {
             at_limit++;
         }
@@ -260,7 +261,7 @@ static void test_voltage_vector_should_stay_inside_the_circle_when_the_loops_sat
     printf("measured: %ld periods at the voltage limit (|V| from 2 LSB below %d), |V| - Vmax at "
            "most %.2f LSB, %d redone at the circle\n",
            at_limit, MC_VMAX_Q15, over, (int)(uint16_t)(b.mc.circle_redos - redos0));
-    assert_true(at_limit > 1000);
+    assert_cmp(at_limit, >, 1000);
 }
 
 /* Near the voltage circle the q limit is formed before the q PI, which then
@@ -302,9 +303,9 @@ static void test_at_the_voltage_circle_the_q_limit_should_be_exact_without_a_red
     printf("measured: %ld of %ld periods with Vq at its limit, |V| - Vmax %.2f .. %.2f LSB (mean "
            "%.2f); %ld redone at the circle\n",
            clamped, periods, lo, hi, sum / (double)clamped, redos);
-    assert_true(clamped > periods / 4);
+    assert_cmp(clamped, >, periods / 4);
     assert_true(lo >= -0.5 && hi <= 0.5); /* AN1078's rounded limit */
-    assert_true(redos * 1000L <= periods);
+    assert_cmp(redos * 1000L, <=, periods);
 }
 
 /* ---- the shunt window ---------------------------------------------------------------- */
@@ -346,7 +347,7 @@ static void run_checking_window(long n, window_stats_t *w)
         w->on++;
         w->states[b.st.state & 7U]++;
         for (int ph = 0; ph < 2; ph++) {
-            assert_true(b.out.duty[ph] <= (uint16_t)MC_DUTY_SAMPLE_MAX);
+            assert_cmp(b.out.duty[ph], <=, (uint16_t)MC_DUTY_SAMPLE_MAX);
             double t = low_side_on_us(b.out.duty[ph]);
             w->min_on_us = fmin(w->min_on_us, t);
             if (b.out.duty[ph] + 2U >= (uint16_t)MC_DUTY_SAMPLE_MAX) {
@@ -390,7 +391,7 @@ static void test_the_measured_phases_should_keep_their_shunt_window_in_every_sta
     printf("measured: top speed with 20 mN m: %.0f rpm, Id %.2f A, %ld of %ld periods with |V| "
            "at the circle\n",
            b.rpm_sample, b.st.id * BOARD_I_FULLSCALE_A / 32768.0, circle, PERIODS(0.5));
-    assert_true(circle > PERIODS(0.25));
+    assert_cmp(circle, >, PERIODS(0.25));
     b.rig.plant.load.active_nm = 0.03;
     set_pot_rpm(3000.0);
     run_checking_window(PERIODS(3.0), &w);
@@ -407,8 +408,8 @@ static void test_the_measured_phases_should_keep_their_shunt_window_in_every_sta
            w.states[MC_STATE_CLOSED_LOOP], w.at_window, MC_DUTY_SAMPLE_MAX, w.min_on_us,
            (double)BOARD_SHUNT_MIN_ON_NS * 1e-3, b.rig.samples_short, b.rig.t_cond_min_s * 1e6);
     assert_true(w.states[MC_STATE_LOCK] > 0 && w.states[MC_STATE_OPEN_LOOP] > 0);
-    assert_true(w.at_window > 1000); /* the limit was active, not merely never reached */
-    assert_true(w.min_on_us >= (double)BOARD_SHUNT_MIN_ON_NS * 1e-3 - 1e-9);
+    assert_cmp(w.at_window, >, 1000); /* the limit was active, not merely never reached */
+    assert_cmp(w.min_on_us, >=, (double)BOARD_SHUNT_MIN_ON_NS * 1e-3 - 1e-9);
     assert_int_equal(b.rig.samples_short, 0);
 }
 
@@ -431,7 +432,7 @@ static void test_amplifiers_slower_than_the_window_should_show_as_short_samples(
            "shortest conduction %.2f us, state %d at %.0f rpm\n",
            b.rig.samples_short, SIM_AMP_SETTLE_TAUS * 0.6, b.rig.t_cond_min_s * 1e6,
            (int)b.st.state, b.rpm_sample);
-    assert_true(b.rig.samples_short > 1000);
+    assert_cmp(b.rig.samples_short, >, 1000);
 }
 
 /* ---- protections in closed loop ---------------------------------------------------- */
@@ -454,7 +455,7 @@ static void test_stall_should_fault_within_50_ms_when_the_rotor_locks(void **sta
         assert_int_equal(b.st.state, MC_STATE_FAULT);
         assert_true(b.st.fault == MC_FAULT_STALL_SPEED || b.st.fault == MC_FAULT_STALL_BEMF ||
                     b.st.fault == MC_FAULT_STALL_TRACK);
-        assert_true(t <= 0.050);
+        assert_cmp(t, <=, 0.050);
         assert_false(b.out.outputs_on);
         assert_int_equal(b.out.duty[0], PWM_DUTY_MAX / 2U);
     }
@@ -496,7 +497,7 @@ static void test_an_overload_beyond_the_current_limit_should_fault_as_lost_track
            b.st.fault, 1000.0 * (double)k / PWM_FREQUENCY_HZ, rpm_at_fault);
     assert_int_equal(b.st.state, MC_STATE_FAULT);
     assert_int_equal(b.st.fault, MC_FAULT_STALL_TRACK);
-    assert_true(rpm_at_fault < 3000.0 - MC_STALL_SPEED_ERROR_RPM);
+    assert_cmp(rpm_at_fault, <, 3000.0 - MC_STALL_SPEED_ERROR_RPM);
 }
 
 static void test_the_hand_off_difference_should_bleed_to_zero_by_the_step_each_period(void **state)
@@ -540,7 +541,7 @@ static void test_closed_loop_should_not_trip_through_speed_changes_and_load_step
         run(1.5 + fabs(plan[p][0] - mc_rpm_of_q15(b.st.speed_ref)) / MC_SPEED_RAMP_RPM_PER_S);
         printf("measured: %.0f rpm, load %.2f N m: speed %.0f rpm, Iq %.3f A\n", plan[p][0],
                plan[p][1], b.rpm_sample, b.st.iq * BOARD_I_FULLSCALE_A / 32768.0);
-        assert_true(fabs(b.rpm_sample - plan[p][0]) < 0.05 * plan[p][0] + 20.0);
+        assert_cmp(fabs(b.rpm_sample - plan[p][0]), <, 0.05 * plan[p][0] + 20.0);
     }
 }
 
@@ -551,7 +552,7 @@ static void test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_sched
      * tick; a gain written straight into pi_w would be overwritten there. */
     start_at(SPEED_REF_MIN_RPM);
     run(0.3);
-    assert_true(b.st.speed_ref < MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM));
+    assert_cmp(b.st.speed_ref, <, MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM));
     q15_t kp_sched = b.mc.pi_w.p.kp;
     q15_t base = mc_get_gain(&b.mc, MC_GAIN_SPD_KP);
     assert_true(mc_set_gain(&b.mc, MC_GAIN_SPD_KP, (q15_t)(base / 2)));
@@ -564,7 +565,7 @@ static void test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_sched
      * the reference settles); before mc_set_gain existed the ratio was 1. */
     double ratio = (double)kp_now / (double)kp_sched;
     printf("measured: ratio %.4f (expected 0.5)\n", ratio);
-    assert_true(fabs(ratio - 0.5) < 0.01);
+    assert_cmp(fabs(ratio - 0.5), <, 0.01);
     run(0.5); /* and the motor keeps running on it */
 }
 

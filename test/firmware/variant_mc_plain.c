@@ -28,7 +28,7 @@ test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_
     b.rig.inv.prm.ripple_hz = 100.0;
     mc_request(&b.mc, MC_REQUEST_START);
     long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 4L * PWM_FREQUENCY_HZ);
-    assert_true(n > 0);
+    assert_cmp(n, >, 0);
     err_stats_t ang;
     err_stats_init(&ang);
     for (long k = 0; k < 3L * PWM_FREQUENCY_HZ; k++) {
@@ -43,7 +43,7 @@ test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_
     }
     err_stats_print("angle at 500 rpm, no dead-time compensation (estimator fed duty - Td loss)",
                     &ang, "deg");
-    assert_true(ang.max_abs < 45.0);
+    assert_cmp(ang.max_abs, <, 45.0);
 }
 
 int main(void)

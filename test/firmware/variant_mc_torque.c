@@ -59,7 +59,7 @@ test_torque_mode_should_hold_the_pot_current_in_closed_loop_and_let_speed_follow
     mc_bench_init(&b, &c);
     mc_request(&b.mc, MC_REQUEST_START);
     long n = mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 4L * PWM_FREQUENCY_HZ);
-    assert_true(n > 0);
+    assert_cmp(n, >, 0);
     double rpm_light = 0.0;
     for (long k = 0; k < 2L * PWM_FREQUENCY_HZ; k++) {
         mc_bench_step(&b);
@@ -69,8 +69,8 @@ test_torque_mode_should_hold_the_pot_current_in_closed_loop_and_let_speed_follow
              * end: within the pot's ADC noise of the present reading. */
             assert_int_equal(b.st.iq_ref, b.mc.torque_target);
             /* 4 codes of the 10-bit pot reading (64 Q15 counts each). */
-            assert_true(abs(b.mc.torque_target - mc_pot_to_torque(b.frame.pot)) <=
-                        mc_pot_to_torque(4 * 64));
+            assert_cmp(abs(b.mc.torque_target - mc_pot_to_torque(b.frame.pot)), <=,
+                       mc_pot_to_torque(4 * 64));
         }
         rpm_light = b.rpm_sample;
     }
@@ -89,8 +89,8 @@ test_torque_mode_should_hold_the_pot_current_in_closed_loop_and_let_speed_follow
     printf("measured: torque mode, Iq ref %.3f A: %.0f rpm light, %.0f rpm with 0.3 mN m more\n",
            b.st.iq_ref * BOARD_I_FULLSCALE_A / 32768.0, rpm_light, rpm_loaded);
     err_stats_print("torque mode Iq - Iq ref (loaded)", &e, "A");
-    assert_true(rpm_loaded < rpm_light - 50.0);
-    assert_true(fabs(err_stats_mean(&e)) < 0.02);
+    assert_cmp(rpm_loaded, <, rpm_light - 50.0);
+    assert_cmp(fabs(err_stats_mean(&e)), <, 0.02);
 }
 
 int main(void)

@@ -75,7 +75,7 @@ static void test_atan2_q15_should_stay_within_bound_at_every_magnitude(void **st
         (void)snprintf(name, sizeof name, "atan2_q15 4096 angles at magnitude %.0f", magnitudes[m]);
         err_stats_print(name, &e, "LSB");
         print_deg(name, &e);
-        assert_true(e.max_abs <= ATAN2_MAX_ERR_LSB);
+        assert_cmp(e.max_abs, <=, ATAN2_MAX_ERR_LSB);
     }
     assert_int_equal(all.n, 6L * n_angles);
 }
@@ -96,7 +96,7 @@ static void test_atan2_q15_should_stay_within_bound_with_a_minus_32768_component
     err_stats_print("atan2_q15 on the full-scale square (one component -32768 or 32767)", &e,
                     "LSB");
     print_deg("atan2_q15 on the full-scale square", &e);
-    assert_true(e.max_abs <= ATAN2_MAX_ERR_LSB);
+    assert_cmp(e.max_abs, <=, ATAN2_MAX_ERR_LSB);
 }
 
 static void test_atan2_q15_should_stay_within_bound_for_a_million_random_pairs(void **state)
@@ -144,9 +144,9 @@ static void test_atan2_q15_should_stay_within_bound_for_a_million_random_pairs(v
         }
     }
     err_stats_print("atan2_q15 all random pairs", &all, "LSB");
-    assert_true(all.n > 990000L);
+    assert_cmp(all.n, >, 990000L);
     for (b = 5; b < 16; b++) { /* from 32 LSB up, the stated bound */
-        assert_true(bins[b].max_abs <= ATAN2_MAX_ERR_LSB);
+        assert_cmp(bins[b].max_abs, <=, ATAN2_MAX_ERR_LSB);
     }
 }
 
@@ -169,7 +169,7 @@ static void test_atan2_q15_should_stay_within_bound_for_tiny_vectors_below_32_ls
     }
     err_stats_print("atan2_q15 all vectors with |x|,|y| <= 31 (at = 100 y + x)", &e, "LSB");
     print_deg("atan2_q15 magnitude 1..31", &e);
-    assert_true(e.max_abs <= ATAN2_MAX_ERR_LSB);
+    assert_cmp(e.max_abs, <=, ATAN2_MAX_ERR_LSB);
 }
 
 static void test_atan2_q15_should_answer_the_origin_and_the_axes_exactly(void **state)
@@ -218,8 +218,8 @@ static void test_atan2_q15_should_define_the_unit_y_vectors(void **state)
     assert_int_equal(atan2_q15(1, 32767), 0);
     assert_int_equal(atan2_q15(-1, 32767), 0);
     /* Next to -pi: both sides round onto -32768 or +32767, within 1 LSB of pi. */
-    assert_true(fabs(atan2_err_lsb(1, -32768)) <= ATAN2_MAX_ERR_LSB);
-    assert_true(fabs(atan2_err_lsb(-1, -32768)) <= ATAN2_MAX_ERR_LSB);
+    assert_cmp(fabs(atan2_err_lsb(1, -32768)), <=, ATAN2_MAX_ERR_LSB);
+    assert_cmp(fabs(atan2_err_lsb(-1, -32768)), <=, ATAN2_MAX_ERR_LSB);
     assert_int_equal(atan2_q15(1, 1), 8192);
     assert_int_equal(atan2_q15(1, -1), 24576);
     /* pi - 0.32 LSB rounds onto the wrap: -32768 (the binary angle has no +pi). */
@@ -270,11 +270,11 @@ static void test_atan2_q31_should_stay_within_bound_at_every_magnitude(void **st
             printf("measured: atan2_q31 random pairs, max(|x|,|y|) in [2^%d, 2^%d): max |err| = "
                    "%.4f LSB = %.5f deg, n = %ld\n",
                    b, b + 1, bins[b].max_abs, bins[b].max_abs / LSB_PER_DEG, bins[b].n);
-            assert_true(bins[b].max_abs <= ((b < 16) ? ATAN2_MAX_ERR_LSB : ATAN2_MAX_ERR32_LSB));
+            assert_cmp(bins[b].max_abs, <=, ((b < 16) ? ATAN2_MAX_ERR_LSB : ATAN2_MAX_ERR32_LSB));
         }
     }
     err_stats_print("atan2_q31 all random pairs", &all, "LSB");
-    assert_true(all.n > 990000L);
+    assert_cmp(all.n, >, 990000L);
 }
 
 static void test_atan2_q31_should_agree_with_atan2_q15_on_16_bit_inputs(void **state)

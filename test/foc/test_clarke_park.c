@@ -72,9 +72,9 @@ static void test_clarke_forward_should_stay_within_bound_over_a_dense_grid(void 
     }
     err_stats_print("clarke beta, dense grid (unsaturated part)", &e, "LSB");
     printf("measured: clarke beta saturated (and checked exact) in %ld cases\n", n_sat);
-    assert_true(e.n > 20000000L);
-    assert_true(n_sat > 1000000L);
-    assert_true(e.max_abs <= CLARKE_BETA_MAX_ERR_LSB);
+    assert_cmp(e.n, >, 20000000L);
+    assert_cmp(n_sat, >, 1000000L);
+    assert_cmp(e.max_abs, <=, CLARKE_BETA_MAX_ERR_LSB);
 }
 
 static void test_clarke_forward_should_be_amplitude_invariant_on_a_balanced_set(void **state)
@@ -105,8 +105,8 @@ static void test_clarke_forward_should_be_amplitude_invariant_on_a_balanced_set(
         err_stats_print(name, &ea, "LSB");
         (void)snprintf(name, sizeof name, "clarke balanced set, amplitude %.0f, beta", amps[m]);
         err_stats_print(name, &eb, "LSB");
-        assert_true(ea.max_abs <= 0.5);
-        assert_true(eb.max_abs <= bound);
+        assert_cmp(ea.max_abs, <=, 0.5);
+        assert_cmp(eb.max_abs, <=, bound);
     }
 }
 
@@ -122,7 +122,7 @@ static void test_clarke_forward_should_saturate_monotonically_at_the_edges(void 
         int32_t ib;
         for (ib = -32768; ib <= 32767; ib++) {
             ab = clarke_forward(ias[j], (q15_t)ib);
-            assert_true(ab.beta >= prev); /* no wrap anywhere along ib */
+            assert_cmp(ab.beta, >=, prev); /* no wrap anywhere along ib */
             prev = ab.beta;
         }
     }
@@ -240,10 +240,10 @@ static void test_park_should_stay_within_bound_over_angles_and_vectors(void **st
     printf("measured: park saturated outputs checked exact: forward %ld, inverse %ld\n", ef.n_sat,
            ei.n_sat);
     assert_true(ef.arith.n > 8000000L && ef.n_sat > 100000L && ei.n_sat > 100000L);
-    assert_true(ef.arith.max_abs <= PARK_ARITH_MAX_ERR_LSB);
-    assert_true(ei.arith.max_abs <= PARK_ARITH_MAX_ERR_LSB);
-    assert_true(ef.angle.max_abs <= angle_bound);
-    assert_true(ei.angle.max_abs <= angle_bound);
+    assert_cmp(ef.arith.max_abs, <=, PARK_ARITH_MAX_ERR_LSB);
+    assert_cmp(ei.arith.max_abs, <=, PARK_ARITH_MAX_ERR_LSB);
+    assert_cmp(ef.angle.max_abs, <=, angle_bound);
+    assert_cmp(ei.angle.max_abs, <=, angle_bound);
 }
 
 static void test_park_inverse_should_undo_park_forward_within_a_few_lsb(void **state)
@@ -277,12 +277,12 @@ static void test_park_inverse_should_undo_park_forward_within_a_few_lsb(void **s
             eb = (double)back.beta - (double)ab.beta;
             err_stats_add(&e, ea, (double)a);
             err_stats_add(&e, eb, (double)a);
-            assert_true(fabs(ea) <= fabs((double)ab.alpha) * SINCOS_NORM_MAX_LSB / 32768.0 + 1.21);
-            assert_true(fabs(eb) <= fabs((double)ab.beta) * SINCOS_NORM_MAX_LSB / 32768.0 + 1.21);
+            assert_cmp(fabs(ea), <=, fabs((double)ab.alpha) * SINCOS_NORM_MAX_LSB / 32768.0 + 1.21);
+            assert_cmp(fabs(eb), <=, fabs((double)ab.beta) * SINCOS_NORM_MAX_LSB / 32768.0 + 1.21);
         }
     }
     err_stats_print("park round trip inverse(forward(v)) - v", &e, "LSB");
-    assert_true(e.max_abs <= SINCOS_NORM_MAX_LSB + 1.21);
+    assert_cmp(e.max_abs, <=, SINCOS_NORM_MAX_LSB + 1.21);
 }
 
 static void test_park_should_saturate_cleanly_outside_the_unit_circle(void **state)

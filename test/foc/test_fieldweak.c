@@ -98,8 +98,8 @@ static void test_fieldweak_id_ref_should_match_linear_interpolation_over_every_s
     err_stats_print("fieldweak AN1078-like table, 12 spans x all 65536 speeds", &e, "LSB");
     printf("measured: fieldweak AN1078-like: largest |err| minus its bound: %.4f LSB\n",
            worst_excess);
-    assert_true(worst_excess <= 0.0);
-    assert_true(e.max_abs <= 0.5 + 23000.0 / 65536.0);
+    assert_cmp(worst_excess, <=, 0.0);
+    assert_cmp(e.max_abs, <=, 0.5 + 23000.0 / 65536.0);
 }
 
 static void test_fieldweak_id_ref_should_stay_in_bound_for_random_and_extreme_tables(void **state)
@@ -131,8 +131,8 @@ static void test_fieldweak_id_ref_should_stay_in_bound_for_random_and_extreme_ta
                     "LSB");
     printf("measured: fieldweak: largest |err| minus its bound 0.5 + |step|/65536: %.4f LSB\n",
            worst_excess);
-    assert_true(worst_excess <= 0.0);
-    assert_true(e.max_abs <= 0.5 + 65535.0 / 65536.0);
+    assert_cmp(worst_excess, <=, 0.0);
+    assert_cmp(e.max_abs, <=, 0.5 + 65535.0 / 65536.0);
 }
 
 /* Speeds at the table points (15 (s - nominal) a multiple of the span)
@@ -163,7 +163,7 @@ static void test_fieldweak_id_ref_should_hit_the_table_points_exactly(void **sta
         assert_int_equal(fieldweak_id_ref(&fw, p.speed_max), p.id_table[15]);
     }
     printf("measured: fieldweak: %ld table-point speeds, all exact\n", hits);
-    assert_true(hits >= 16L * 2);
+    assert_cmp(hits, >=, 16L * 2);
 }
 
 static void test_fieldweak_id_ref_should_be_monotone_for_a_monotone_table(void **state)
@@ -179,7 +179,7 @@ static void test_fieldweak_id_ref_should_be_monotone_for_a_monotone_table(void *
         q15_t prev = fieldweak_id_ref(&fw, p.speed_nominal);
         for (int32_t s = p.speed_nominal; s <= 32767; s++) {
             q15_t id = fieldweak_id_ref(&fw, (q15_t)s);
-            assert_true(id <= prev); /* falling table -> falling Id */
+            assert_cmp(id, <=, prev); /* falling table -> falling Id */
             prev = id;
         }
     }
@@ -194,7 +194,7 @@ static void test_fieldweak_id_ref_should_be_monotone_for_a_monotone_table(void *
     q15_t prev = fieldweak_id_ref(&fw, 3000);
     for (int32_t s = 3000; s <= 32767; s++) {
         q15_t id = fieldweak_id_ref(&fw, (q15_t)s);
-        assert_true(id >= prev);
+        assert_cmp(id, >=, prev);
         prev = id;
     }
 }

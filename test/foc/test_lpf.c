@@ -83,14 +83,14 @@ static void test_lpf_update_should_follow_the_double_recurrence_on_steps(void **
             for (i = 0; i < n; i++) {
                 y = step_both(&f, y, to[s], k, &e, (double)i);
             }
-            assert_true(fabs((double)lpf_output(&f) - (double)to[s]) <= 1.0);
+            assert_cmp(fabs((double)lpf_output(&f) - (double)to[s]), <=, 1.0);
         }
         (void)snprintf(name, sizeof name, "lpf steps, K = %d (output)", k);
         err_stats_print(name, &e.out, "LSB");
         (void)snprintf(name, sizeof name, "lpf steps, K = %d (Q31 state)", k);
         err_stats_print(name, &e.st, "LSB");
-        assert_true(e.out.max_abs <= output_bound_lsb(k));
-        assert_true(e.st.max_abs <= state_bound_lsb(k));
+        assert_cmp(e.out.max_abs, <=, output_bound_lsb(k));
+        assert_cmp(e.st.max_abs, <=, state_bound_lsb(k));
     }
 }
 
@@ -122,8 +122,8 @@ static void test_lpf_update_should_follow_the_double_recurrence_on_sines(void **
         }
         (void)snprintf(name, sizeof name, "lpf full-scale sine at cut-off, K = %d (output)", k);
         err_stats_print(name, &e.out, "LSB");
-        assert_true(e.out.max_abs <= output_bound_lsb(k));
-        assert_true(e.st.max_abs <= state_bound_lsb(k));
+        assert_cmp(e.out.max_abs, <=, output_bound_lsb(k));
+        assert_cmp(e.st.max_abs, <=, state_bound_lsb(k));
     }
 }
 
@@ -163,10 +163,10 @@ static void test_lpf_update_should_track_a_5_lsb_sine_that_a_16_bit_state_loses(
     err_stats_print("lpf 5-LSB sine, Q31 state (output)", &e.out, "LSB");
     err_stats_print("lpf 5-LSB sine, Q31 state (state)", &e.st, "LSB");
     err_stats_print("lpf 5-LSB sine, 16-bit truncating state (for comparison)", &e16, "LSB");
-    assert_true(peak > 3.0); /* the reference really carries a signal */
-    assert_true(e.out.max_abs <= output_bound_lsb(k));
-    assert_true(e.st.max_abs <= state_bound_lsb(k));
-    assert_true(e16.max_abs > 2.0); /* the sweep is able to see the 16-bit failure */
+    assert_cmp(peak, >, 3.0); /* the reference really carries a signal */
+    assert_cmp(e.out.max_abs, <=, output_bound_lsb(k));
+    assert_cmp(e.st.max_abs, <=, state_bound_lsb(k));
+    assert_cmp(e16.max_abs, >, 2.0); /* the sweep is able to see the 16-bit failure */
 }
 
 static void test_lpf_update_should_follow_random_inputs_and_changing_gains(void **state)
@@ -189,8 +189,8 @@ static void test_lpf_update_should_follow_random_inputs_and_changing_gains(void 
     }
     err_stats_print("lpf random x, random K in [16, 32767], 10^6 steps (output)", &e.out, "LSB");
     err_stats_print("lpf random x, random K in [16, 32767], 10^6 steps (state)", &e.st, "LSB");
-    assert_true(e.out.max_abs <= output_bound_lsb(k_min));
-    assert_true(e.st.max_abs <= state_bound_lsb(k_min));
+    assert_cmp(e.out.max_abs, <=, output_bound_lsb(k_min));
+    assert_cmp(e.st.max_abs, <=, state_bound_lsb(k_min));
 }
 
 static void test_lpf_update_should_hold_the_state_when_k_is_zero(void **state)
@@ -235,7 +235,7 @@ static void test_lpf_update_should_not_overflow_at_the_extremes(void **state)
         y = step_both(&f, y, x, 32767, &e, (double)i);
     }
     err_stats_print("lpf +-full-scale square at K = 32767 (output)", &e.out, "LSB");
-    assert_true(e.out.max_abs <= output_bound_lsb(32767));
+    assert_cmp(e.out.max_abs, <=, output_bound_lsb(32767));
 
     lpf_reset(&f, 32767);
     assert_int_equal(lpf_update(&f, 32767, 32767), 32767);

@@ -139,8 +139,8 @@ static void test_pi_update_should_match_the_double_model_over_random_sequences(v
     }
     err_stats_print("pi_update vs double model (400 random runs x 2000 steps)", &e, "LSB");
     printf("measured: pi random runs: %ld of %ld steps at a limit\n", saturated_steps, e.n);
-    assert_true(e.max_abs <= PI_BOUND_LSB);
-    assert_true(saturated_steps > e.n / 10); /* the anti-windup path was exercised */
+    assert_cmp(e.max_abs, <=, PI_BOUND_LSB);
+    assert_cmp(saturated_steps, >, e.n / 10); /* the anti-windup path was exercised */
 }
 
 /* Open loop: Out(n) = Kp E + (n) Ki E exactly, rounded once. */
@@ -159,7 +159,7 @@ static void test_pi_update_should_give_the_textbook_step_response(void **state)
         err_stats_add(&e, (double)out - expect, n);
     }
     err_stats_print("pi step response vs Kp E + n Ki E", &e, "LSB");
-    assert_true(e.max_abs <= 0.5);
+    assert_cmp(e.max_abs, <=, 0.5);
 }
 
 /* Closed loop through a first-order plant: the integral removes the error. */
@@ -184,7 +184,7 @@ static void test_pi_update_should_drive_the_steady_state_error_to_zero(void **st
         }
         printf("measured: pi closed loop ref %d: last step with error != 0: %d of 5000\n", refs[k],
                last_nonzero);
-        assert_true(last_nonzero < 4000); /* zero error for the last 1000 steps */
+        assert_cmp(last_nonzero, <, 4000); /* zero error for the last 1000 steps */
     }
 }
 
@@ -229,10 +229,10 @@ static void test_pi_update_should_leave_the_limit_quickly_after_windup_only_with
     printf("measured: pi windup: steps to leave the limit after the error reverses: %d with Kc "
            "= Ki (predicted %.1f), %d with Kc = 0\n",
            with_kc, predicted, without_kc);
-    assert_true(fabs(q31_to_double(sum_kc) - 0.55) < 2.0 / 32768.0);
+    assert_cmp(fabs(q31_to_double(sum_kc) - 0.55), <, 2.0 / 32768.0);
     assert_true(with_kc > 0 && fabs((double)with_kc - predicted) <= 1.0);
-    assert_true(q31_to_double(sum_nokc) > 0.999); /* wound up to the accumulator limit */
-    assert_true(without_kc > 5 * with_kc);
+    assert_cmp(q31_to_double(sum_nokc), >, 0.999); /* wound up to the accumulator limit */
+    assert_cmp(without_kc, >, 5 * with_kc);
 }
 
 static void test_pi_update_should_stop_at_both_limits_and_follow_new_limits(void **state)

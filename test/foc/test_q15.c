@@ -60,7 +60,7 @@ static void check_done(const char *name, const check_t *c)
         printf("  first mismatch: a = %lld, b = %lld: got %lld, want %lld\n", (long long)c->first_a,
                (long long)c->first_b, (long long)c->first_got, (long long)c->first_want);
     }
-    assert_true(c->n > 0);
+    assert_cmp(c->n, >, 0);
     assert_int_equal(c->bad, 0);
 }
 
@@ -101,7 +101,7 @@ static void test_q15_add_sub_sat_should_match_the_saturated_exact_sum(void **sta
     check_init(&c);
     sweep_pairs(&c, pair_add_sub, 97); /* 65,536 x 691 pairs, 2 ops each */
     check_done("q15_add_sat / q15_sub_sat, dense grid + all edges", &c);
-    assert_true(c.n > 80000000L);
+    assert_cmp(c.n, >, 80000000L);
     assert_int_equal(q15_add_sat(32767, 1), 32767);
     assert_int_equal(q15_add_sat(-32768, -1), -32768);
     assert_int_equal(q15_sub_sat(-32768, 1), -32768);
@@ -186,7 +186,7 @@ static void test_q15_mul_should_round_to_nearest_with_ties_up_over_a_dense_grid(
     check_init(&c);
     sweep_pairs(&c, pair_mul, 251); /* 65,536 x 262 = 1.7e7 pairs, + edges x all */
     check_done("q15_mul / q15_mul_trunc / q15_dsp_mulss, dense grid + all edges", &c);
-    assert_true(c.n > 3L * 17000000L);
+    assert_cmp(c.n, >, 3L * 17000000L);
 
     /* The same rule seen from double: |err| <= 0.5 (rounded), (-1, 0] (trunc). */
     err_stats_init(&er);
@@ -200,12 +200,12 @@ static void test_q15_mul_should_round_to_nearest_with_ties_up_over_a_dense_grid(
         }
         err_stats_add(&er, (double)q15_mul(a, b) - exact, exact);
         err_stats_add(&et, (double)q15_mul_trunc(a, b) - exact, exact);
-        assert_true((double)q15_mul_trunc(a, b) - exact <= 0.0);
+        assert_cmp((double)q15_mul_trunc(a, b) - exact, <=, 0.0);
     }
     err_stats_print("q15_mul vs double, 2e6 random pairs", &er, "LSB");
     err_stats_print("q15_mul_trunc vs double, 2e6 random pairs", &et, "LSB");
-    assert_true(er.max_abs <= 0.5);
-    assert_true(et.max_abs < 1.0);
+    assert_cmp(er.max_abs, <=, 0.5);
+    assert_cmp(et.max_abs, <, 1.0);
 
     /* Ties go up (toward +infinity), on both signs. */
     assert_int_equal(q15_mul(1, 16384), 1);   /* +0.5 LSB -> 1 */
@@ -560,7 +560,7 @@ static void test_q15_macro_should_round_symmetrically_and_saturate_one(void **st
     }
     check_done("Q15(x) = -Q15(-x) over 2e6 values in [-1, 1]", &c);
     err_stats_print("Q15(x) - 32768 x over [-1, 1] (1 -> 32767 included)", &e, "LSB");
-    assert_true(e.max_abs <= 1.0); /* 1.0 only at x = 1 */
+    assert_cmp(e.max_abs, <=, 1.0); /* 1.0 only at x = 1 */
 }
 
 /* ---- divsd twin --------------------------------------------------------- */
@@ -644,7 +644,7 @@ static void test_shift7_and_mant7_should_split_a_gain_into_mantissa_and_shift(vo
     }
     err_stats_print("Q15_MANT7_OF * 2^Q15_SHIFT7_OF vs x in [0, 128), unsaturated", &e,
                     "mantissa LSB");
-    assert_true(e.max_abs <= 0.5 + 1e-9);
+    assert_cmp(e.max_abs, <=, 0.5 + 1e-9);
     assert_int_equal(Q15_MANT7_OF(3.99999), Q15_MAX);
 }
 

@@ -68,9 +68,9 @@ static void test_ripple_compensate_should_follow_equation_8_over_a_dense_grid(vo
     }
     err_stats_print("ripple_compensate vs Equation 8 (DCbus x Target x Vpi grid)", &e, "LSB");
     printf("measured: ripple grid: %ld of %ld points saturated\n", saturated, e.n);
-    assert_true(e.n > 1000000);
-    assert_true(saturated > 0);
-    assert_true(e.max_abs <= RIPPLE_BOUND_LSB);
+    assert_cmp(e.n, >, 1000000);
+    assert_cmp(saturated, >, 0);
+    assert_cmp(e.max_abs, <=, RIPPLE_BOUND_LSB);
 }
 
 /* Around the operating point, DCbus rippling +-20 % about the target. */
@@ -87,7 +87,7 @@ static void test_ripple_compensate_should_follow_equation_8_around_the_target(vo
         }
     }
     err_stats_print("ripple_compensate vs Equation 8, DCbus within +-20 % of target", &e, "LSB");
-    assert_true(e.max_abs <= RIPPLE_BOUND_LSB);
+    assert_cmp(e.max_abs, <=, RIPPLE_BOUND_LSB);
 }
 
 static void test_ripple_compensate_should_pass_through_at_the_target(void **state)

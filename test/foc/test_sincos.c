@@ -39,11 +39,11 @@ static void test_sincos_compute_should_stay_within_bound_for_all_65536_angles(vo
     printf("measured: sincos max |err| as a share of full scale: sin %.5f %%, cos %.5f %%\n",
            100.0 * es.max_abs / 32768.0, 100.0 * ec.max_abs / 32768.0);
     assert_true(es.n == 65536L && ec.n == 65536L);
-    assert_true(es.max_abs <= SINCOS_MAX_ERR_LSB);
-    assert_true(ec.max_abs <= SINCOS_MAX_ERR_LSB);
+    assert_cmp(es.max_abs, <=, SINCOS_MAX_ERR_LSB);
+    assert_cmp(ec.max_abs, <=, SINCOS_MAX_ERR_LSB);
     /* No bias: the mean error is a small fraction of an LSB. */
-    assert_true(fabs(err_stats_mean(&es)) < 0.05);
-    assert_true(fabs(err_stats_mean(&ec)) < 0.05);
+    assert_cmp(fabs(err_stats_mean(&es)), <, 0.05);
+    assert_cmp(fabs(err_stats_mean(&ec)), <, 0.05);
 }
 
 static void test_sincos_compute_should_never_exceed_plus_minus_32767(void **state)
@@ -114,7 +114,7 @@ static void test_sincos_compute_should_match_the_table_nodes_to_half_an_lsb(void
         err_stats_add(&e, (double)sc.sin - expect, (double)a);
     }
     err_stats_print("sincos sin at the 512 table nodes", &e, "LSB");
-    assert_true(e.max_abs <= 0.5);
+    assert_cmp(e.max_abs, <=, 0.5);
 }
 
 static void test_sincos_compute_should_keep_the_symmetries_bit_exact(void **state)
@@ -143,7 +143,7 @@ static void test_sincos_compute_should_be_monotonic_in_the_first_quadrant(void *
 
     for (a = 0U; a <= 16384U; a++) {
         sincos_q15_t sc = sincos_compute((angle_q15_t)(int16_t)(uint16_t)a);
-        assert_true(sc.sin >= prev);
+        assert_cmp(sc.sin, >=, prev);
         prev = sc.sin;
     }
 }
@@ -164,7 +164,7 @@ static void test_sincos_compute_should_keep_sin2_plus_cos2_close_to_one(void **s
     err_stats_print("sincos 32768 (sin^2 + cos^2 - 1)", &e, "LSB");
     /* From the per-output bound: 2 (|sin| + |cos|) 1.5 LSB <= 2 sqrt(2) 1.5
      * = 4.25 LSB (1.3e-4 of full scale), plus second-order terms. */
-    assert_true(e.max_abs <= 4.25);
+    assert_cmp(e.max_abs, <=, 4.25);
 }
 
 int main(void)

@@ -65,7 +65,7 @@ static void check_range_and_centre(const svgen_out_t *o, uint16_t p, bool linear
     uint16_t mx = o->duty[0];
     uint16_t mn = o->duty[0];
     for (int k = 0; k < 3; k++) {
-        assert_true(o->duty[k] <= p);
+        assert_cmp(o->duty[k], <=, p);
         if (o->duty[k] > mx) {
             mx = o->duty[k];
         }
@@ -139,9 +139,9 @@ static void test_svgen_update_should_reproduce_line_voltages_in_the_linear_regio
                per_sector[1], per_sector[2], per_sector[3], per_sector[4], per_sector[5],
                per_sector[6]);
         for (int s = 1; s <= 6; s++) {
-            assert_true(per_sector[s] >= 100000);
+            assert_cmp(per_sector[s], >=, 100000);
         }
-        assert_true(e.max_abs <= line_bound_counts(p));
+        assert_cmp(e.max_abs, <=, line_bound_counts(p));
     }
 }
 
@@ -170,7 +170,7 @@ static void test_svgen_update_should_reproduce_line_voltages_inside_the_circle(v
         char name[96];
         snprintf(name, sizeof name, "svgen line-to-line, period %u, random in |v| <= 1", p);
         err_stats_print(name, &e, "counts");
-        assert_true(e.max_abs <= line_bound_counts(p));
+        assert_cmp(e.max_abs, <=, line_bound_counts(p));
     }
 }
 
@@ -240,8 +240,8 @@ static void test_svgen_update_should_be_continuous_across_sector_boundaries(void
     err_stats_print("svgen line-to-line at sector boundaries +-1 LSB, period 2000", &e, "counts");
     printf("measured: svgen largest duty change for a 1 LSB step across a boundary: %d counts\n",
            max_jump);
-    assert_true(e.max_abs <= line_bound_counts(2000));
-    assert_true(max_jump <= 1);
+    assert_cmp(e.max_abs, <=, line_bound_counts(2000));
+    assert_cmp(max_jump, <=, 1);
 
     /* Exactly on the alpha axis (0 and 180 degrees): phases b and c equal;
      * on the beta axis (90, 270): phase a midway. */
@@ -255,8 +255,8 @@ static void test_svgen_update_should_be_continuous_across_sector_boundaries(void
         ab_q15_t w = {0, ms[i]};
         svgen_update(w, 2000, &o);
         /* T1 and T1 + T2 are rounded separately: equal halves within 1 count. */
-        assert_true(abs(((int)o.duty[1] - (int)o.duty[0]) - ((int)o.duty[0] - (int)o.duty[2])) <=
-                    1);
+        assert_cmp(abs(((int)o.duty[1] - (int)o.duty[0]) - ((int)o.duty[0] - (int)o.duty[2])), <=,
+                   1);
         assert_int_equal(o.sector, (ms[i] > 0) ? 2 : 5);
     }
 }
@@ -306,7 +306,7 @@ static void test_svgen_update_should_clamp_overmodulation_onto_the_hexagon(void 
         snprintf(name, sizeof name, "svgen clamped angle error, period %u (bound %.4f deg)", p,
                  bound_deg);
         err_stats_print(name, &e, "deg");
-        assert_true(e.max_abs <= bound_deg);
+        assert_cmp(e.max_abs, <=, bound_deg);
     }
 }
 
@@ -339,8 +339,8 @@ static void test_svgen_update_should_be_monotone_along_rays(void **state)
                 mx = (o.duty[k] > mx) ? o.duty[k] : mx;
                 mn = (o.duty[k] < mn) ? o.duty[k] : mn;
             }
-            assert_true(mx - mn >= prev_span);
-            assert_true(mx - mn <= 2000);
+            assert_cmp(mx - mn, >=, prev_span);
+            assert_cmp(mx - mn, <=, 2000);
             prev_span = mx - mn;
             if (o.clamped) {
                 if (!have_clamped) {
@@ -374,7 +374,7 @@ static void test_svgen_update_should_be_monotone_along_rays(void **state)
            clamped_spread);
     printf("measured: svgen rays: %d of %d left the hexagon inside the Q15 square\n", rays_clamped,
            rays);
-    assert_true(clamped_spread <= 2);
+    assert_cmp(clamped_spread, <=, 2);
 }
 
 int main(void)

@@ -19,11 +19,11 @@ static void test_q15_sqrt_should_be_within_half_an_lsb_for_every_non_negative_in
         q15_t y = q15_sqrt((q15_t)x);
         double ref = sqrt((double)x * 32768.0); /* sqrt(x / 2^15) * 2^15 */
         err_stats_add(&e, (double)y - ref, (double)x);
-        assert_true(y >= 0);
+        assert_cmp(y, >=, 0);
     }
     err_stats_print("q15_sqrt, all 32768 non-negative inputs", &e, "LSB");
     assert_int_equal(e.n, 32768);
-    assert_true(e.max_abs <= SQRT_BOUND_LSB);
+    assert_cmp(e.max_abs, <=, SQRT_BOUND_LSB);
     assert_int_equal(q15_sqrt(0), 0);
     assert_int_equal(q15_sqrt(32767), 32767);
     assert_int_equal(q15_sqrt(Q15(0.25)), Q15(0.5));
@@ -104,7 +104,7 @@ static void test_vlimit_vq_max_should_follow_the_voltage_circle_over_a_grid(void
         assert_int_equal(vlimit_vq_max(32767, vmax), 0);
     }
     err_stats_print("vlimit_vq_max = sqrt(Vmax^2 - Vd^2), 136 Vmax x 21846 Vd", &e, "LSB");
-    assert_true(e.max_abs <= SQRT_BOUND_LSB);
+    assert_cmp(e.max_abs, <=, SQRT_BOUND_LSB);
 }
 
 static void test_vlimit_vq_max_should_give_zero_for_a_non_positive_vmax(void **state)

@@ -232,8 +232,8 @@ static void test_speed_from_pot_should_map_linearly_and_clamp_when_doubled(void 
     }
     err_stats_print("app_speed_from_pot vs linear map", &e1, "LSB");
     err_stats_print("app_speed_from_pot doubled vs min(2 map, max)", &e2, "LSB");
-    assert_true(e1.max_abs < 1.0); /* the core's floor: under one count */
-    assert_true(e2.max_abs < 2.0);
+    assert_cmp(e1.max_abs, <, 1.0); /* the core's floor: under one count */
+    assert_cmp(e2.max_abs, <, 2.0);
     /* one map: the core's, everywhere (the two used to differ on 25,395 readings) */
     for (pot = 0; pot <= 32767; pot++) {
         assert_int_equal(app_speed_from_pot((int16_t)pot, false), mc_pot_to_speed((int16_t)pot));
@@ -394,7 +394,7 @@ static void test_s3_should_yield_the_reference_to_another_side_that_sets_it(void
         ticks(1);
     }
     assert_true(app.double_speed);
-    assert_true(fake_ref_calls >= 1U);
+    assert_cmp(fake_ref_calls, >=, 1U);
     /* the monitor sets a speed: S3's mode ends, no more board references */
     fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
     n = fake_ref_calls;

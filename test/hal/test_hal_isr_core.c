@@ -81,7 +81,7 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
            "mismatches, final state %d\n",
            on_periods, mismatches, (int)st.state);
     assert_int_equal(mismatches, 0);
-    assert_true(on_periods > 0u); /* the core did turn the bridge on through the HAL */
+    assert_cmp(on_periods, >, 0u); /* the core did turn the bridge on through the HAL */
 
     hal_motor_request(MC_REQUEST_STOP);
     IFS0bits.AD1IF = 1;

@@ -242,7 +242,7 @@ test_a_frame_completed_without_tx_room_should_be_dropped_and_change_nothing(void
     for (i = 0; monitor_rx_ready(&fx.mon); i++) {
         mon_send(&fx.mon, MONITOR_CMD_INFO, NULL, 0);
     }
-    assert_true(i > 0);
+    assert_cmp(i, >, 0);
     mon_send(&fx.mon, MONITOR_CMD_MOTOR, p, 1);
     assert_int_equal(fx.mc.req_posted[MC_REQUEST_START], posted);
     assert_int_equal(fx.mon.rx_dropped, 1);
@@ -273,7 +273,8 @@ static void test_var_info_should_name_every_variable_with_its_unit_and_full_scal
     /* bemf is in the estimator's back-EMF scale E_FS = 2 V_FS (smc.h), twice vd's */
     assert_string_equal(monitor_vars[15].name, "bemf");
     assert_string_equal(monitor_vars[13].name, "vd");
-    assert_true(labs((long)monitor_vars[15].fs_milli - 2L * (long)monitor_vars[13].fs_milli) <= 1L);
+    assert_cmp(labs((long)monitor_vars[15].fs_milli - 2L * (long)monitor_vars[13].fs_milli), <=,
+               1L);
     i = MONITOR_NUM_VARS;
     expect_error(transact(MONITOR_CMD_VAR_INFO, &i, 1), MONITOR_CMD_VAR_INFO, MONITOR_ERR_RANGE);
 }
@@ -367,7 +368,7 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
         assert_int_equal(mon_i16(&f->payload[5]), q->max);
         assert_memory_equal(&f->payload[7], q->name, strlen(q->name));
         assert_true(q->min <= before && before <= q->max);
-        assert_true(q->min >= 1);
+        assert_cmp(q->min, >=, 1);
 
         p[0] = i;
         p[1] = (uint8_t)((uint16_t)(q->min - 1) & 0xFFU);
@@ -622,7 +623,7 @@ static int collect(int16_t *vals, int max_sets, uint16_t *next_index, uint8_t *l
     size_t n = mon_drain(&fx.mon, fx.raw, sizeof fx.raw);
     int k = mon_decode_all(fx.raw, n, fx.fr, 64);
     int got = 0, i, j;
-    assert_true(k >= 0);
+    assert_cmp(k, >=, 0);
     for (i = 0; i < k; i++) {
         const mon_frame_t *f = &fx.fr[i];
         uint8_t nsets;
@@ -631,7 +632,7 @@ static int collect(int16_t *vals, int max_sets, uint16_t *next_index, uint8_t *l
         assert_int_equal(mon_u16(&f->payload[1]), *next_index);
         assert_int_equal(f->len, 4U + 2U * fx.mon.nch * nsets);
         for (j = 0; j < nsets * fx.mon.nch; j++) {
-            assert_true(got < max_sets * fx.mon.nch);
+            assert_cmp(got, <, max_sets * fx.mon.nch);
             vals[got++] = mon_i16(&f->payload[4 + 2 * j]);
         }
         *next_index = (uint16_t)(*next_index + nsets);

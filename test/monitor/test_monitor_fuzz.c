@@ -238,7 +238,7 @@ static void test_the_parser_should_survive_a_million_bad_frames_without_a_state_
         }
         out = mon_drain(&mon, raw, sizeof raw);
         k = mon_decode_all(raw, out, fr, 64);
-        assert_true(k >= 0); /* the device never sends a malformed frame */
+        assert_cmp(k, >=, 0); /* the device never sends a malformed frame */
         for (j = 0; j < k; j++) {
             if (fr[j].cmd == MONITOR_CMD_ERROR) {
                 errors_seen++;
@@ -283,8 +283,8 @@ static void test_the_parser_should_survive_a_million_bad_frames_without_a_state_
         "state unchanged in all; %ld accepted (%ld changed state); %ld error replies\n",
         FUZZ_FRAMES, random_frames, FUZZ_FRAMES - random_frames, bad, good, changed_ok,
         errors_seen);
-    assert_true(bad > FUZZ_FRAMES / 2);
-    assert_true(changed_ok > 1000);
+    assert_cmp(bad, >, FUZZ_FRAMES / 2);
+    assert_cmp(changed_ok, >, 1000);
 }
 
 int main(void)

@@ -48,21 +48,21 @@ static void test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_curren
         err_stats_add(&e, v[2] - df * 24.0, df);
     }
     err_stats_print("pin voltage vs (d -+ Td/Ts) Vbus", &e, "V");
-    assert_true(e.max_abs < 1e-12);
+    assert_cmp(e.max_abs, <, 1e-12);
     {
         /* inside the band the error is proportional to the current */
         uint16_t duty[3] = {1000, 1000, 1000};
         double i[3] = {0.025, -0.0125, -0.0125}, v[3];
         sim_inverter_latch(&inv, duty, true);
         sim_inverter_pins(&inv, 24.0, i, v);
-        assert_true(fabs(v[0] - (0.5 - 0.04 * 0.5) * 24.0) < 1e-12);
-        assert_true(fabs(v[1] - (0.5 + 0.04 * 0.25) * 24.0) < 1e-12);
+        assert_cmp(fabs(v[0] - (0.5 - 0.04 * 0.5) * 24.0), <, 1e-12);
+        assert_cmp(fabs(v[1] - (0.5 + 0.04 * 0.25) * 24.0), <, 1e-12);
     }
     /* automatic band = Vbus / (12 L fpwm) */
     prm.i_band_a = 0.0;
     sim_inverter_init(&inv, &prm, 1.92e-3);
     printf("measured: automatic dead-time band for the Hurst on 24 V = %.4f A\n", inv.i_band_a);
-    assert_true(fabs(inv.i_band_a - 24.0 / (12.0 * 1.92e-3 * 20000.0)) < 1e-12);
+    assert_cmp(fabs(inv.i_band_a - 24.0 / (12.0 * 1.92e-3 * 20000.0)), <, 1e-12);
 }
 
 /* Mean pin voltage of the switching model over one period, integrated
@@ -73,7 +73,7 @@ static void switching_mean(const sim_inverter_t *inv, const double i[3], double 
     int n = sim_inverter_edges(inv, 0.0, ts, edge), k, j;
     mean[0] = mean[1] = mean[2] = 0.0;
     for (k = 1; k < n; k++) {
-        assert_true(edge[k] >= edge[k - 1]); /* ascending */
+        assert_cmp(edge[k], >=, edge[k - 1]); /* ascending */
     }
     edge[n] = ts;
     for (k = 0; k <= n; k++) {
@@ -111,19 +111,19 @@ static void test_switching_inverter_should_average_to_the_hard_sign_dead_time(vo
         double want = ((double)duty[k] / 2000.0 - 0.04 * ((i[k] > 0.0) ? 1.0 : -1.0)) * 24.0;
         printf("measured: phase %d: switching mean %.6f V, hard-sign averaged %.6f V\n", k, m[k],
                v[k]);
-        assert_true(fabs(m[k] - want) < 1e-9);
-        assert_true(fabs(v[k] - want) < 1e-9);
+        assert_cmp(fabs(m[k] - want), <, 1e-9);
+        assert_cmp(fabs(v[k] - want), <, 1e-9);
     }
     /* diode drop: the two dead times of a current into the motor at -Vf */
     inv.prm.v_diode_v = 0.7;
     switching_mean(&inv, i, m);
-    assert_true(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.08 * 0.7)) < 1e-9);
-    assert_true(fabs(m[1] - ((700.0 / 2000.0 + 0.04) * 24.0 + 0.08 * 0.7)) < 1e-9);
+    assert_cmp(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.08 * 0.7)), <, 1e-9);
+    assert_cmp(fabs(m[1] - ((700.0 / 2000.0 + 0.04) * 24.0 + 0.08 * 0.7)), <, 1e-9);
     /* switch resistance: i r_on off the pin while a switch conducts (92 %) */
     inv.prm.v_diode_v = 0.0;
     inv.prm.r_on_ohm = 0.1;
     switching_mean(&inv, i, m);
-    assert_true(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.92 * 0.1)) < 1e-9);
+    assert_cmp(fabs(m[0] - ((1300.0 / 2000.0 - 0.04) * 24.0 - 0.92 * 0.1)), <, 1e-9);
     /* a pulse shorter than the dead time (h = 1 us < 2 us), and no edges */
     {
         uint16_t d2[3] = {40, 0, 2000};
@@ -131,9 +131,9 @@ static void test_switching_inverter_should_average_to_the_hard_sign_dead_time(vo
         sim_inverter_latch(&inv, d2, true);
         assert_int_equal(sim_inverter_edges(&inv, 0.0, 50e-6, (double[SIM_INV_MAX_EDGES]){0}), 4);
         switching_mean(&inv, i, m);
-        assert_true(fabs(m[0]) < 1e-9);        /* high never on, low diode in the gaps */
-        assert_true(fabs(m[1]) < 1e-9);        /* low side all period */
-        assert_true(fabs(m[2] - 24.0) < 1e-9); /* high side all period */
+        assert_cmp(fabs(m[0]), <, 1e-9);        /* high never on, low diode in the gaps */
+        assert_cmp(fabs(m[1]), <, 1e-9);        /* low side all period */
+        assert_cmp(fabs(m[2] - 24.0), <, 1e-9); /* high side all period */
     }
 }
 
@@ -150,14 +150,14 @@ static void test_averaged_inverter_should_offer_three_dead_time_shapes(void **st
     sim_inverter_init(&inv, &prm, 1.92e-3);
     sim_inverter_latch(&inv, duty, true);
     sim_inverter_pins(&inv, 24.0, i, v);
-    assert_true(fabs(v[0] - (half - err)) < 1e-12);
-    assert_true(fabs(v[1] - (half + err)) < 1e-12);
+    assert_cmp(fabs(v[0] - (half - err)), <, 1e-12);
+    assert_cmp(fabs(v[1] - (half + err)), <, 1e-12);
     inv.prm.dt_shape = SIM_DT_RIPPLE; /* (2 / pi) asin(0.5) = 1/3 */
     sim_inverter_pins(&inv, 24.0, i, v);
-    assert_true(fabs(v[0] - (half - err / 3.0)) < 1e-12);
+    assert_cmp(fabs(v[0] - (half - err / 3.0)), <, 1e-12);
     inv.prm.dt_shape = SIM_DT_LINEAR;
     sim_inverter_pins(&inv, 24.0, i, v);
-    assert_true(fabs(v[0] - (half - err * 0.5)) < 1e-12);
+    assert_cmp(fabs(v[0] - (half - err * 0.5)), <, 1e-12);
 }
 
 static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **state)
@@ -174,8 +174,8 @@ static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **
         v[k] = 12.0 + 5.0 * cos(0.7 - (double)k * 2.0 * M_PI / 3.0);
     }
     sim_pins_to_ab(v, &va, &vb);
-    assert_true(fabs(va - 5.0 * cos(0.7)) < 1e-12);
-    assert_true(fabs(vb - 5.0 * sin(0.7)) < 1e-12);
+    assert_cmp(fabs(va - 5.0 * cos(0.7)), <, 1e-12);
+    assert_cmp(fabs(vb - 5.0 * sin(0.7)), <, 1e-12);
 
     prm.ripple_v = 2.0;
     prm.ripple_hz = 100.0;
@@ -188,7 +188,7 @@ static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **
     }
     printf("measured: bus with 2 V ripple: mean %.4f, max %.4f, min %.4f V\n", sum / 2000.0, vmax,
            vmin);
-    assert_true(fabs(sum / 2000.0 - 24.0) < 1e-9);
+    assert_cmp(fabs(sum / 2000.0 - 24.0), <, 1e-9);
     assert_true(fabs(vmax - 26.0) < 1e-3 && fabs(vmin - 22.0) < 1e-3);
 }
 
@@ -213,7 +213,7 @@ static void test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale(
         err_stats_add(&e, (double)q - x / 4.4 * 32768.0, x);
     }
     err_stats_print("bipolar ADC vs 32768 x / fs", &e, "Q15 LSB");
-    assert_true(e.max_abs <= 32.0 + 1e-9);
+    assert_cmp(e.max_abs, <=, 32.0 + 1e-9);
     assert_int_equal(sim_adc_bipolar(&adc, 6.0 / 4.4, 0.0), 32704);
     assert_int_equal(sim_adc_bipolar(&adc, -6.0 / 4.4, 0.0), -32768);
     assert_int_equal(sim_adc_bipolar(&adc, 0.0, 6.0), 384);
@@ -225,7 +225,7 @@ static void test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale(
         err_stats_add(&e, (double)q - x / 52.8 * 32768.0, x);
     }
     err_stats_print("unipolar ADC vs 32768 v / fs", &e, "Q15 LSB");
-    assert_true(e.max_abs <= 16.0 + 1e-9);
+    assert_cmp(e.max_abs, <=, 16.0 + 1e-9);
     assert_int_equal(sim_adc_unipolar(&adc, 2.0), 32736);
     assert_int_equal(sim_adc_unipolar(&adc, -1.0), 0);
 }
@@ -249,8 +249,8 @@ static void test_adc_noise_should_have_the_requested_sigma_and_zero_mean(void **
            "quantisation 0.29)\n",
            s / N, sd);
     /* sigma of round(1.5 N(0,1)) is sqrt(1.5^2 + 1/12) = 1.527 */
-    assert_true(fabs(sd - sqrt(1.5 * 1.5 + 1.0 / 12.0)) < 0.02);
-    assert_true(fabs(s / N) < 0.02);
+    assert_cmp(fabs(sd - sqrt(1.5 * 1.5 + 1.0 / 12.0)), <, 0.02);
+    assert_cmp(fabs(s / N), <, 0.02);
 }
 
 static sim_rig_params_t hurst_rig(void)
@@ -281,15 +281,15 @@ static void test_rig_should_apply_the_duties_from_the_next_period(void **state)
     sim_rig_sample(&rig, &f);
     sim_rig_advance(&rig, d, true); /* period 0 runs with outputs off */
     sim_rig_sample(&rig, &f);
-    assert_true(fabs(rig.i_abc[0]) < 1e-12);
+    assert_cmp(fabs(rig.i_abc[0]), <, 1e-12);
     assert_int_equal(f.ia, 0);
     sim_rig_advance(&rig, d, true); /* period 1 applies d */
     sim_rig_sample(&rig, &f);
     printf("measured: phase A current after one period of +9.6 V: %.4f A\n", rig.i_abc[0]);
-    assert_true(rig.i_abc[0] > 0.1);
-    assert_true(rig.i_abc[1] < -0.1);
+    assert_cmp(rig.i_abc[0], >, 0.1);
+    assert_cmp(rig.i_abc[1], <, -0.1);
     assert_true(f.ia > 0 && f.ib < 0);
-    assert_true(fabs(rig.t - 2.0 * 50e-6) < 1e-15);
+    assert_cmp(fabs(rig.t - 2.0 * 50e-6), <, 1e-15);
     assert_int_equal(rig.period, 2);
 }
 
@@ -326,9 +326,9 @@ static void test_rig_should_sample_mid_period_and_apply_duties_from_the_boundary
     printf("measured: phase A after a Ts and (1 + a) Ts of the step: %.5f A, %.5f A, "
            "ratio %.4f (%.4f for a = 0.54; a sample at the period start would give 0)\n",
            i2, i3, i2 / i3, want);
-    assert_true(fabs(i1) < 1e-12);
-    assert_true(i3 > 0.01);
-    assert_true(fabs(i2 / i3 - want) < 0.002);
+    assert_cmp(fabs(i1), <, 1e-12);
+    assert_cmp(i3, >, 0.01);
+    assert_cmp(fabs(i2 / i3 - want), <, 0.002);
     assert_int_equal(rig.period, 3);
 }
 
@@ -349,7 +349,7 @@ test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off(vo
         sim_rig_sample(&rig, &f);
         sim_rig_advance(&rig, d, true);
     }
-    assert_true(fabs(rig.i_abc[0]) + fabs(rig.i_abc[1]) > 0.2);
+    assert_cmp(fabs(rig.i_abc[0]) + fabs(rig.i_abc[1]), >, 0.2);
     sim_rig_sample(&rig, &f);
     sim_rig_advance(&rig, off, false); /* the last on period */
     for (n = 0; n < 40; n++) {
@@ -371,15 +371,15 @@ test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off(vo
     }
     printf("measured: switched off at 5000 rpm: torque %.4f N m, |i| %.3f A\n",
            sim_plant_torque(&rig.plant), hypot(rig.plant.s.id, rig.plant.s.iq));
-    assert_true(sim_plant_torque(&rig.plant) < -0.01);
-    assert_true(rig.plant.s.omega_m < e0);
+    assert_cmp(sim_plant_torque(&rig.plant), <, -0.01);
+    assert_cmp(rig.plant.s.omega_m, <, e0);
     prm.omega0_m = 3000.0 * 2.0 * M_PI / 60.0;
     sim_rig_init(&rig, &prm);
     for (n = 0; n < 200; n++) {
         sim_rig_sample(&rig, &f);
         sim_rig_advance(&rig, off, false);
     }
-    assert_true(fabs(sim_plant_torque(&rig.plant)) < 1e-12);
+    assert_cmp(fabs(sim_plant_torque(&rig.plant)), <, 1e-12);
 }
 
 static void test_rig_should_apply_plant_events_and_leave_controller_events(void **state)
@@ -397,7 +397,7 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     ev.kind = SIM_EV_LOAD_FAN;
     ev.v1 = 0.1;
     assert_true(sim_rig_apply(&rig, &ev));
-    assert_true(fabs(rig.plant.load.fan_k * pow(2700.0 * M_PI / 30.0, 2.0) - 0.1) < 1e-12);
+    assert_cmp(fabs(rig.plant.load.fan_k * pow(2700.0 * M_PI / 30.0, 2.0) - 0.1), <, 1e-12);
     ev.kind = SIM_EV_CURRENT_SPIKE;
     ev.v1 = 3.0;
     ev.v2 = 0.0;
@@ -413,7 +413,7 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     for (n = 0; n < 100; n++) {
         sim_rig_advance(&rig, d, false);
     }
-    assert_true(fabs(rig.pot - 0.5) < 1e-9);
+    assert_cmp(fabs(rig.pot - 0.5), <, 1e-9);
     for (n = 0; n < 150; n++) {
         sim_rig_advance(&rig, d, false);
     }

@@ -144,8 +144,8 @@ static void test_ideal_foc_should_settle_at_the_steady_state_voltage_without_dea
                "vq %.4f V (analytic %.4f), id %.4f A, iq %.4f A\n",
                rpms[k], r.vd, vd_ref, r.vq, vq_ref, r.id, r.iq);
         assert_true(fabs(r.iq - 1.0) < 0.005 && fabs(r.id) < 0.005);
-        assert_true(fabs(r.vd - vd_ref) < 0.005 * fabs(vq_ref));
-        assert_true(fabs(r.vq - vq_ref) < 0.005 * fabs(vq_ref));
+        assert_cmp(fabs(r.vd - vd_ref), <, 0.005 * fabs(vq_ref));
+        assert_cmp(fabs(r.vq - vq_ref), <, 0.005 * fabs(vq_ref));
     }
 }
 
@@ -168,8 +168,8 @@ static void test_dead_time_should_cost_its_analytic_fundamental_along_the_curren
     printf("measured: dead time 2 us at 1000 rpm, 1 A: extra vq %.4f V (expected c Td/Ts Vbus = "
            "%.4f V, c = %.4f, 4/pi = %.4f, band %.4f A), extra vd %.4f V\n",
            r1.vq - r0.vq, expect, c, 4.0 / M_PI, band, r1.vd - r0.vd);
-    assert_true(fabs((r1.vq - r0.vq) - expect) < 0.03 * expect);
-    assert_true(fabs(r1.vd - r0.vd) < 0.05 * expect);
+    assert_cmp(fabs((r1.vq - r0.vq) - expect), <, 0.03 * expect);
+    assert_cmp(fabs(r1.vd - r0.vd), <, 0.05 * expect);
 }
 
 int main(void)

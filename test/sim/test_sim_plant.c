@@ -23,9 +23,9 @@ static void test_psi_from_ke_should_give_the_hurst_flux_linkage_and_rated_torque
     (void)state;
     printf("measured: hurst psi = %.6f V s/rad, Kt = %.5f N m/A, rated torque = %.4f N m\n", psi,
            1.5 * 5.0 * psi, sim_motor_rated_torque(mp));
-    assert_true(fabs(psi - expect) < 1e-12);
-    assert_true(fabs(psi - 0.0080492) < 1e-6);
-    assert_true(fabs(sim_motor_rated_torque(mp) - 0.0990) < 0.001);
+    assert_cmp(fabs(psi - expect), <, 1e-12);
+    assert_cmp(fabs(psi - 0.0080492), <, 1e-6);
+    assert_cmp(fabs(sim_motor_rated_torque(mp) - 0.0990), <, 0.001);
     assert_non_null(sim_motor_profile("hurst300"));
     assert_non_null(sim_motor_profile("hispeed"));
     assert_non_null(sim_board_profile("mclv"));
@@ -51,10 +51,10 @@ static void test_plant_should_follow_the_rl_step_response_with_the_rotor_locked(
         t += h;
         ref = v / m.rs_ohm * (1.0 - exp(-t / tau));
         err_stats_add(&e, p.s.id - ref, t);
-        assert_true(fabs(p.s.iq) < 1e-12);
+        assert_cmp(fabs(p.s.iq), <, 1e-12);
     }
     err_stats_print("locked-rotor RL step id vs V/R(1-exp(-t/tau))", &e, "A");
-    assert_true(e.max_abs < 1e-7);
+    assert_cmp(e.max_abs, <, 1e-7);
     assert_true(p.s.omega_m == 0.0);
 }
 
@@ -79,9 +79,9 @@ test_plant_should_accelerate_at_torque_over_inertia_and_settle_with_viscous_fric
         err_stats_add(&e1, p.s.omega_m - drive / m.j_kgm2 * t, t);
     }
     err_stats_print("omega vs T/J t", &e1, "rad/s");
-    assert_true(e1.max_abs < 1e-9 * drive / m.j_kgm2 * t + 1e-9);
+    assert_cmp(e1.max_abs, <, 1e-9 * drive / m.j_kgm2 * t + 1e-9);
     /* theta_m = 1/2 a t^2 */
-    assert_true(fabs(p.s.theta_m - 0.5 * drive / m.j_kgm2 * t * t) < 1e-6 * p.s.theta_m);
+    assert_cmp(fabs(p.s.theta_m - 0.5 * drive / m.j_kgm2 * t * t), <, 1e-6 * p.s.theta_m);
 
     m.b_nms = 3e-5;
     sim_plant_init(&p, &m, 0.0);
@@ -95,7 +95,7 @@ test_plant_should_accelerate_at_torque_over_inertia_and_settle_with_viscous_fric
         err_stats_add(&e2, p.s.omega_m - ref, t);
     }
     err_stats_print("omega vs T/B (1-exp(-tB/J))", &e2, "rad/s");
-    assert_true(e2.max_abs < 1e-6);
+    assert_cmp(e2.max_abs, <, 1e-6);
 }
 
 static void test_plant_should_hold_the_rotor_while_the_passive_load_exceeds_the_drive(void **state)
@@ -113,7 +113,7 @@ static void test_plant_should_hold_the_rotor_while_the_passive_load_exceeds_the_
         sim_plant_step(&p, 0.0, 0.0, h, true);
     }
     assert_true(p.s.omega_m == 0.0);
-    assert_true(fabs(p.s.theta_e - 0.3) < 1e-12);
+    assert_cmp(fabs(p.s.theta_e - 0.3), <, 1e-12);
     p.load.active_nm = -0.07; /* now 0.019 N m net forward */
     for (n = 0; n < 8000; n++) {
         sim_plant_step(&p, 0.0, 0.0, h, true);
@@ -121,12 +121,12 @@ static void test_plant_should_hold_the_rotor_while_the_passive_load_exceeds_the_
     }
     printf("measured: breakaway acceleration %.3f rad/s^2, expected %.3f\n", p.s.omega_m / t,
            (0.07 - 0.05 - m.coulomb_nm) / m.j_kgm2);
-    assert_true(fabs(p.s.omega_m / t - (0.07 - 0.05 - m.coulomb_nm) / m.j_kgm2) < 1e-6 * 2700.0);
+    assert_cmp(fabs(p.s.omega_m / t - (0.07 - 0.05 - m.coulomb_nm) / m.j_kgm2), <, 1e-6 * 2700.0);
     /* Remove the drive: the passive torque brakes it to rest, no reversal. */
     p.load.active_nm = 0.0;
     for (n = 0; n < 40000; n++) {
         sim_plant_step(&p, 0.0, 0.0, h, true);
-        assert_true(p.s.omega_m >= 0.0);
+        assert_cmp(p.s.omega_m, >=, 0.0);
         assert_true(p.s.omega_m <= w_prev || n == 0);
         w_prev = p.s.omega_m;
     }
@@ -177,10 +177,10 @@ test_plant_should_settle_at_the_analytic_currents_torque_and_power_at_constant_s
         printf("measured: %.0f rpm: id %.5f (ref %.2f), iq %.5f (ref %.2f), Te %.6f (ref %.6f) "
                "N m, power balance %.2e W of %.3f W\n",
                rpms[k], p.s.id, id, p.s.iq, iq, sim_plant_torque(&p), te_ref, p_in - p_out, p_in);
-        assert_true(fabs(p.s.id - id) < 1e-3);
-        assert_true(fabs(p.s.iq - iq) < 1e-3);
-        assert_true(fabs(sim_plant_torque(&p) - te_ref) < 1e-3 * fabs(te_ref));
-        assert_true(fabs(p_in - p_out) < 1e-3 * fabs(p_in));
+        assert_cmp(fabs(p.s.id - id), <, 1e-3);
+        assert_cmp(fabs(p.s.iq - iq), <, 1e-3);
+        assert_cmp(fabs(sim_plant_torque(&p) - te_ref), <, 1e-3 * fabs(te_ref));
+        assert_cmp(fabs(p_in - p_out), <, 1e-3 * fabs(p_in));
     }
 }
 
@@ -196,8 +196,8 @@ static void test_plant_should_report_phase_currents_and_back_emf_of_the_catalogu
     sim_plant_init(&p, &m, 0.0);
     p.s.omega_m = 1000.0 * 2.0 * M_PI / 60.0;
     /* 7.3 V peak line to line per 1000 rpm */
-    assert_true(fabs(sim_plant_emf_ll_peak(&p) - 7.3) < 1e-9);
-    assert_true(fabs(sim_plant_rpm(&p) - 1000.0) < 1e-9);
+    assert_cmp(fabs(sim_plant_emf_ll_peak(&p) - 7.3), <, 1e-9);
+    assert_cmp(fabs(sim_plant_rpm(&p) - 1000.0), <, 1e-9);
     for (k = 0; k < 360; k++) {
         double th = (double)k * M_PI / 180.0;
         p.s.theta_e = sim_wrap_pi(th);
@@ -210,8 +210,8 @@ static void test_plant_should_report_phase_currents_and_back_emf_of_the_catalogu
         err_stats_add(&e, ia + ib + ic, th);
     }
     err_stats_print("phase currents vs |i| cos(theta + phi - k 120 deg)", &e, "A");
-    assert_true(e.max_abs < 1e-12);
-    assert_true(fabs(sim_wrap_pi(3.5 * M_PI) + 0.5 * M_PI) < 1e-12);
+    assert_cmp(e.max_abs, <, 1e-12);
+    assert_cmp(fabs(sim_wrap_pi(3.5 * M_PI) + 0.5 * M_PI), <, 1e-12);
     assert_true(sim_wrap_pi(M_PI) == -M_PI);
 }
 

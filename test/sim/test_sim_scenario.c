@@ -72,12 +72,12 @@ static void test_every_shipped_scenario_should_parse_and_end(void **state)
         if (sim_scenario_load(path, &sc, err, sizeof(err)) != 0) {
             fail_msg("%s: %s", e->d_name, err);
         }
-        assert_true(sc.end_s > 0.0);
+        assert_cmp(sc.end_s, >, 0.0);
         printf("measured: scenario %s: %d events, %.2f s\n", e->d_name, sc.n, sc.end_s);
         n++;
     }
     closedir(d);
-    assert_true(n >= 8);
+    assert_cmp(n, >=, 8);
 }
 
 int main(void)

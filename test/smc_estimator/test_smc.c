@@ -237,8 +237,8 @@ test_smc_should_hold_the_angle_within_2_degrees_and_the_speed_within_1_percent_f
         steady_print_row(rpms[k], &r);
         err_stats_add(&ang, r.err_max, rpms[k]);
         err_stats_add(&spd, r.speed_max, rpms[k]);
-        assert_true(r.err_max <= 2.0);
-        assert_true(r.speed_max <= 1.0);
+        assert_cmp(r.err_max, <=, 2.0);
+        assert_cmp(r.speed_max, <=, 1.0);
         assert_int_equal(r.invalid, 0);
     }
     err_stats_print("hurst angle error over 500..5300 rpm", &ang, "deg");
@@ -260,8 +260,8 @@ test_smc_should_hold_the_angle_within_2_degrees_on_a_2_pole_pair_motor_up_to_170
         steady_t r = run_steady(&hispeed, &b, rpms[k], 60.0);
         steady_print_row(rpms[k], &r);
         err_stats_add(&ang, r.err_max, rpms[k]);
-        assert_true(r.err_max <= 2.0);
-        assert_true(r.speed_max <= 1.0);
+        assert_cmp(r.err_max, <=, 2.0);
+        assert_cmp(r.speed_max, <=, 1.0);
         assert_int_equal(r.invalid, 0);
     }
     err_stats_print("hispeed angle error over 2000..17000 rpm", &ang, "deg");
@@ -277,8 +277,8 @@ static void test_smc_should_track_reverse_rotation_with_the_same_accuracy(void *
         steady_t r = run_steady(&hurst, &b, rpms[k], 150.0);
         printf("measured: reverse %5.0f rpm: max|angle err| %.3f deg, max|speed err| %.4f %%\n",
                rpms[k], r.err_max, r.speed_max);
-        assert_true(r.err_max <= 2.0);
-        assert_true(r.speed_max <= 1.0);
+        assert_cmp(r.err_max, <=, 2.0);
+        assert_cmp(r.speed_max, <=, 1.0);
     }
 }
 
@@ -367,7 +367,7 @@ static void test_smc_should_converge_from_any_initial_state(void **state)
         }
         printf("measured: %5.0f rpm: from reset %.1f ms, worst %.1f ms\n", rpms[k], reset_ms,
                worst);
-        assert_true(worst <= 30.0);
+        assert_cmp(worst, <=, 30.0);
     }
 }
 
@@ -418,8 +418,8 @@ test_smc_should_hold_the_angle_within_5_degrees_during_a_2000_rpm_per_s_ramp(voi
     err_stats_print("ramp 500 -> 5300 rpm at 2000 rpm/s: speed error", &spd_up, "rpm");
     err_stats_print("ramp 5300 -> 500 rpm at 2000 rpm/s: angle error", &ang_dn, "deg");
     err_stats_print("ramp 5300 -> 500 rpm at 2000 rpm/s: speed error", &spd_dn, "rpm");
-    assert_true(ang_up.max_abs <= 5.0);
-    assert_true(ang_dn.max_abs <= 5.0);
+    assert_cmp(ang_up.max_abs, <=, 5.0);
+    assert_cmp(ang_dn.max_abs, <=, 5.0);
 }
 
 /* ---- parameter mismatch, noise, dead time -------------------------------------------- */
@@ -452,8 +452,8 @@ static void test_smc_should_stay_bounded_with_r_and_l_off_by_30_percent(void **s
                 worst = r.err_max;
             }
             /* Bounded: the estimate neither diverges nor loses the speed. */
-            assert_true(r.err_max <= 15.0);
-            assert_true(r.speed_max <= 2.0);
+            assert_cmp(r.err_max, <=, 15.0);
+            assert_cmp(r.speed_max, <=, 2.0);
         }
         printf("\n");
     }
@@ -482,7 +482,7 @@ test_smc_should_hold_the_angle_within_3_degrees_with_adc_noise_above_1000_rpm(vo
         for (k = 0; k < sizeof rpms / sizeof rpms[0]; k++) {
             steady_t r = run_steady(&hurst, &b, rpms[k], 150.0);
             printf("  %4.0f rpm max %.2f deg (speed %.2f %%)", rpms[k], r.err_max, r.speed_max);
-            assert_true(r.err_max <= 3.0);
+            assert_cmp(r.err_max, <=, 3.0);
         }
         printf("\n");
     }
@@ -507,8 +507,8 @@ static void test_smc_should_show_the_dead_time_bias_unless_fed_the_applied_volta
                cmd.err_mean, cmd.err_max, app.err_mean, app.err_max);
         /* Fed the voltage really applied, the estimator is as exact as
          * without dead time; fed the command, it keeps a bounded bias. */
-        assert_true(app.err_max <= 2.0);
-        assert_true(cmd.err_max <= 30.0);
+        assert_cmp(app.err_max, <=, 2.0);
+        assert_cmp(cmd.err_max, <=, 30.0);
     }
 }
 
@@ -539,8 +539,8 @@ static void test_smc_should_report_not_valid_below_the_minimum_speed_without_ove
                 err_stats_add(&ang, angle_err_deg(&s, &m), (double)n);
                 /* Defined ranges: K at its floor or above, the ratio
                  * saturating rather than wrapping negative. */
-                assert_true(s.k >= hurst.k_min);
-                assert_true(s.emf_ratio >= 0);
+                assert_cmp(s.k, >=, hurst.k_min);
+                assert_cmp(s.emf_ratio, >=, 0);
             }
         }
         printf("measured: %5.0f rpm (minimum 400): valid in %ld of 1999 periods, speed %.0f rpm, "
@@ -573,7 +573,7 @@ test_smc_should_become_valid_above_the_minimum_speed_and_saturate_past_full_scal
         pmsm_ideal_step(&m, &i, &v);
         smc_period(&s, i, v);
         if (n > 1500) {
-            assert_true(smc_omega(&s) > 30000);
+            assert_cmp(smc_omega(&s), >, 30000);
         }
     }
     printf("measured: 9000 rpm on an 8000 rpm scale: omega %d (saturated)\n", smc_omega(&s));
@@ -591,7 +591,7 @@ static void test_smc_should_judge_validity_by_speed_alone_without_ke(void **stat
     run_periods(&s, &m, 3000);
     assert_true(smc_valid(&s));
     assert_int_equal(smc_emf_ratio(&s), SMC_EMF_RATIO_ONE);
-    assert_true(fabs(angle_err_deg(&s, &m)) <= 2.0);
+    assert_cmp(fabs(angle_err_deg(&s, &m)), <=, 2.0);
 }
 
 static void test_smc_should_flag_a_stalled_rotor_through_the_emf_ratio(void **state)
@@ -635,7 +635,7 @@ static void test_smc_should_stay_within_20_degrees_with_the_published_relay_gain
                rpms[k], r.err_mean, r.err_max, r.speed_max);
         /* Characterisation, not a recommendation: the relay chatter and the
          * unmodelled switching lag cost accuracy (docs/estimator.md). */
-        assert_true(r.err_max <= 20.0);
+        assert_cmp(r.err_max, <=, 20.0);
     }
 }
 
@@ -653,21 +653,21 @@ static void test_smc_params_should_match_their_double_precision_definitions(void
     (void)state;
     printf("measured: hurst F %d G %d<<%d Kslide %d band %d Kz %d<<%d c %.4f\n", p->f, p->g,
            p->g_shift, p->kslide, p->max_err, p->kz, p->kz_shift, c);
-    assert_true(fabs(p->f - f * 32768.0) <= 0.5);
-    assert_true(fabs(ldexp(p->g, p->g_shift) - g * 32768.0) <= ldexp(0.5, p->g_shift));
-    assert_true(fabs(p->kslide - 0.9 * 32768.0) <= 0.5);
-    assert_true(fabs(p->max_err - me * 32768.0) <= 0.5);
-    assert_true(fabs(ldexp(p->kz, p->kz_shift) - kz * 32768.0) <= ldexp(0.5, p->kz_shift));
-    assert_true(fabs(p->k_per_omega - 2.0 * M_PI * HURST_WFS * TS * 32768.0) <= 0.5);
-    assert_true(fabs(p->k_min - 2.0 * M_PI * HURST_FMIN * TS * 32768.0) <= 0.5);
-    assert_true(fabs(ldexp(p->kspeed, p->kspeed_shift) - 32768.0 / (2.0 * 20 * TS * HURST_WFS)) <=
-                ldexp(0.5, p->kspeed_shift));
+    assert_cmp(fabs(p->f - f * 32768.0), <=, 0.5);
+    assert_cmp(fabs(ldexp(p->g, p->g_shift) - g * 32768.0), <=, ldexp(0.5, p->g_shift));
+    assert_cmp(fabs(p->kslide - 0.9 * 32768.0), <=, 0.5);
+    assert_cmp(fabs(p->max_err - me * 32768.0), <=, 0.5);
+    assert_cmp(fabs(ldexp(p->kz, p->kz_shift) - kz * 32768.0), <=, ldexp(0.5, p->kz_shift));
+    assert_cmp(fabs(p->k_per_omega - 2.0 * M_PI * HURST_WFS * TS * 32768.0), <=, 0.5);
+    assert_cmp(fabs(p->k_min - 2.0 * M_PI * HURST_FMIN * TS * 32768.0), <=, 0.5);
+    assert_cmp(fabs(ldexp(p->kspeed, p->kspeed_shift) - 32768.0 / (2.0 * 20 * TS * HURST_WFS)), <=,
+               ldexp(0.5, p->kspeed_shift));
     /* Transfer-function constants (notes 3-4): c = F (dead-beat), p = 0. */
-    assert_true(fabs(p->tf_mdc - (1.0 + 2.0 * c - f) * 4096.0) <= 0.5);
-    assert_true(fabs(p->tf_b10 - (1.0 - (f - c)) * 4096.0) <= 0.5);
-    assert_true(fabs(p->tf_b1k + (1.0 + 3.0 * c - 2.0 * f) * 4096.0) <= 0.5);
-    assert_true(fabs(p->tf_b2 - (f - c) * 32768.0) <= 0.5);
-    assert_true(fabs(p->tf_xadv - 0.5 / M_PI * 32768.0) <= 0.5);
+    assert_cmp(fabs(p->tf_mdc - (1.0 + 2.0 * c - f) * 4096.0), <=, 0.5);
+    assert_cmp(fabs(p->tf_b10 - (1.0 - (f - c)) * 4096.0), <=, 0.5);
+    assert_cmp(fabs(p->tf_b1k + (1.0 + 3.0 * c - 2.0 * f) * 4096.0), <=, 0.5);
+    assert_cmp(fabs(p->tf_b2 - (f - c) * 32768.0), <=, 0.5);
+    assert_cmp(fabs(p->tf_xadv - 0.5 / M_PI * 32768.0), <=, 0.5);
     /* The relay set switches to the ideal sliding-mode form. */
     assert_int_equal(hurst_relay.tf_mdc, 8192);
     assert_int_equal(hurst_relay.tf_b10, 4096);
@@ -721,7 +721,7 @@ static void test_smc_phase_lead_should_match_the_transfer_function_in_double(voi
         }
     }
     err_stats_print("smc_phase_lead vs double transfer function", &es, "deg");
-    assert_true(es.max_abs <= 0.03);
+    assert_cmp(es.max_abs, <=, 0.03);
 }
 
 static void
@@ -778,7 +778,7 @@ test_smc_phase_lead_should_be_the_observer_lag_in_a_double_precision_simulation(
         }
     }
     err_stats_print("formula vs double-precision observer lag", &es, "deg");
-    assert_true(es.max_abs <= 0.1);
+    assert_cmp(es.max_abs, <=, 0.1);
 }
 
 static void test_smc_speed_from_steps_should_match_the_scaled_sum(void **state)
@@ -816,7 +816,7 @@ static void test_smc_speed_from_steps_should_match_the_scaled_sum(void **state)
         assert_int_equal(smc_speed_from_steps(p, 0), 0);
     }
     err_stats_print("smc_speed_from_steps vs rounded double", &es, "LSB");
-    assert_true(es.max_abs <= 0.0);
+    assert_cmp(es.max_abs, <=, 0.0);
 }
 
 /* A window end, its slow step and the apply: what a preset or a reset has
@@ -847,7 +847,7 @@ static void test_smc_reset_and_preset_should_define_every_output(void **state)
     assert_int_equal(s.k, hurst.k_min);
     smc_round_trip(&s);
     assert_int_equal(smc_omega(&s), 8192); /* a window cut short measures no speed */
-    assert_true(s.k > hurst.k_min);
+    assert_cmp(s.k, >, hurst.k_min);
     assert_int_equal(s.comp, smc_phase_lead(&hurst, s.k, q15_mul(8192, hurst.k_per_omega)));
     smc_preset_speed(&s, -8192);
     assert_int_equal(smc_omega(&s), -8192);
@@ -946,8 +946,8 @@ test_pmsm_ideal_should_track_its_current_reference_with_the_steady_state_voltage
     }
     err_stats_print("pmsm_ideal current vs reference", &ei, "LSB");
     err_stats_print("pmsm_ideal voltage vs steady-state phasor", &ev, "%");
-    assert_true(ei.max_abs <= 1.0);
-    assert_true(ev.max_abs <= 0.1);
+    assert_cmp(ei.max_abs, <=, 1.0);
+    assert_cmp(ev.max_abs, <=, 0.1);
 }
 
 int main(void)

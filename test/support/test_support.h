@@ -16,6 +16,19 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* assert_cmp(a, op, b) with op one of < <= > >=: the comparison on the
+ * values as doubles (exact for every integer a test compares), and on a
+ * failure both expressions with their values (cmocka's assert_true prints
+ * only the expression's text). */
+#define assert_cmp(a, op, b)                                                                       \
+    do {                                                                                           \
+        const double assert_a_ = (double)(a);                                                      \
+        const double assert_b_ = (double)(b);                                                      \
+        if (!(assert_a_ op assert_b_)) {                                                           \
+            fail_msg("%s " #op " %s: %.9g " #op " %.9g is false", #a, #b, assert_a_, assert_b_);   \
+        }                                                                                          \
+    } while (0)
+
 /* Worst and mean absolute error of a sweep, with the input that gave the worst. */
 typedef struct {
     double max_abs;

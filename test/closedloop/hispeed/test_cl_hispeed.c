@@ -33,8 +33,8 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
            s.now.iq_true_a, s.rig.t - t0, w.left_closed_loop ? "no" : "yes",
            simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
-    assert_true(fabs(cl_speed(&w) - 17000.0) <= 170.0);
-    assert_true(w.ang_max <= 2.0);
+    assert_cmp(fabs(cl_speed(&w) - 17000.0), <=, 170.0);
+    assert_cmp(w.ang_max, <=, 2.0);
 }
 
 /*
@@ -67,9 +67,9 @@ static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void
         simcore_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
     assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
-    assert_true(fabs(cl_speed_err_pct(&w)) <= 1.0);
-    assert_true(fabs(cl_ang_mean(&w)) <= 2.0);
-    assert_true(w.ang_max <= 2.0);
+    assert_cmp(fabs(cl_speed_err_pct(&w)), <=, 1.0);
+    assert_cmp(fabs(cl_ang_mean(&w)), <=, 2.0);
+    assert_cmp(w.ang_max, <=, 2.0);
 }
 
 int main(void)
