@@ -5,8 +5,7 @@
 #include "q15.h"
 
 /*
- * tools/bench/run defines BENCH_HAVE_<BLOCK> for every foc/<block>.c, so a
- * block's row appears once its implementation exists. Inputs cover the
+ * Inputs cover the
  * working range and the saturating corners in proportion to how the core
  * meets them (mostly inside the range), so the mean is a running cost and
  * the max the worst path.
@@ -19,7 +18,6 @@
  * handful of instructions) to the figure. */
 #define BENCH_NOINLINE __attribute__((noinline))
 
-#if defined(BENCH_HAVE_SINCOS)
 #include "sincos.h"
 sincos_q15_t bench_sincos_compute(angle_q15_t theta);
 BENCH_NOINLINE sincos_q15_t bench_sincos_compute(angle_q15_t theta)
@@ -34,9 +32,7 @@ static void run_sincos(uint32_t n)
         bench_sink += sc.sin + sc.cos;
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_CLARKE)
 #include "clarke.h"
 ab_q15_t bench_clarke_forward(q15_t ia, q15_t ib);
 BENCH_NOINLINE ab_q15_t bench_clarke_forward(q15_t ia, q15_t ib)
@@ -52,9 +48,7 @@ static void run_clarke(uint32_t n)
         bench_sink += ab.alpha + ab.beta;
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_PARK)
 #include "park.h"
 dq_q15_t bench_park_forward(ab_q15_t ab, sincos_q15_t sc);
 BENCH_NOINLINE dq_q15_t bench_park_forward(ab_q15_t ab, sincos_q15_t sc)
@@ -99,9 +93,7 @@ static void run_park_inverse(uint32_t n)
         bench_sink += ab.alpha + ab.beta;
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_PI)
 #include "pi.h"
 q15_t bench_pi_update(pi_t *pi, q15_t ref, q15_t meas);
 BENCH_NOINLINE q15_t bench_pi_update(pi_t *pi, q15_t ref, q15_t meas)
@@ -126,9 +118,7 @@ static void run_pi(uint32_t n)
         bench_sink += bench_pi_update(&pi, 1000, meas);
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_SVGEN)
 #include "svgen.h"
 void bench_svgen_update(ab_q15_t v, uint16_t period, svgen_out_t *out);
 BENCH_NOINLINE void bench_svgen_update(ab_q15_t v, uint16_t period, svgen_out_t *out)
@@ -149,9 +139,7 @@ static void run_svgen(uint32_t n)
         bench_sink += out.duty[0] + out.duty[1] + out.duty[2];
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_LPF)
 #include "lpf.h"
 q15_t bench_lpf_update(lpf_t *f, q15_t x, q15_t k);
 BENCH_NOINLINE q15_t bench_lpf_update(lpf_t *f, q15_t x, q15_t k)
@@ -167,9 +155,7 @@ static void run_lpf(uint32_t n)
         bench_sink += bench_lpf_update(&f, bench_rand_i16(), Q15(0.05));
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_ATAN2)
 #include "atan2.h"
 angle_q15_t bench_atan2_q15(int16_t y, int16_t x);
 BENCH_NOINLINE angle_q15_t bench_atan2_q15(int16_t y, int16_t x)
@@ -183,9 +169,7 @@ static void run_atan2(uint32_t n)
         bench_sink += bench_atan2_q15(bench_rand_i16(), bench_rand_i16());
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_Q15_SQRT)
 #include "q15_sqrt.h"
 static void run_sqrt(uint32_t n)
 {
@@ -194,9 +178,7 @@ static void run_sqrt(uint32_t n)
         bench_sink += q15_sqrt(bench_rand_between(0, 32767));
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_FIELDWEAK)
 #include "fieldweak.h"
 static void run_fieldweak(uint32_t n)
 {
@@ -214,9 +196,7 @@ static void run_fieldweak(uint32_t n)
         bench_sink += fieldweak_id_ref(&fw, bench_rand_i16());
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_RIPPLE)
 #include "ripple.h"
 dq_q15_t bench_ripple_compensate_dq(dq_q15_t v_pi, q15_t vbus, q15_t vbus_target);
 BENCH_NOINLINE dq_q15_t bench_ripple_compensate_dq(dq_q15_t v_pi, q15_t vbus, q15_t vbus_target)
@@ -235,9 +215,7 @@ static void run_ripple(uint32_t n)
         bench_sink += r.d + r.q;
     }
 }
-#endif
 
-#if defined(BENCH_HAVE_VLIMIT)
 #include "vlimit.h"
 q15_t bench_vlimit_vq_max(q15_t vd, q15_t vmax);
 BENCH_NOINLINE q15_t bench_vlimit_vq_max(q15_t vd, q15_t vmax)
@@ -251,42 +229,19 @@ static void run_vlimit(uint32_t n)
         bench_sink += bench_vlimit_vq_max(bench_rand_between(-31000, 31000), Q15(0.95));
     }
 }
-#endif
 
 void bench_foc(void)
 {
-#if defined(BENCH_HAVE_SINCOS)
     bench_add("sincos_compute", "bench_sincos_compute", CALLS, run_sincos);
-#endif
-#if defined(BENCH_HAVE_CLARKE)
     bench_add("clarke_forward", "bench_clarke_forward", CALLS, run_clarke);
-#endif
-#if defined(BENCH_HAVE_PARK)
     bench_add("park_forward", "bench_park_forward", CALLS, run_park_forward);
     bench_add("park_inverse", "bench_park_inverse", CALLS, run_park_inverse);
-#endif
-#if defined(BENCH_HAVE_PI)
     bench_add("pi_update", "bench_pi_update", CALLS, run_pi);
-#endif
-#if defined(BENCH_HAVE_SVGEN)
     bench_add("svgen_update", "bench_svgen_update", CALLS, run_svgen);
-#endif
-#if defined(BENCH_HAVE_LPF)
     bench_add("lpf_update", "bench_lpf_update", CALLS, run_lpf);
-#endif
-#if defined(BENCH_HAVE_ATAN2)
     bench_add("atan2_q15", "bench_atan2_q15", CALLS, run_atan2);
-#endif
-#if defined(BENCH_HAVE_Q15_SQRT)
     bench_add("q15_sqrt", "q15_sqrt", CALLS, run_sqrt);
-#endif
-#if defined(BENCH_HAVE_FIELDWEAK)
     bench_add("fieldweak_id_ref", "fieldweak_id_ref", CALLS, run_fieldweak);
-#endif
-#if defined(BENCH_HAVE_RIPPLE)
     bench_add("ripple_compensate_dq", "bench_ripple_compensate_dq", CALLS, run_ripple);
-#endif
-#if defined(BENCH_HAVE_VLIMIT)
     bench_add("vlimit_vq_max", "bench_vlimit_vq_max", CALLS, run_vlimit);
-#endif
 }

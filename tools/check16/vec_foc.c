@@ -5,9 +5,7 @@
 #include "q15.h"
 
 /*
- * One section per primitive group and per block. tools/check16/run defines
- * CHECK16_HAVE_<BLOCK> for every foc/<block>.c that exists, so a block's
- * vectors join the check as soon as its implementation lands.
+ * One section per primitive group and per block.
  *
  * Inputs: the int16 edges of emit.h first (all pairs where a block takes
  * two), then a seeded xorshift stream. Every section re-seeds, so its
@@ -453,7 +451,6 @@ static void vec_constants(void)
 
 /* ---- blocks ---------------------------------------------------------------- */
 
-#if defined(CHECK16_HAVE_SINCOS)
 #include "sincos.h"
 
 static void vec_sincos(void)
@@ -471,9 +468,7 @@ static void vec_sincos(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_CLARKE)
 #include "clarke.h"
 
 static void vec_clarke(void)
@@ -504,22 +499,16 @@ static void vec_clarke(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_PARK)
 #include "park.h"
-#if defined(CHECK16_HAVE_SINCOS)
 #include "sincos.h"
-#endif
 
 static sincos_q15_t park_sc(uint32_t k)
 {
     sincos_q15_t sc;
-#if defined(CHECK16_HAVE_SINCOS)
     if ((k & 1U) != 0U) {
         return sincos_compute(vec_rand_i16());
     }
-#endif
     if (k < VEC_N_EDGES * VEC_N_EDGES) {
         sc.sin = vec_edges[(k * 7U) % VEC_N_EDGES];
         sc.cos = vec_edges[(k * 3U + 5U) % VEC_N_EDGES];
@@ -559,9 +548,7 @@ static void vec_park(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_PI)
 #include "pi.h"
 
 static void vec_pi(void)
@@ -620,9 +607,7 @@ static void vec_pi(void)
         }
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_SVGEN)
 #include "svgen.h"
 
 static void vec_svgen(void)
@@ -663,9 +648,7 @@ static void vec_svgen(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_LPF)
 #include "lpf.h"
 
 static void vec_lpf(void)
@@ -703,9 +686,7 @@ static void vec_lpf(void)
         }
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_ATAN2)
 #include "atan2.h"
 
 static void vec_atan2(void)
@@ -762,9 +743,7 @@ static void vec_atan2(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_Q15_SQRT)
 #include "q15_sqrt.h"
 
 static void vec_q15_sqrt(void)
@@ -802,9 +781,7 @@ static void vec_q15_sqrt(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_FIELDWEAK)
 #include "fieldweak.h"
 
 static void vec_fieldweak(void)
@@ -879,9 +856,7 @@ static void vec_fieldweak(void)
         }
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_RIPPLE)
 #include "ripple.h"
 
 static void vec_ripple(void)
@@ -924,9 +899,7 @@ static void vec_ripple(void)
         emit_end();
     }
 }
-#endif
 
-#if defined(CHECK16_HAVE_VLIMIT)
 #include "vlimit.h"
 
 static void vec_vlimit(void)
@@ -953,7 +926,6 @@ static void vec_vlimit(void)
         emit_end();
     }
 }
-#endif
 
 void vec_foc(void)
 {
@@ -971,37 +943,15 @@ void vec_foc(void)
     vec_dsp_pi_lpf();
     vec_dsp_divud_clz();
     vec_constants();
-#if defined(CHECK16_HAVE_SINCOS)
     vec_sincos();
-#endif
-#if defined(CHECK16_HAVE_CLARKE)
     vec_clarke();
-#endif
-#if defined(CHECK16_HAVE_PARK)
     vec_park();
-#endif
-#if defined(CHECK16_HAVE_PI)
     vec_pi();
-#endif
-#if defined(CHECK16_HAVE_SVGEN)
     vec_svgen();
-#endif
-#if defined(CHECK16_HAVE_LPF)
     vec_lpf();
-#endif
-#if defined(CHECK16_HAVE_ATAN2)
     vec_atan2();
-#endif
-#if defined(CHECK16_HAVE_Q15_SQRT)
     vec_q15_sqrt();
-#endif
-#if defined(CHECK16_HAVE_FIELDWEAK)
     vec_fieldweak();
-#endif
-#if defined(CHECK16_HAVE_RIPPLE)
     vec_ripple();
-#endif
-#if defined(CHECK16_HAVE_VLIMIT)
     vec_vlimit();
-#endif
 }
