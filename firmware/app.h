@@ -45,7 +45,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../hal/hal.h" /* firmware/ may include hal/hal.h (DESIGN.md layers) */
+#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/design.md layers) */
 
 #define APP_DEBOUNCE_MS         20U
 #define APP_STATUS_PERIOD_MS    10U

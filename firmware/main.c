@@ -1,6 +1,6 @@
 /* main.c - the dsPIC33FJ32MC204 program: init, then the main loop forever (dsPIC only). */
 #include "app.h"
-#include "../hal/hal.h" /* firmware/ may include hal/hal.h (DESIGN.md layers) */
+#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/design.md layers) */
 
 /*
  * The control loop is not here: hal_motor_start() enables the ADC

@@ -3,7 +3,7 @@
 #define MC_H
 
 /*
- * The core seam (DESIGN.md "The core seam"). Everything a program needs to
+ * The core seam (docs/design.md "The core seam"). Everything a program needs to
  * drive the core is reachable from this header alone:
  *
  *   - the scale macros, in engineering units (from UserParms.h and the board
@@ -42,7 +42,7 @@
  * exactly one writing context (see note 1). mc_status() takes a snapshot; called outside the
  * interrupt it may mix fields of two consecutive periods.
  *
- * Extensions beyond DESIGN.md's minimum (added, nothing renamed):
+ * Extensions beyond docs/design.md's minimum (added, nothing renamed):
  *   MC_REQUEST_START, MC_REQUEST_STOP       unambiguous start / stop for a
  *                                           remote interface (START_STOP is
  *                                           the S2 button's toggle);

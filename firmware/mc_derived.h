@@ -9,7 +9,7 @@
  * line that names the parameter to change (MC_CHECK below); the Q15()
  * conversions that follow carry their own range check.
  *
- * Scales used by the core (DESIGN.md):
+ * Scales used by the core (docs/design.md):
  *   current  Q15 of BOARD_I_FULLSCALE_A (A)
  *   voltage  Q15 of MC_VOLTAGE_FULLSCALE_V = BOARD_VBUS_NOMINAL_V / sqrt(3)
  *            (the SVGen full scale at the nominal bus, a phase amplitude)

@@ -4,7 +4,7 @@
 
 /*
  * ASSUMED VALUES. The MCHV's PIM, shunt, amplifier gain and DC-bus divider
- * were not found (hardware.md 2.3). Every scaling below is a placeholder of
+ * were not found (docs/hardware.md 2.3). Every scaling below is a placeholder of
  * the right order for a 230 Vac rectified bus, marked ASSUMED; measure or
  * read the board's user's guide and override them (-D or edit here) before
  * running a real motor. Microchip's later MCHV code also reverses the
@@ -24,7 +24,7 @@
 
 /* ASSUMED: sign from the current amplifiers' ADC reading to the core's
  * "+ = into the motor" (the HAL applies it): -1, from Microchip's later MCHV
- * code (hardware.md 2.3: the MCHV shunt path reverses the LEM-designed sense). */
+ * code (docs/hardware.md 2.3: the MCHV shunt path reverses the LEM-designed sense). */
 #ifndef BOARD_I_SIGN
 #define BOARD_I_SIGN (-1)
 #endif

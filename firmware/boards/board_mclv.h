@@ -3,20 +3,20 @@
 #define BOARD_MCLV_H
 
 /*
- * Every value here is a fact about the board (hardware.md section 2); the
+ * Every value here is a fact about the board (docs/hardware.md section 2); the
  * application settings that use them are in UserParms.h. Each macro may be
  * overridden with -D on the command line.
  */
 
 #define BOARD_NAME "MCLV"
 
-/* Instruction clock: 8 MHz crystal, PLL to 40 MIPS (hardware.md 1.2). */
+/* Instruction clock: 8 MHz crystal, PLL to 40 MIPS (docs/hardware.md 1.2). */
 #ifndef BOARD_FCY_HZ
 #define BOARD_FCY_HZ 40000000L
 #endif
 
 /* Current that reads as Q15 full scale: Rshunt 0.005 ohm, amplifier gain 75,
- * VDD/2 = 1.65 V -> +-4.4 A (AN1078 UserParms, hardware.md 2.1). */
+ * VDD/2 = 1.65 V -> +-4.4 A (AN1078 UserParms, docs/hardware.md 2.1). */
 #ifndef BOARD_I_FULLSCALE_A
 #define BOARD_I_FULLSCALE_A 4.4
 #endif
@@ -33,7 +33,7 @@
 
 /* DC-bus voltage that reads as 32767.
  * UNCHECKED ASSUMPTION: the original MCLV's VBUS divider was not found; this
- * is the MCLV-2 figure (3.3 V x 16 = 52.8 V, hardware.md 2.2). Check the
+ * is the MCLV-2 figure (3.3 V x 16 = 52.8 V, docs/hardware.md 2.2). Check the
  * board schematic (DS70331) before trusting the bus protections or the
  * ripple compensation. It is the only place this number lives. */
 #ifndef BOARD_VBUS_FULLSCALE_V

@@ -4,7 +4,7 @@
 
 /*
  * ASSUMED DATA: the motor behind AN1078's "17 000 rpm" MCHV claim was not
- * found (hardware.md 3.1). These are plausible values for a small 2-pole-pair
+ * found (docs/hardware.md 3.1). These are plausible values for a small 2-pole-pair
  * high-speed PMSM on a 320 V bus, to exercise the build and the simulator;
  * replace every electrical value with your motor's before running it.
  * Tuning that depends on the motor. Every macro can be overridden with -D or by

@@ -3,7 +3,7 @@
 #define MOTOR_HURST_H
 
 /*
- * Motor data (hardware.md 3.1, AN1078's Hurst build) and the tuning that
+ * Motor data (docs/hardware.md 3.1, AN1078's Hurst build) and the tuning that
  * depends on the motor. Every macro can be overridden with -D or by
  * defining it before UserParms.h includes this file. Units are in every
  * name; per-phase values are half the line-to-line meter reading.

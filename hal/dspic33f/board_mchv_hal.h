@@ -3,7 +3,7 @@
 #define BOARD_MCHV_HAL_H
 
 /*
- * The MCHV's PIM and its pin map were not found (hardware.md 2.3); this file
+ * The MCHV's PIM and its pin map were not found (docs/hardware.md 2.3); this file
  * assumes the same dsPIC33FJ32MC204 PIM wiring as the MCLV, so it takes the
  * MCLV's HAL facts (every one #ifndef-guarded): a pin confirmed for the MCHV
  * is defined here, above the include. The current sign differs, but it is

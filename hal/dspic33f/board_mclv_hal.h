@@ -4,7 +4,7 @@
 
 /*
  * What the HAL needs beyond the core's board profile (firmware/boards/
- * board_mclv.h): the pins the facts sheet could not name. Each may be overridden with -D.
+ * board_mclv.h): the pins docs/hardware.md could not name. Each may be overridden with -D.
  */
 
 /* The current amplifiers' sign is a board fact: BOARD_I_SIGN in the core's
@@ -15,7 +15,7 @@
 #endif
 
 /* LEDs: port (HAL_PORT_A/B/C, or HAL_PORT_NONE) and bit.
- * [NOT FOUND] which MCLV LEDs the 32MC204 PIM reaches (hardware.md 1.8), so
+ * [NOT FOUND] which MCLV LEDs the 32MC204 PIM reaches (docs/hardware.md 1.8), so
  * no pin is driven until these are set (e.g. -DHAL_LED_RUN_PORT=HAL_PORT_B
  * -DHAL_LED_RUN_BIT=9). Driving a guessed pin could fight another driver. */
 #ifndef HAL_LED_RUN_PORT
@@ -28,7 +28,7 @@
 #endif
 
 /* UART1 on remappable pins: RPn numbers, or HAL_RP_NONE.
- * [NOT FOUND] the MCLV's UART pins for the 32MC204 PIM (hardware.md 1.8):
+ * [NOT FOUND] the MCLV's UART pins for the 32MC204 PIM (docs/hardware.md 1.8):
  * UART1 runs but is not routed to a pin until these are set. */
 #ifndef HAL_UART_RX_RP
 #define HAL_UART_RX_RP HAL_RP_NONE

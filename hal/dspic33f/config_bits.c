@@ -1,7 +1,7 @@
 /* config_bits.c - the dsPIC33FJ32MC204 configuration words, all in this one file. */
 
 /*
- * Values from the Microchip MCLV / 32MC204 examples (hardware.md 1.3) [SRC];
+ * Values from the Microchip MCLV / 32MC204 examples (docs/hardware.md 1.3) [SRC];
  * the setting and value NAMES are those of the XC16 `#pragma config` syntax
  * for this device family [MEM: check with MPLAB X, Window > Target Memory
  * Views > Configuration Bits, which lists the exact names]. Settings not

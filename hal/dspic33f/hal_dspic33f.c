@@ -9,7 +9,7 @@
 
 /* 40 MIPS: the configuration starts the chip on the FRC; set the PLL
  * dividers, then switch to the crystal through the PLL and wait for the
- * switch and the lock (hardware.md 1.2, AN1078's sequence). */
+ * switch and the lock (docs/hardware.md 1.2, AN1078's sequence). */
 static void clock_init(void)
 {
     PLLFBD = HAL_PLLFBD;
@@ -104,7 +104,7 @@ static void pins_init(void)
     led_pin_init(HAL_TIMING_PIN_PORT, HAL_TIMING_PIN_BIT); /* an output, low */
 
     /* Peripheral pin select: unlock, map, lock. FLTA1 must be on its pin
-     * before P1FLTACON enables the fault (hardware.md 5). */
+     * before P1FLTACON enables the fault (docs/hardware.md 5). */
     __builtin_write_OSCCONL((uint8_t)(OSCCON & ~HAL_OSCCON_IOLOCK));
     RPINR12bits.FLTA1R = HAL_FLTA1_RP;
 #if HAL_UART_RX_RP != HAL_RP_NONE
@@ -118,7 +118,7 @@ static void pins_init(void)
     __builtin_write_OSCCONL((uint8_t)(OSCCON | HAL_OSCCON_IOLOCK));
 }
 
-/* AN1078's order (hardware.md 1.6), with the fault latched instead of off
+/* AN1078's order (docs/hardware.md 1.6), with the fault latched instead of off
  * and the outputs overridden off until the core turns them on. */
 static void pwm_init(void)
 {
@@ -243,7 +243,7 @@ static bool fault_pin_asserted(void)
 }
 
 /* In latched mode the outputs resume once the pin is released and FLTA1IF
- * is clear (hardware.md 5): override them off first, and keep the flag
+ * is clear (docs/hardware.md 5): override them off first, and keep the flag
  * while the pin is still low so the latch cannot end behind our back. */
 bool hal_fault_clear(void)
 {

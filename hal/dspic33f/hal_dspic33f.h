@@ -10,7 +10,7 @@
  * check on every range. The tests pin the resulting register values, and
  * docs/board.md lists them.
  *
- * Confidence (hardware.md tags): register layouts and the AN1078 values are
+ * Confidence (docs/hardware.md tags): register layouts and the AN1078 values are
  * [SRC]. Each fact that is only [MEM] or [NOT FOUND] lives in ONE macro
  * below whose comment says so; the HAL code uses the macro, never the
  * number, so correcting a fact is a one-line change.
@@ -58,7 +58,7 @@
 #define HAL_ISR_FAST
 #endif
 
-/* ---- clock (hardware.md 1.2) ---------------------------------------------- *
+/* ---- clock (docs/hardware.md 1.2) ----------------------------------------- *
  * Fosc = Fin * M / (N1 * N2), Fcy = Fosc / 2, M = PLLFBD + 2,
  * N1 = PLLPRE + 2, N2 = 2 * (PLLPOST + 1). */
 #define HAL_FIN_HZ         8000000L /* MCLV crystal, 8 MHz (AN1078 PLLIN) [SRC] */
@@ -69,7 +69,7 @@
 #define HAL_CLKDIV_PLLPRE  ((unsigned)(HAL_PLL_N1 - 2L))
 #define HAL_CLKDIV_PLLPOST ((unsigned)(HAL_PLL_N2 / 2L - 1L))
 /* PLL input and VCO limits of the dsPIC33F: 0.8..8 MHz after N1, 100..200 MHz
- * at the VCO [MEM: hardware.md 1.2, check DS70283]. */
+ * at the VCO [MEM: docs/hardware.md 1.2, check DS70283]. */
 #define HAL_PLL_VCO_MIN_HZ 100000000L
 #define HAL_PLL_VCO_MAX_HZ 200000000L
 #define HAL_PLL_PFD_MIN_HZ 800000L
@@ -99,10 +99,10 @@ HAL_CHECK(BOARD_FCY_HZ,
           "PLL VCO outside 100..200 MHz");
 HAL_CHECK(BOARD_FCY_HZ, BOARD_FCY_HZ <= 40000000L, "the dsPIC33F runs at most 40 MIPS");
 
-/* ---- MCPWM1 (hardware.md 1.4-1.6) ----------------------------------------- *
+/* ---- MCPWM1 (docs/hardware.md 1.4-1.6) ------------------------------------ *
  * Center-aligned (PTMOD = 10): one period = 2 * (PTPER + 1) Tcy, so
  * PTPER = Fcy / (2 Fpwm) - 1 (the textbook value; AN1078 writes Fcy/Fpwm/2,
- * one count more, hardware.md 0.2). Duty registers count Tcy/2, so 100 %
+ * one count more, docs/hardware.md 0.2). Duty registers count Tcy/2, so 100 %
  * duty is 2 * (PTPER + 1) = PWM_DUTY_MAX: the core's duties go to PDCx
  * unscaled. */
 #define HAL_PTPER ((uint16_t)(BOARD_FCY_HZ / (2L * (long)PWM_FREQUENCY_HZ) - 1L))
@@ -148,7 +148,7 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
 /* Its length after hal_motor_start(), in PWM periods: 10 ms. */
 #define HAL_PRECHARGE_PERIODS ((uint16_t)(PWM_FREQUENCY_HZ / 100L))
 
-/* ---- ADC1 (hardware.md 1.7, 1.8) -------------------------------------------- *
+/* ---- ADC1 (docs/hardware.md 1.7, 1.8) --------------------------------------- *
  * Four sample-and-holds sampled together at the special event, converted
  * CH0..CH3 into ADC1BUF0..3:
  *   CH0 = AN8 pot, CH1 = AN0 IA, CH2 = AN1 IB, CH3 = AN2 VBUS [SRC]. */
@@ -177,7 +177,7 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
  * interrupt vector table, DS70283 / FRM section 6]. */
 #define HAL_SLOW_IRQ_PRIORITY 2u
 
-/* ---- pins (hardware.md 1.8) ---------------------------------------------- */
+/* ---- pins (docs/hardware.md 1.8) ----------------------------------------- */
 #define HAL_S2_PORTA_BIT    8u /* S2 on RA8, active low [SRC] */
 #define HAL_S3_PORTB_BIT    4u /* S3 on RB4, active low [SRC] */
 #define HAL_FLTA1_RP        8u /* FLTA1 on RP8 = RB8 (RPINR12.FLTA1R = 8) [SRC] */

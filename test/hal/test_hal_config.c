@@ -1,5 +1,5 @@
-/* test_hal_config.c - the configuration words in hal/dspic33f/config_bits.c state the facts sheet's
- * settings. */
+/* test_hal_config.c - the configuration words in hal/dspic33f/config_bits.c state the settings of
+ * docs/hardware.md 1.3. */
 #include "test_support.h"
 
 #include <stdio.h>
@@ -7,7 +7,7 @@
 
 /*
  * The pragmas only exist for XC16, so this reads the file as text: every
- * setting of hardware.md 1.3 must appear as one `#pragma config NAME = VALUE`
+ * setting of docs/hardware.md 1.3 must appear as one `#pragma config NAME = VALUE`
  * line inside the XC16 branch, and no setting may appear twice.
  */
 

@@ -12,10 +12,10 @@
  * Built twice (test/hal/CMakeLists.txt): with the MCLV defaults, and as
  * test_hal_dspic33f_pins with HAL_BOARD_I_SIGN = +1 (the reading as is) and the
  * optional LED and UART pins assigned, so both branches of each are run.
- * Facts quoted from /work/shared/facts/hardware.md (section numbers).
+ * Facts quoted from docs/hardware.md (section numbers).
  */
 
-#define FCY_HZ 40000000.0 /* 40 MIPS, hardware.md 1.1 */
+#define FCY_HZ 40000000.0 /* 40 MIPS, docs/hardware.md 1.1 */
 
 static int setup(void **state)
 {
@@ -86,9 +86,9 @@ static void test_hal_init_should_set_corcon_once_for_saturating_signed_fractiona
 static void test_hal_init_should_run_mcpwm1_center_aligned_at_20khz(void **state)
 {
     (void)state;
-    double period_s = 2.0 * (P1TPER + 1.0) / FCY_HZ; /* up/down: hardware.md 1.5 */
+    double period_s = 2.0 * (P1TPER + 1.0) / FCY_HZ; /* up/down: docs/hardware.md 1.5 */
 
-    assert_int_equal(P1TCON, 0x8002); /* PTEN, PTMOD = 10, 1:1 (hardware.md 1.6) */
+    assert_int_equal(P1TCON, 0x8002); /* PTEN, PTMOD = 10, 1:1 (docs/hardware.md 1.6) */
     assert_int_equal(P1TCONbits.PTMOD, 2);
     assert_int_equal(P1TCONbits.PTCKPS, 0);
     assert_int_equal(P1TPER, 999);
@@ -99,7 +99,7 @@ static void test_hal_init_should_run_mcpwm1_center_aligned_at_20khz(void **state
 static void test_duty_scaling_should_put_100_percent_at_pwm_duty_max(void **state)
 {
     (void)state;
-    /* PDCx counts Tcy/2: 100 % = 2 (PTPER + 1) (hardware.md 1.5). */
+    /* PDCx counts Tcy/2: 100 % = 2 (PTPER + 1) (docs/hardware.md 1.5). */
     assert_int_equal(PWM_DUTY_MAX, 2000);
     assert_int_equal(2u * (P1TPER + 1u), PWM_DUTY_MAX);
 }
@@ -124,7 +124,7 @@ static void test_hal_init_should_set_2us_dead_time(void **state)
     (void)state;
     double dt = P1DTCON1bits.DTA * 2.0 / FCY_HZ; /* DTAPS = 01: 2 Tcy per count */
 
-    assert_int_equal(P1DTCON1, 0x0068); /* 0x40 | 40 (hardware.md 1.5) */
+    assert_int_equal(P1DTCON1, 0x0068); /* 0x40 | 40 (docs/hardware.md 1.5) */
     assert_int_equal(P1DTCON1bits.DTAPS, 1);
     assert_int_equal(P1DTCON2, 0x0000);
     printf("measured: dead time %.3f us\n", dt * 1e6);
@@ -143,7 +143,7 @@ test_hal_init_should_trigger_the_adc_80_tcy_after_the_midpoint_counting_down(voi
 static void test_hal_init_should_latch_the_fault_with_all_outputs_inactive(void **state)
 {
     (void)state;
-    assert_int_equal(P1FLTACON, 0x0007); /* FAEN1..3, FLTAM = 0, FAOV = 0 (hardware.md 5) */
+    assert_int_equal(P1FLTACON, 0x0007); /* FAEN1..3, FLTAM = 0, FAOV = 0 (docs/hardware.md 5) */
     assert_int_equal(P1FLTACONbits.FLTAM, 0);
     assert_int_equal(P1FLTACON & 0x3F00u, 0);
     assert_int_equal(RPINR12bits.FLTA1R, 8); /* RP8, pin 44 */

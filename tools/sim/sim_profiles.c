@@ -4,7 +4,7 @@
 #include <string.h>
 
 /*
- * Catalogue values are from facts/hardware.md (AN1078 UserParms for the
+ * Catalogue values are from docs/hardware.md 3.1 (AN1078 UserParms for the
  * Hurst075, Microchip's hurst300.h for the long Hurst). Inertia and friction
  * are not in the motor data sheets. Hurst075: a public MATLAB parameter
  * script for Microchip's low-voltage board gives J = 5.5e-6 kg m^2 and

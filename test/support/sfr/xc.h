@@ -15,7 +15,7 @@
  *   - bit-fields are uint16_t, allocated from bit 0 upwards (gcc, avr-gcc and
  *     XC16 all do so on these little-endian targets), so `PWM1CON1 == 0x0077`
  *     and the field view agree bit for bit;
- *   - bit positions are those of hardware.md section 1.4/1.7 (the
+ *   - bit positions are those of docs/hardware.md sections 1.4/1.7 (the
  *     dsPIC33FJ128MC804 header, same family) where it gives them; the others
  *     are marked [MEM] beside the field and only matter to the tests that
  *     read the word instead of the field;
@@ -78,7 +78,7 @@ extern unsigned sfr_ipl_macro_uses;
     } while (0)
 #define RESTORE_CPU_IPL(saved_to) SET_CPU_IPL(saved_to)
 
-typedef struct { /* hardware.md 4.6 */
+typedef struct { /* docs/hardware.md 4.6 */
     uint16_t IF : 1;
     uint16_t RND : 1;
     uint16_t PSV : 1;
@@ -144,7 +144,7 @@ void __builtin_write_OSCCONL(uint8_t value);
 
 /* ---- interrupts ------------------------------------------------------------ */
 
-typedef struct { /* IFS0/IEC0: hardware.md 1.7 (AD1 bit 13); the rest [MEM] */
+typedef struct { /* IFS0/IEC0: docs/hardware.md 1.7 (AD1 bit 13); the rest [MEM] */
     uint16_t INT0IF : 1;
     uint16_t IC1IF : 1;
     uint16_t OC1IF : 1;
@@ -186,7 +186,7 @@ SFR_DECLARE(IEC0, IEC0BITS);
 #define IEC0     sfr_IEC0.w
 #define IEC0bits sfr_IEC0.bits
 
-typedef struct { /* IFS3: PWM1IF bit 9, FLTA1IF bit 15 (hardware.md 1.4) */
+typedef struct { /* IFS3: PWM1IF bit 9, FLTA1IF bit 15 (docs/hardware.md 1.4) */
     uint16_t : 9;
     uint16_t PWM1IF : 1;
     uint16_t : 5;
@@ -224,7 +224,7 @@ SFR_DECLARE(IPC3, IPC3BITS);
 #define IPC3     sfr_IPC3.w
 #define IPC3bits sfr_IPC3.bits
 
-/* ---- MCPWM1 (hardware.md 1.4) ---------------------------------------------- */
+/* ---- MCPWM1 (docs/hardware.md 1.4) ----------------------------------------- */
 
 typedef struct {
     uint16_t PTMOD : 2;
@@ -365,7 +365,7 @@ volatile uint16_t *sfr_pdc_access(volatile uint16_t *reg);
 #define P1DC2 (*sfr_pdc_access(&sfr_P1DC2.w))
 #define P1DC3 (*sfr_pdc_access(&sfr_P1DC3.w))
 
-/* ---- ADC1 (hardware.md 1.7; positions [MEM] except where the sheet gives them) */
+/* ---- ADC1 (docs/hardware.md 1.7; positions [MEM] except where it gives them) */
 
 typedef struct {
     uint16_t DONE : 1;
@@ -469,7 +469,7 @@ SFR_DECLARE(LATC, SFR_PLAINBITS);
 #define LATB  sfr_LATB.w
 #define LATC  sfr_LATC.w
 
-typedef struct { /* RPINR12: FLTA1R<4:0> (hardware.md 1.4 / SINBLDC-204) */
+typedef struct { /* RPINR12: FLTA1R<4:0> (docs/hardware.md 1.4 / SINBLDC-204) */
     uint16_t FLTA1R : 5;
     uint16_t : 11;
 } RPINR12BITS;
