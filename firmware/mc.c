@@ -246,6 +246,17 @@ static void mc_set_advance(mc_t *mc)
 
 static void mc_prepare(mc_t *mc);
 
+/* The states that drive the motor, outputs on: LOCK, OPEN_LOOP, CLOSED_LOOP
+ * (consecutive in MC_STATE_LIST: one unsigned compare). */
+Q15_STATIC_ASSERT(MC_STATE_OPEN_LOOP == MC_STATE_LOCK + 1 &&
+                      MC_STATE_CLOSED_LOOP == MC_STATE_LOCK + 2,
+                  "mc_driving needs LOCK, OPEN_LOOP, CLOSED_LOOP consecutive");
+Q15_INLINE bool mc_driving(mc_state_t s)
+{
+    return (unsigned)s - (unsigned)MC_STATE_LOCK <=
+           (unsigned)MC_STATE_CLOSED_LOOP - (unsigned)MC_STATE_LOCK;
+}
+
 static void mc_enter(mc_t *mc, mc_state_t s)
 {
     mc->state = s;
@@ -453,7 +464,7 @@ static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t 
     si.saturated = false;
 #else
     si.speed_err = q15_sub_sat(mc->spd_ref, w);
-    si.saturated = (i_ref.q >= mc->pi_w.p.out_max) || (i_ref.q <= mc->pi_w.p.out_min);
+    si.saturated = pi_at_limit(&mc->pi_w);
 #endif
     out->fault = mc_stall_check(mc->stall_cnt, &si);
     out->i_ref = i_ref;
@@ -713,13 +724,11 @@ int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
     return (int16_t)m;
 }
 
-/* Current-sensor plausibility, once per window (note 5): did the measured
- * current follow the current loops? */
 /* The phase balance (note 5), CLOSED_LOOP, once per window: true when the
- * two measured phases' mean squares differ by more than 4:1 while the larger
- * is above the error floor's square. A turning rotor's healthy phases carry
- * the same RMS current; a stuck, open or dead sensor's reading stops
- * following its phase. */
+ * two measured phases' mean squares differ by more than 8:1 while the larger
+ * is above MC_SENSOR_BAL_FLOOR (a quarter of the error floor, squared). A
+ * turning rotor's healthy phases carry the same RMS current; a stuck, open
+ * or dead sensor's reading stops following its phase. */
 static bool mc_sensor_unbalanced(mc_t *mc, const mc_slow_in_t *si)
 {
     /* halves of ia = alpha and ib = sqrt3/2 beta - alpha/2 (Q15, |.| < 2^15) */
@@ -742,6 +751,8 @@ static bool mc_sensor_unbalanced(mc_t *mc, const mc_slow_in_t *si)
     return big >> MC_SENSOR_BAL_SHIFT > MC_SENSOR_BAL_FLOOR && small < big / 8;
 }
 
+/* Current-sensor plausibility, once per window (note 5): did the measured
+ * current follow the current loops? */
 static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
 {
     int32_t ed = si->sens_d; /* window sums: |.| < MC_SLOW_STEP_PERIODS x 2^16 */
@@ -755,13 +766,15 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
                                                       : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
     int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + flr) * (int32_t)MC_SLOW_STEP_PERIODS;
     bool bad, unbalanced = false, hold = false;
-    if (si->state != MC_STATE_LOCK && si->state != MC_STATE_OPEN_LOOP &&
-        si->state != MC_STATE_CLOSED_LOOP) {
-        mc->sens_cnt = 0U;
-        mc->sens_emf_low = 0U;
+    if (si->state != MC_STATE_CLOSED_LOOP) {
+        /* the balance filters and the back-EMF count are CLOSED_LOOP's */
         mc->sens_sa = 0;
         mc->sens_sb = 0;
         mc->sens_bal_n = 0U;
+        mc->sens_emf_low = 0U;
+    }
+    if (!mc_driving(si->state)) {
+        mc->sens_cnt = 0U;
         so->sensor_fault = false;
         return;
     }
@@ -787,10 +800,6 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
     }
     if (si->state == MC_STATE_CLOSED_LOOP) {
         unbalanced = mc_sensor_unbalanced(mc, si);
-    } else {
-        mc->sens_sa = 0;
-        mc->sens_sb = 0;
-        mc->sens_bal_n = 0U;
     }
     /* A rotor stopped in CLOSED_LOOP (locked, stalled) leaves the
      * estimate spinning with no back-EMF behind it: the frame turns under
@@ -1029,7 +1038,7 @@ Q15_INLINE void mc_sensor_sum(mc_t *mc)
 {
     mc->sens_d += (int32_t)mc->i_ref_frame.d - (int32_t)mc->i_dq.d;
     mc->sens_q += (int32_t)mc->i_ref_frame.q - (int32_t)mc->i_dq.q;
-    if (mc->pi_q.out >= mc->pi_q.p.out_max || mc->pi_q.out <= mc->pi_q.p.out_min) {
+    if (pi_at_limit(&mc->pi_q)) {
         mc->sens_qsat++;
     }
 }
@@ -1240,8 +1249,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     mc->ic = q15_dsp_dbl_sub2_sat(0, mc->ia, mc->ib); /* -ia - ib, saturated once */
 
     /* 3. Protections, before anything is driven. */
-    bool running = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
-                   mc->state == MC_STATE_CLOSED_LOOP;
+    bool running = mc_driving(mc->state);
     if (req_hw) {
         mc_fault(mc, MC_FAULT_HARDWARE);
     }
@@ -1289,8 +1297,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
         mc_enter(mc, MC_STATE_OPEN_LOOP); /* this period still at the lock angle */
         control = true;
     } else {
-        control = mc->state == MC_STATE_LOCK || mc->state == MC_STATE_OPEN_LOOP ||
-                  mc->state == MC_STATE_CLOSED_LOOP;
+        control = mc_driving(mc->state);
     }
     if (control) {
         mc->outputs_on = true;

@@ -369,7 +369,7 @@ typedef struct {
  * MC_FAULT_LIST spell them ("none" for no fault, "?" for a number outside
  * them): for tools and tests (tools/sim/mc_names.c, not linked into the
  * dsPIC image). */
-const char *mc_state_name(unsigned state);
+const char *mc_state_name(int state);
 const char *mc_fault_name(unsigned fault);
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */

@@ -92,4 +92,10 @@ Q15_INLINE q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
     return out;
 }
 
+/* Whether the last output sat at a limit (the loop asked for more than it may give). */
+Q15_INLINE bool pi_at_limit(const pi_t *pi)
+{
+    return pi->out >= pi->p.out_max || pi->out <= pi->p.out_min;
+}
+
 #endif /* PI_H */

@@ -123,8 +123,7 @@ static inline void cl_start_and_reach(simcore_t *s, double rpm, double max_s)
     simcore_request(s, MC_REQUEST_START);
     if (cl_run_until_at_speed(s, rpm, 2.0, 0.2, max_s) < 0.0) {
         fail_msg("%.0f rpm not reached within %.1f s: state %s, fault %s, true %.0f rpm", rpm,
-                 max_s, simcore_state_name(s->now.state), simcore_fault_name(s->now.fault),
-                 s->now.speed_rpm);
+                 max_s, mc_state_name(s->now.state), mc_fault_name(s->now.fault), s->now.speed_rpm);
     }
 }
 

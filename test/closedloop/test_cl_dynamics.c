@@ -105,8 +105,8 @@ static void test_core_should_start_and_hold_2000_rpm_with_mismatched_motor_param
                "%+.3f %%, angle error mean %+.2f deg rms %.2f deg; closed loop throughout: %s; "
                "state %s fault %s\n",
                cfg.rs_scale, cfg.l_scale, cfg.ke_scale, t_at, cl_speed_err_pct(&w), cl_ang_mean(&w),
-               cl_ang_rms(&w), w.left_closed_loop ? "no" : "yes", simcore_state_name(s.now.state),
-               simcore_fault_name(s.now.fault));
+               cl_ang_rms(&w), w.left_closed_loop ? "no" : "yes", mc_state_name(s.now.state),
+               mc_fault_name(s.now.fault));
         if (t_at < 0.0 || w.left_closed_loop || fabs(cl_speed_err_pct(&w)) > 1.0) {
             fails++;
         }

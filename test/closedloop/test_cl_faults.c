@@ -43,8 +43,7 @@ static void test_current_spike_should_fault_within_one_period_with_outputs_off(v
     cl_event(&s, SIM_EV_CURRENT_SPIKE, 6.0, 1.0);
     simcore_step(&s); /* this period samples the spike */
     printf("measured: 6 A spike: state after the sampling period %s, fault %s, outputs %s\n",
-           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault),
-           s.now.outputs_on ? "on" : "off");
+           mc_state_name(s.now.state), mc_fault_name(s.now.fault), s.now.outputs_on ? "on" : "off");
     assert_int_equal(s.now.state, MC_STATE_FAULT);
     assert_int_equal(s.now.fault, MC_FAULT_OVERCURRENT);
     assert_false(s.now.outputs_on);
@@ -64,7 +63,7 @@ static void test_locked_rotor_should_fault_and_switch_off(void **state)
     t_f = run_until_fault(&s, 0.5);
     printf(
         "measured: locked rotor at 1000 rpm: FAULT %s after %.2f ms, peak phase current %.2f A\n",
-        simcore_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.i_peak_a);
+        mc_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.i_peak_a);
     assert_cmp(t_f, >=, 0.0);
     assert_cmp(t_f - t_lock, <=, 0.050);
     cl_event(&s, SIM_EV_UNLOCK_ROTOR, 0.0, 0.0);
@@ -81,7 +80,7 @@ static void check_bus_fault(simcore_t *s, double vbus_v, unsigned fault, const c
     t_ev = s->rig.t;
     t_f = run_until_fault(s, 0.2);
     printf("measured: bus 24 -> %.0f V at 2000 rpm: FAULT %s after %.2f ms\n", vbus_v,
-           simcore_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
+           mc_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
     assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
     assert_int_equal(s->now.fault, fault);
     cl_run(s, 0.1);
@@ -122,7 +121,7 @@ static void test_stall_under_excessive_load_should_be_detected_within_50_ms(void
     }
     printf("measured: 3x rated load at 2000 rpm: true speed below 50 %% after %.1f ms, FAULT %s "
            "after %.1f ms (%.1f ms after the stall)\n",
-           1000.0 * (t_stall - t_load), simcore_fault_name(s.now.fault), 1000.0 * (t_f - t_load),
+           1000.0 * (t_stall - t_load), mc_fault_name(s.now.fault), 1000.0 * (t_f - t_load),
            1000.0 * (t_f - t_stall));
     assert_cmp(t_f, >=, 0.0);
     /* the fault is one of the stall detectors, not another protection */
@@ -141,8 +140,8 @@ static void test_hardware_fault_should_switch_off_at_the_next_period(void **stat
     setup_running(&s, 2000.0);
     cl_event(&s, SIM_EV_HW_FAULT, 0.0, 0.0);
     simcore_step(&s);
-    printf("measured: FLTA trip: state %s, fault %s after one period\n",
-           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
+    printf("measured: FLTA trip: state %s, fault %s after one period\n", mc_state_name(s.now.state),
+           mc_fault_name(s.now.fault));
     assert_int_equal(s.now.state, MC_STATE_FAULT);
     assert_int_equal(s.now.fault, MC_FAULT_HARDWARE);
     assert_false(s.now.outputs_on);
@@ -165,8 +164,7 @@ static void check_sensor_fault(simcore_t *s, sim_event_kind_t kind, double phase
     s->i_peak_a = 0.0;
     t_f = run_until_fault(s, 0.2);
     printf("measured: %s: FAULT %s after %.1f ms, peak true phase current %.2f A\n", what,
-           simcore_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0,
-           s->i_peak_a);
+           mc_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0, s->i_peak_a);
     assert_cmp(t_f, >=, 0.0);
     assert_cmp(t_f - t_ev, <=, 0.050);
     if (own) {
@@ -238,7 +236,7 @@ static void test_failed_sensors_and_locked_rotors_across_speeds_should_be_told_a
                          * Hurst holds every case) */
 #if defined(MC_MOTOR_HURST)
                         fail_msg("%.0f rpm, load %.1f: %s before the event", rpm, loads[l],
-                                 simcore_fault_name(s.now.fault));
+                                 mc_fault_name(s.now.fault));
 #endif
                         n_skip++;
                         continue;
@@ -256,7 +254,7 @@ static void test_failed_sensors_and_locked_rotors_across_speeds_should_be_told_a
                          s.now.fault != MC_FAULT_OVERCURRENT)) {
                         fail_msg("%.0f rpm, load %.1f, instant %d, %s: FAULT %s after %.1f ms", rpm,
                                  loads[l], o, (k < 0) ? "locked rotor" : "failed sensor",
-                                 simcore_fault_name(s.now.fault), 1000.0 * (t_f - t_ev));
+                                 mc_fault_name(s.now.fault), 1000.0 * (t_f - t_ev));
                     }
                     if (k < 0) {
                         n_lock++;
@@ -286,7 +284,7 @@ static void check_sensor_fault_at_start(sim_event_kind_t kind, double phase, dou
     cl_setup(&s, &cfg, "hurst", "mclv");
     simcore_request(&s, MC_REQUEST_START);
     cl_run(&s, at_s);
-    printf("measured: %s: state %s at the failure\n", what, simcore_state_name(s.now.state));
+    printf("measured: %s: state %s at the failure\n", what, mc_state_name(s.now.state));
     check_sensor_fault(&s, kind, phase, 0.0, true, what);
 }
 
@@ -333,14 +331,14 @@ static void test_voltage_limited_running_should_not_trip_the_sensor_check(void *
         }
         printf("measured: %.0f rpm asked, %.2f x rated load, %.0f V: %s at %.0f rpm, q at the "
                "voltage limit in %.0f %% of the windows\n",
-               cases[k].rpm, cases[k].load, cases[k].vbus, simcore_state_name(s.now.state),
+               cases[k].rpm, cases[k].load, cases[k].vbus, mc_state_name(s.now.state),
                s.now.speed_rpm, 100.0 * sat / (double)n);
         /* never the sensor; a profile whose speed loop loses the rotor to
          * the step may stall (a stall fault), the hand-tuned Hurst holds */
         assert_int_not_equal(s.now.fault, MC_FAULT_CURRENT_SENSOR);
         if (s.now.state != MC_STATE_CLOSED_LOOP) {
-            printf("measured: ... ended in %s (%s)\n", simcore_state_name(s.now.state),
-                   simcore_fault_name(s.now.fault));
+            printf("measured: ... ended in %s (%s)\n", mc_state_name(s.now.state),
+                   mc_fault_name(s.now.fault));
             assert_int_equal(s.now.state, MC_STATE_FAULT);
 #if defined(MC_MOTOR_HURST)
             fail_msg("the hand-tuned Hurst must hold every case");

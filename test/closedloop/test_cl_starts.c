@@ -73,8 +73,8 @@ static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(vo
         } else {
             printf("measured: start %d FAILED: theta0 %.1f deg, load %.0f %% rated, state %s, "
                    "fault %s, hand-off at %.3f s, true speed %.0f rpm\n",
-                   k, theta0 * 180.0 / M_PI, 100.0 * load_frac, simcore_state_name(s.now.state),
-                   simcore_fault_name(s.now.fault), t_hand - t0, s.now.speed_rpm);
+                   k, theta0 * 180.0 / M_PI, 100.0 * load_frac, mc_state_name(s.now.state),
+                   mc_fault_name(s.now.fault), t_hand - t0, s.now.speed_rpm);
         }
         dips[k] = dip;
         if (dip > worst_dip) {

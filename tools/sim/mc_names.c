@@ -6,10 +6,10 @@
 #define MC_STATE_NAME_(name)       #name,
 #define MC_FAULT_NAME_(name, code) #name,
 
-const char *mc_state_name(unsigned state)
+const char *mc_state_name(int state)
 {
     static const char *const names[] = {MC_STATE_LIST(MC_STATE_NAME_)};
-    return (state < sizeof(names) / sizeof(names[0])) ? names[state] : "?";
+    return (state >= 0 && (unsigned)state < sizeof(names) / sizeof(names[0])) ? names[state] : "?";
 }
 
 const char *mc_fault_name(unsigned fault)

@@ -357,12 +357,12 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
         }
         if (t_cl >= 0.0 && !stopped && s.st.state != MC_STATE_CLOSED_LOOP) {
             snprintf(res->why, sizeof(res->why), "left CLOSED_LOOP (%s) at %.3f s",
-                     simcore_state_name((int)s.st.state), s.rig.t);
+                     mc_state_name((int)s.st.state), s.rig.t);
             break;
         }
         if (t_cl < 0.0 && s.rig.t > T_CL_LIMIT) {
             snprintf(res->why, sizeof(res->why), "no CLOSED_LOOP by %.1f s (state %s)", T_CL_LIMIT,
-                     simcore_state_name((int)s.st.state));
+                     mc_state_name((int)s.st.state));
             break;
         }
     }
@@ -382,7 +382,7 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
         res->spd_rip2 = window_ripple(&w2);
     }
     if (saw_fault) {
-        snprintf(res->why, sizeof(res->why), "fault %s at %.3f s", simcore_fault_name(res->fault),
+        snprintf(res->why, sizeof(res->why), "fault %s at %.3f s", mc_fault_name(res->fault),
                  s.rig.t);
         /* A physics-limited start may end in a start or stall fault, a step
          * beyond the drive's reach in a stall fault after the step; always
@@ -417,7 +417,7 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
     } else if (s.st.state != MC_STATE_STOPPED || s.st.outputs_on) {
         res->result = "FAIL";
         snprintf(res->why, sizeof(res->why), "not STOPPED %.1f s after STOP (%s)", T_STOPPED,
-                 simcore_state_name((int)s.st.state));
+                 mc_state_name((int)s.st.state));
     } else {
         res->result = "PASS";
         snprintf(res->why, sizeof(res->why), "-");
@@ -452,7 +452,7 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
         c->theta0_rad * 180.0 / M_PI, LOAD_NAMES[d->load], d->load_nm, STEP_NAMES[d->step],
         d->step_nm, d->rpm1, d->rpm2, d->start_need_nm, d->start_have_nm,
         d->physics_limited ? 1 : 0, d->step_limited ? 1 : 0, r->t_cl, r->retries,
-        simcore_fault_name(r->fault), r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err,
+        mc_fault_name(r->fault), r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err,
         r->spd_err2, r->ang_rms2, r->i_peak, r->spd_rip, r->spd_rip2, r->dt_comp_us);
     fflush(stdout);
 }

@@ -47,16 +47,6 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->progress = false;
 }
 
-const char *simcore_state_name(int state)
-{
-    return (state < 0) ? "?" : mc_state_name((unsigned)state);
-}
-
-const char *simcore_fault_name(unsigned fault)
-{
-    return mc_fault_name(fault);
-}
-
 double simcore_pot_for_rpm(double rpm)
 {
     double span = (double)SPEED_REF_MAX_RPM - (double)SPEED_REF_MIN_RPM;
@@ -598,13 +588,13 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     fprintf(f, "   faults                    %d", n_fault);
     for (k = 0; k < s->n_log; k++) {
         if (s->log[k].to == MC_STATE_FAULT) {
-            fprintf(f, "%s%s at %.4f s", (n_fault > 0) ? "  " : "",
-                    simcore_fault_name(s->log[k].fault), s->log[k].t_s);
+            fprintf(f, "%s%s at %.4f s", (n_fault > 0) ? "  " : "", mc_fault_name(s->log[k].fault),
+                    s->log[k].t_s);
         }
     }
     fprintf(f, "\n   states                   ");
     for (k = 0; k < s->n_log && k < 24; k++) {
-        fprintf(f, " %.3f:%s", s->log[k].t_s, simcore_state_name(s->log[k].to));
+        fprintf(f, " %.3f:%s", s->log[k].t_s, mc_state_name(s->log[k].to));
     }
     fprintf(f, "\n   %-20s %7s %7s %-11s %8s %8s %8s %7s %7s %7s %6s\n", "segment (event)",
             "from_s", "to_s", "state_end", "ref_rpm", "true_rpm", "est_rpm", "spd_err%", "ang_avg",
@@ -612,7 +602,7 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     for (k = 0; k < s->n_seg; k++) {
         const simcore_segment_t *g = &s->seg[k];
         fprintf(f, "   %-20s %7.3f %7.3f %-11s", g->label, g->t0_s, g->t1_s,
-                (g->n_all > 0) ? simcore_state_name(g->state_end) : "-");
+                (g->n_all > 0) ? mc_state_name(g->state_end) : "-");
         if (g->n > 0) {
             double ref = g->ref_sum / (double)g->n, spd = g->spd_sum / (double)g->n;
             fprintf(f, " %8.1f %8.1f %8.1f %7.2f%% %+7.2f %7.2f %6.3f\n", ref, spd,

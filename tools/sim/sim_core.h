@@ -143,8 +143,6 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name);
 void simcore_set_speed(simcore_t *s, double rpm); /* pot position for this reference */
 void simcore_request(simcore_t *s, mc_request_t r);
 double simcore_pot_for_rpm(double rpm);
-const char *simcore_state_name(int state);
-const char *simcore_fault_name(unsigned fault);
 void simcore_csv_header(FILE *f);
 
 #endif /* SIM_CORE_H */

@@ -31,7 +31,7 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
            (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min, w.spd_max,
            cl_est(&w), cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
            s.now.iq_true_a, s.rig.t - t0, w.left_closed_loop ? "no" : "yes",
-           simcore_state_name(s.now.state), simcore_fault_name(s.now.fault));
+           mc_state_name(s.now.state), mc_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
     assert_cmp(fabs(cl_speed(&w) - 17000.0), <=, 170.0);
     assert_cmp(w.ang_max, <=, 2.0);
@@ -63,8 +63,7 @@ static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void
         (double)SPEED_REF_MIN_RPM, 100.0 * SPEED_REF_MIN_RPM / SPEED_REF_MAX_RPM,
         (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed_err_pct(&w), cl_speed(&w),
         w.spd_min, w.spd_max, cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
-        w.left_closed_loop ? "no" : "yes", simcore_state_name(s.now.state),
-        simcore_fault_name(s.now.fault));
+        w.left_closed_loop ? "no" : "yes", mc_state_name(s.now.state), mc_fault_name(s.now.fault));
     assert_false(w.left_closed_loop);
     assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
     assert_cmp(fabs(cl_speed_err_pct(&w)), <=, 1.0);
