@@ -23,8 +23,8 @@ CLANG_CC ?= clang
 # anything runs, for every goal that uses them.
 PROFILE_GOALS := build unit asan coverage check-16bit lint format bench sim firmware test test-clang
 ifneq ($(filter $(PROFILE_GOALS),$(MAKECMDGOALS)),)
-ifeq ($(wildcard firmware/boards/board_$(BOARD).h),)
-$(error BOARD=$(BOARD): no firmware/boards/board_$(BOARD).h (boards: $(patsubst firmware/boards/board_%.h,%,$(wildcard firmware/boards/board_*.h))))
+ifeq ($(wildcard boards/board_$(BOARD).h),)
+$(error BOARD=$(BOARD): no boards/board_$(BOARD).h (boards: $(patsubst boards/board_%.h,%,$(wildcard boards/board_*.h))))
 endif
 ifeq ($(wildcard firmware/motors/motor_$(MOTOR).h),)
 $(error MOTOR=$(MOTOR): no firmware/motors/motor_$(MOTOR).h (motors: $(patsubst firmware/motors/motor_%.h,%,$(wildcard firmware/motors/motor_*.h))))

@@ -12,17 +12,18 @@
  *   make BOARD=mclv MOTOR=hurst      (the defaults)
  *   make BOARD=mchv MOTOR=hispeed
  * CMake turns BOARD/MOTOR into MC_BOARD_<BOARD> / MC_MOTOR_<MOTOR>
- * definitions; with neither, MCLV + motor_hurst.h (the Hurst075).
+ * definitions; with neither, MCLV + motor_hurst.h (the Hurst075). The
+ * board's profile and the PWM it runs are in boards/, which the HAL reads
+ * too.
  * Every setting below is wrapped in #ifndef so it can also be overridden
  * with -D on the compiler command line.
  */
 
-/* ---- board profile ------------------------------------------------------- */
-#if defined(MC_BOARD_MCHV)
-#include "boards/board_mchv.h"
-#else /* MC_BOARD_MCLV, the default */
-#include "boards/board_mclv.h"
-#endif
+/* ---- board profile and PWM ------------------------------------------------ */
+/* The power stage, read by the HAL too: boards/board.h (PWM_FREQUENCY_HZ,
+ * PWM_ADC_TRIGGER_TCY, PWM_DEADTIME_NS, override with -D) and the profile
+ * it selects, boards/board_<BOARD>.h. */
+#include "../boards/board.h"
 
 /* ---- motor profile ------------------------------------------------------- */
 /* The build passes MC_MOTOR_HEADER="motors/motor_<MOTOR>.h", so any profile
@@ -76,17 +77,7 @@
 #define MC_DEADTIME_MEASURE 1
 #endif
 
-/* ---- PWM and loop timing --------------------------------------------------- */
-#ifndef PWM_FREQUENCY_HZ
-#define PWM_FREQUENCY_HZ 20000L /* PWM and current-loop rate */
-#endif
-#ifndef PWM_ADC_TRIGGER_TCY
-#define PWM_ADC_TRIGGER_TCY                                                                        \
-    80L /* ADC start after the PWM period's midpoint, Tcy (AN1078: 80, 2 us) */
-#endif
-#ifndef PWM_DEADTIME_NS
-#define PWM_DEADTIME_NS BOARD_DEADTIME_NS /* what the HAL programs and the core compensates */
-#endif
+/* ---- loop timing ------------------------------------------------------------ */
 #ifndef MC_SPEED_LOOP_HZ
 #define MC_SPEED_LOOP_HZ 1000L /* speed loop rate; IRP_PERCALC = PWM_FREQUENCY_HZ / this */
 #endif

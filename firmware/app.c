@@ -114,7 +114,7 @@ bool app_start_allowed(app_t *app)
 static void on_s2(app_t *app)
 {
     if (app_start_allowed(app)) {
-        hal_motor_request(MC_REQUEST_START_STOP);
+        motor_request(MC_REQUEST_START_STOP);
     }
 }
 
@@ -132,8 +132,8 @@ static void on_s2(app_t *app)
 #if !defined(TORQUEMODE)
 static void board_reference(app_t *app)
 {
-    hal_motor_status(&app->status);
-    hal_motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
+    motor_status(&app->status);
+    motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
     app->ref_seq_mine = (uint8_t)(app->status.ref_seq + 1U);
 }
 #endif
@@ -147,7 +147,7 @@ static void on_s3(app_t *app)
     if (app->double_speed) {
         board_reference(app);
     } else {
-        hal_motor_request(MC_REQUEST_REF_POT);
+        motor_request(MC_REQUEST_REF_POT);
     }
 #endif
 }
@@ -255,13 +255,13 @@ void app_service_uart(app_t *app)
     while (hal_uart_get(&c)) {
         if (c == 'g') {
             if (app_start_allowed(app)) {
-                hal_motor_request(MC_REQUEST_START);
+                motor_request(MC_REQUEST_START);
             }
         } else if (c == 's') {
-            hal_motor_request(MC_REQUEST_STOP);
+            motor_request(MC_REQUEST_STOP);
         } else if (c == 'p') {
             app->double_speed = false;
-            hal_motor_request(MC_REQUEST_REF_POT);
+            motor_request(MC_REQUEST_REF_POT);
         }
     }
 }
@@ -293,7 +293,7 @@ void app_tick_1ms(app_t *app)
     /* The fault latch, once per latch. */
     if (hal_fault_latched()) {
         if (!app->fault_reported) {
-            hal_motor_request(MC_REQUEST_HW_FAULT);
+            motor_request(MC_REQUEST_HW_FAULT);
             app->fault_reported = true;
         }
     } else {
@@ -310,7 +310,7 @@ void app_tick_1ms(app_t *app)
     app->status_ms = (uint16_t)(app->status_ms + 1U);
     if (app->status_ms >= APP_STATUS_PERIOD_MS) {
         app->status_ms = 0;
-        hal_motor_status(&app->status);
+        motor_status(&app->status);
         update_leds(app);
 #if !defined(TORQUEMODE)
         if (app->double_speed) {

@@ -5,8 +5,8 @@
 /*
  * Everything time-critical is in the ADC interrupt (hal/dspic33f/hal_isr.c);
  * this is the slow rest, one app_poll() per main-loop pass, talking to the
- * motor only through the hal_motor_* mailbox. It uses nothing but hal.h, so
- * the host tests run it against mocks.
+ * motor only through its mailbox (motor.h). It uses nothing but hal.h and
+ * motor.h, so the host tests run it against mocks of both.
  *
  * Once per millisecond (hal_tick_1ms):
  *   - S2 and S3 are debounced (APP_DEBOUNCE_MS of steady level);
@@ -19,7 +19,7 @@
  *   - the FLTA latch is reported to the core once (MC_REQUEST_HW_FAULT);
  *   - every APP_STATUS_PERIOD_MS: the status snapshot is taken, the LEDs
  *     are set from it, and in double-speed mode the pot is read into the
- *     reference (hal_motor_set_reference);
+ *     reference (motor_set_reference);
  *   - every APP_TELEMETRY_PERIOD_MS: one status line is queued for the UART.
  * On every pass: queued bytes go out while the UART takes them, received
  * bytes are commands.
@@ -45,7 +45,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/design.md layers) */
+#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/architecture.md) */
+#include "motor.h"
 
 #define APP_DEBOUNCE_MS         20U
 #define APP_STATUS_PERIOD_MS    10U

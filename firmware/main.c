@@ -1,12 +1,14 @@
 /* main.c - the dsPIC33FJ32MC204 program: init, then the main loop forever (dsPIC only). */
 #include "app.h"
-#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/design.md layers) */
+#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/architecture.md) */
+#include "motor.h"
 
 /*
- * The control loop is not here: hal_motor_start() enables the ADC
+ * The control loop is not here: motor_start() (motor.c) enables the ADC
  * interrupt, whose vector (hal/dspic33f/hal_isr.c) reads each conversion
- * set, runs mc_step() and writes the duties, once per PWM period. The main
- * loop is the slow rest (app.h): buttons, pot, LEDs, UART, fault latch.
+ * set and hands it to motor.c's hooks, which run the core and hand the
+ * duties back, once per PWM period. The main loop is the slow rest
+ * (app.h): buttons, pot, LEDs, UART, fault latch.
  *
  * The UART speaks the live data monitor's protocol (firmware/monitor,
  * docs/monitor.md, host side tools/scope): its recorder observes the motor
@@ -45,13 +47,13 @@ int main(void)
 {
     hal_init();
     app_init(&app);
-    hal_motor_start();
+    motor_start();
 #if !defined(APP_NO_MONITOR)
-    monitor_init(&monitor, hal_motor_core());
+    monitor_init(&monitor, motor_core());
     monitor_set_start_guard(&monitor, monitor_may_start, &app);
     monitor_app_client(&monitor, &monitor_client);
     app_set_uart_client(&app, &monitor_client);
-    hal_motor_observe(monitor_observer, &monitor);
+    motor_observe(monitor_observer, &monitor);
 #endif
     for (;;) {
         app_poll(&app);

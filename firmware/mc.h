@@ -66,6 +66,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "../hal/hal_frame.h"
 #include "UserParms.h"
 #include "mc_derived.h"
 
@@ -77,18 +78,10 @@
 
 /* ---- input and output of one period ------------------------------------ */
 
-typedef struct {    /* one ADC conversion set, sampled at MC_SAMPLE_AT of the period */
-    int16_t ia, ib; /* phase currents, Q15 of BOARD_I_FULLSCALE_A, + = into the motor,
-                       still carrying the amplifier offset (the core calibrates it) */
-    int16_t vbus;   /* DC bus, Q15 of BOARD_VBUS_FULLSCALE_V (0..32767) */
-    int16_t pot;    /* potentiometer, 0..32767 = 0..100 % of travel */
-} mc_adc_frame_t;
-
-typedef struct {
-    uint16_t duty[3]; /* PDC1..PDC3, 0..PWM_DUTY_MAX; phase k mean voltage vs the
-                         negative rail = duty[k] / PWM_DUTY_MAX * Vbus */
-    bool outputs_on;  /* false: all six switches off */
-} mc_pwm_out_t;
+/* The seam's two value types (hal/hal_frame.h, in the board's scalings):
+ * the ADC set of one period in, the duties for the next out. */
+typedef hal_adc_frame_t mc_adc_frame_t;
+typedef hal_pwm_out_t mc_pwm_out_t;
 
 /* ---- requests ----------------------------------------------------------- */
 

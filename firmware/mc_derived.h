@@ -105,8 +105,7 @@ MC_CHECK_FOR(PWM_FREQUENCY_HZ, BOARD_FCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 
              "duty full scale BOARD_FCY_HZ / PWM_FREQUENCY_HZ must be "
              "<= 32767 counts");
 
-/* Duty counts for 100 % (AN1078 LOOPINTCY, PDCx units: 2000 at 40 MIPS, 20 kHz). */
-#define PWM_DUTY_MAX ((uint16_t)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ))
+/* PWM_DUTY_MAX, the duty full scale, is boards/board.h's. */
 #define MC_TS_S      (1.0 / (double)PWM_FREQUENCY_HZ)
 
 /* The sample instant as a fraction of the period after its start (mc.h

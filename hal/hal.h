@@ -5,15 +5,22 @@
 /*
  * One header is the whole hardware contract; hal/dspic33f/ implements it for
  * the dsPIC33FJ32MC204 and is the only code that includes the device header.
- * Plain C types only (the two frame types are the core's, from mc.h), so the
- * host can fake or mock every function.
+ * Plain C types only, so the host can fake or mock every function. The HAL
+ * knows the chip and the board (boards/board.h) and nothing of the
+ * application: it includes no firmware/ header and owns no application
+ * object.
  *
  * Who calls what:
- *   main()        hal_init(), then hal_motor_start(), then polls forever;
- *   ADC interrupt hal_adc_read() -> mc_step() -> hal_pwm_write(), inside
- *                 hal/dspic33f/ (the trampoline owns the one mc_t);
- *   main loop     buttons, LEDs, UART, the 1 ms tick, the fault latch, and the
- *                 motor mailbox (hal_motor_*), never the PWM or ADC directly.
+ *   main()         hal_init(), then (through firmware/motor.c)
+ *                  hal_control_start(), then polls forever;
+ *   ADC interrupt  a trampoline in hal/dspic33f/: it reads the conversion
+ *                  set, hands it to hal_hook_control(), writes the duties
+ *                  it gets back, then calls hal_hook_finish(); every
+ *                  slow_periods-th period it raises the slow interrupt,
+ *                  which calls hal_hook_slow(). The three hooks are the
+ *                  firmware's (firmware/motor.c);
+ *   main loop      buttons, LEDs, UART, the 1 ms tick, the fault latch,
+ *                  never the PWM or ADC directly.
  *
  * Nothing here blocks, except hal_init() while the PLL locks.
  */
@@ -21,7 +28,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "mc.h"
+#include "hal_frame.h"
 
 /* ---- init ------------------------------------------------------------------ */
 
@@ -38,7 +45,7 @@ void hal_init(void);
  *         amplifier sign is applied here; offset still included);
  * vbus    0..32767 of BOARD_VBUS_FULLSCALE_V;
  * pot     0..32767 over the travel. */
-void hal_adc_read(mc_adc_frame_t *frame);
+void hal_adc_read(hal_adc_frame_t *frame);
 
 /* The pot alone, 0..32767, as hal_adc_read() would give it: for the main
  * loop (one buffer register, read atomically, at most one period old). */
@@ -47,7 +54,11 @@ int16_t hal_pot_read(void);
 /* Duties for the next PWM period (loaded by the hardware at the period
  * boundary), each clamped to 0..PWM_DUTY_MAX; outputs_on = false overrides
  * all six switches off at once, true hands the pins back to the PWM. */
-void hal_pwm_write(const mc_pwm_out_t *out);
+void hal_pwm_write(const hal_pwm_out_t *out);
+
+/* All six switches overridden off at once, the duties untouched: for a
+ * hook that turns the outputs off after the duties were written. */
+void hal_pwm_off(void);
 
 /* ---- fault input (FLTA1, latched) ----------------------------------------- */
 
@@ -101,29 +112,33 @@ typedef uint16_t hal_irq_state_t;
 hal_irq_state_t hal_critical_enter(void);
 void hal_critical_exit(hal_irq_state_t saved);
 
-/* ---- the running motor ----------------------------------------------------- *
- * The one mc_t lives with the ADC interrupt that steps it. The main loop
- * reaches it only through this mailbox: each call wraps the core's function
- * in hal_critical_enter/exit, so a status is one period's snapshot. */
+/* ---- the control interrupts ---------------------------------------------- */
 
-/* mc_init() on the motor, then enable the ADC interrupt: from here on
- * mc_step() runs every PWM period. */
-void hal_motor_start(void);
+/* Enable the ADC interrupt and the slow interrupt: from the next
+ * conversion set on, the hooks below run every PWM period, and
+ * hal_hook_slow() after every slow_periods-th (1..65535), counted from
+ * here. The first 10 ms the bootstrap capacitors precharge (the low
+ * switches on while the hooks keep the outputs off). */
+void hal_control_start(uint16_t slow_periods);
 
-void hal_motor_request(mc_request_t request);
-void hal_motor_set_reference(int16_t ref);
-void hal_motor_status(mc_status_t *status);
+/* Disable both interrupts (a conversion set that completes meanwhile is
+ * dropped): the hooks no longer run. */
+void hal_control_stop(void);
 
-/* An observer of the running motor (e.g. the data monitor's recorder,
- * firmware/monitor): called by the ADC interrupt once per period, after the
- * duties are written, so it never delays them. It runs in the interrupt:
- * constant time, no waiting, no UART. NULL removes it. */
-typedef void (*hal_motor_observer_t)(void *ctx, const mc_t *mc);
-void hal_motor_observe(hal_motor_observer_t fn, void *ctx);
+/* ---- hooks: implemented by the firmware, called by the HAL's interrupts --- */
 
-/* The running motor itself, for code that calls the core's own lock-free
- * entry points from the main loop (mc.h note 1), such as the monitor.
- * Everything else uses the hal_motor_* calls above. */
-mc_t *hal_motor_core(void);
+/* The ADC interrupt, once per PWM period: the duties for the next period
+ * from this period's conversion set. The HAL writes them as soon as this
+ * returns, before the period boundary that loads them. Constant time, no
+ * waiting, no UART. */
+void hal_hook_control(const hal_adc_frame_t *frame, hal_pwm_out_t *out);
+
+/* The same interrupt, after the duties are in the registers: the rest of
+ * the period's work. out is what hal_hook_control() returned; to turn the
+ * outputs off now, call hal_pwm_off(). */
+void hal_hook_finish(hal_pwm_out_t *out);
+
+/* The slow interrupt (lower priority, pre-empted by the ADC interrupt). */
+void hal_hook_slow(void);
 
 #endif /* HAL_H */

@@ -7,7 +7,7 @@
  * assumes the same dsPIC33FJ32MC204 PIM wiring as the MCLV, so it takes the
  * MCLV's HAL facts (every one #ifndef-guarded): a pin confirmed for the MCHV
  * is defined here, above the include. The current sign differs, but it is
- * the core profile's BOARD_I_SIGN (firmware/boards/board_mchv.h, -1, with its
+ * the core profile's BOARD_I_SIGN (boards/board_mchv.h, -1, with its
  * provenance), which HAL_BOARD_I_SIGN follows on either board.
  */
 

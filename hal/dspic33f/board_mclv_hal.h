@@ -3,12 +3,12 @@
 #define BOARD_MCLV_HAL_H
 
 /*
- * What the HAL needs beyond the core's board profile (firmware/boards/
+ * What the HAL needs beyond the core's board profile (boards/
  * board_mclv.h): the pins docs/hardware.md could not name. Each may be overridden with -D.
  */
 
 /* The current amplifiers' sign is a board fact: BOARD_I_SIGN in the core's
- * board profile (firmware/boards/board_mclv.h, with its provenance).
+ * board profile (boards/board_mclv.h, with its provenance).
  * -DHAL_BOARD_I_SIGN=... still overrides it for the HAL alone. */
 #ifndef HAL_BOARD_I_SIGN
 #define HAL_BOARD_I_SIGN BOARD_I_SIGN

@@ -162,7 +162,7 @@ static void adc_init(void)
     AD1CHS123bits.CH123SA = HAL_AD1_CH123SA_IAB;
     AD1CSSL = 0x0000u;
 
-    IEC0bits.AD1IE = 0; /* hal_motor_start() enables it */
+    IEC0bits.AD1IE = 0; /* hal_control_start() enables it */
     IFS0bits.AD1IF = 0;
     IPC3bits.AD1IP = HAL_ADC_IRQ_PRIORITY;
     AD1CON1bits.ADON = 1;
@@ -194,7 +194,7 @@ static void tick_init(void)
  * started, so only the ADC interrupt's software write to T2IF raises it. */
 static void slow_irq_init(void)
 {
-    IEC0bits.T2IE = 0; /* hal_motor_start() enables it */
+    IEC0bits.T2IE = 0; /* hal_control_start() enables it */
     IFS0bits.T2IF = 0;
     IPC1bits.T2IP = HAL_SLOW_IRQ_PRIORITY;
 }
@@ -213,7 +213,7 @@ void hal_init(void)
 
 /* ---- ADC --------------------------------------------------------------------- */
 
-void hal_adc_read(mc_adc_frame_t *frame)
+void hal_adc_read(hal_adc_frame_t *frame)
 {
     hal_regs_adc_read(frame);
 }
@@ -225,9 +225,14 @@ int16_t hal_pot_read(void)
 
 /* ---- PWM --------------------------------------------------------------------- */
 
-void hal_pwm_write(const mc_pwm_out_t *out)
+void hal_pwm_write(const hal_pwm_out_t *out)
 {
     hal_regs_pwm_write(out);
+}
+
+void hal_pwm_off(void)
+{
+    P1OVDCON = HAL_P1OVDCON_OFF;
 }
 
 /* ---- fault --------------------------------------------------------------------- */

@@ -5,8 +5,8 @@
 
 /*
  * Every number written to a register is a macro here, computed from the
- * engineering units of the board profile and UserParms.h (BOARD_FCY_HZ,
- * PWM_FREQUENCY_HZ, PWM_DEADTIME_NS, PWM_DUTY_MAX), with a compile-time
+ * engineering units of boards/board.h (BOARD_FCY_HZ, PWM_FREQUENCY_HZ,
+ * PWM_DEADTIME_NS, PWM_DUTY_MAX, PWM_ADC_TRIGGER_TCY), with a compile-time
  * check on every range. The tests pin the resulting register values, and
  * docs/board.md lists them.
  *
@@ -18,6 +18,7 @@
 
 #include <stdint.h>
 
+#include "../../boards/board.h"
 #include "hal.h"
 #include "q15.h"
 
@@ -37,7 +38,7 @@
 #endif
 
 #ifndef BOARD_FCY_HZ
-#error "BOARD_FCY_HZ missing: the board profile (firmware/boards/board_<BOARD>.h) must define it"
+#error "BOARD_FCY_HZ missing: the board profile (boards/board_<BOARD>.h) must define it"
 #endif
 
 /* ---- interrupt attributes ------------------------------------------------- *
@@ -132,7 +133,7 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
  * PTPER, all low switches on), counting down: "80 offset ... to avoid
  * ripple on the current measurement" [SRC: AN1078]. */
 #define HAL_ADC_TRIGGER_OFFSET_TCY                                                                 \
-    ((unsigned)PWM_ADC_TRIGGER_TCY) /* UserParms.h: the core knows it */
+    ((unsigned)PWM_ADC_TRIGGER_TCY) /* boards/board.h: the core knows it */
 #define HAL_P1SECMP ((uint16_t)(0x8000u | (unsigned)(HAL_PTPER - HAL_ADC_TRIGGER_OFFSET_TCY)))
 
 /* Fault A: FAEN1..3 = 1, FLTAM = 0 (latched), FAOVxx = 0 (inactive) [SRC]. */
@@ -145,7 +146,7 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
  * charge before the PWM first switches the high sides [SRC: docs/board.md,
  * "Bring-up facts": Microchip's MCLV code, OVDCON = 0x0015 for 10 ms]. */
 #define HAL_P1OVDCON_PRECHARGE 0x0015u
-/* Its length after hal_motor_start(), in PWM periods: 10 ms. */
+/* Its length after hal_control_start(), in PWM periods: 10 ms. */
 #define HAL_PRECHARGE_PERIODS ((uint16_t)(PWM_FREQUENCY_HZ / 100L))
 
 /* ---- ADC1 (docs/hardware.md 1.7, 1.8) --------------------------------------- *
@@ -162,7 +163,7 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
 /* TAD = (ADCS + 1) Tcy. [MEM] the dsPIC33F 10-bit minimum TAD is about 76 ns
  * and a conversion takes 12 TAD: ADCS = 3 gives TAD = 100 ns, 4 channels in
  * 4.8 us, so the ISR starts about 6.8 us after the midpoint, 18.2 us (728
- * Tcy) before the period boundary where the duties load (mc.h timing
+ * Tcy) before the period boundary where the duties load (docs/design.md timing
  * contract; docs/board.md "Timing" says what the interrupt's length does to
  * it).
  * AN1078 used ADCS = 15 (400 ns, 19.2 us for 4 channels) [SRC], which leaves
@@ -170,8 +171,8 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
 #define HAL_AD1_ADCS 3u
 /* ADC interrupt priority (1..7; the critical section masks up to 7). */
 #define HAL_ADC_IRQ_PRIORITY 5u
-/* The core's slow step (mc_slow_step) runs in Timer2's interrupt, raised in
- * software by the ADC interrupt once per window (Timer2 stays off): below
+/* The slow hook (hal_hook_slow) runs in Timer2's interrupt, raised in
+ * software by the ADC interrupt every slow_periods periods (Timer2 stays off): below
  * the ADC interrupt, which pre-empts it, above the main loop (0).
  * T2IF/T2IE are IFS0/IEC0 bit 7, T2IP is IPC1<14:12> [MEM: the dsPIC33F
  * interrupt vector table, DS70283 / FRM section 6]. */

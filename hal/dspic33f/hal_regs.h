@@ -63,7 +63,7 @@ Q15_INLINE int16_t hal_regs_current(uint16_t raw)
 #endif
 }
 
-Q15_INLINE void hal_regs_adc_read(mc_adc_frame_t *frame)
+Q15_INLINE void hal_regs_adc_read(hal_adc_frame_t *frame)
 {
     frame->pot = hal_regs_unipolar(ADC1BUF0);  /* CH0 = AN8 */
     frame->ia = hal_regs_current(ADC1BUF1);    /* CH1 = AN0 */
@@ -81,7 +81,7 @@ Q15_INLINE uint16_t hal_regs_duty_clamp(uint16_t d)
 /* The three duties under UDIS (as Microchip's code writes them): if the
  * interrupt ever ran past a period boundary mid-write, the boundary would
  * otherwise load a mix of this period's and the last one's duties. */
-Q15_INLINE void hal_regs_duty_write(const mc_pwm_out_t *out)
+Q15_INLINE void hal_regs_duty_write(const hal_pwm_out_t *out)
 {
     PWM1CON2bits.UDIS = 1;
     P1DC1 = hal_regs_duty_clamp(out->duty[0]);
@@ -91,7 +91,7 @@ Q15_INLINE void hal_regs_duty_write(const mc_pwm_out_t *out)
 }
 
 /* The duties, then the pins: to the PWM, or all off. */
-Q15_INLINE void hal_regs_pwm_write(const mc_pwm_out_t *out)
+Q15_INLINE void hal_regs_pwm_write(const hal_pwm_out_t *out)
 {
     hal_regs_duty_write(out);
     P1OVDCON = out->outputs_on ? HAL_P1OVDCON_PWM : HAL_P1OVDCON_OFF;

@@ -45,7 +45,7 @@ void hal_led_set(hal_led_t led, bool on)
 }
 /* The reference's owner as the core's status shows it (mc_status_t
  * ref_remote, ref_seq): set references count, the pot request clears. */
-void hal_motor_request(mc_request_t request)
+void motor_request(mc_request_t request)
 {
     int r = (int)request;
     check_expected(r);
@@ -55,7 +55,7 @@ void hal_motor_request(mc_request_t request)
 }
 static bool fake_ref_free; /* references counted, not checked against expectations */
 static unsigned fake_ref_calls;
-void hal_motor_set_reference(int16_t ref)
+void motor_set_reference(int16_t ref)
 {
     int value = ref;
     fake_ref_calls++;
@@ -65,7 +65,7 @@ void hal_motor_set_reference(int16_t ref)
     fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
     fake_status.ref_remote = true;
 }
-void hal_motor_status(mc_status_t *st)
+void motor_status(mc_status_t *st)
 {
     fake_status_calls++;
     *st = fake_status;
@@ -129,12 +129,12 @@ static void test_s2_press_should_request_start_stop_once_after_the_debounce_time
     (void)state;
     fake_button[0] = true;
     ticks(APP_DEBOUNCE_MS - 1U); /* not yet: a strict mock would fail on a call */
-    expect_value(hal_motor_request, r, MC_REQUEST_START_STOP);
+    expect_value(motor_request, r, MC_REQUEST_START_STOP);
     ticks(1);
     ticks(500); /* held: no repeat */
     fake_button[0] = false;
     ticks(100); /* release: no event */
-    expect_value(hal_motor_request, r, MC_REQUEST_START_STOP);
+    expect_value(motor_request, r, MC_REQUEST_START_STOP);
     fake_button[0] = true;
     ticks(APP_DEBOUNCE_MS);
 }
@@ -153,11 +153,11 @@ static void test_s2_with_the_fault_latched_should_clear_it_then_request_start_st
 {
     (void)state;
     fake_latched = true;
-    expect_value(hal_motor_request, r, MC_REQUEST_HW_FAULT);
+    expect_value(motor_request, r, MC_REQUEST_HW_FAULT);
     ticks(1);
     fake_button[0] = true;
     will_return(hal_fault_clear, true);
-    expect_value(hal_motor_request, r, MC_REQUEST_START_STOP);
+    expect_value(motor_request, r, MC_REQUEST_START_STOP);
     ticks(APP_DEBOUNCE_MS);
 }
 
@@ -165,7 +165,7 @@ static void test_s2_while_the_fault_pin_is_still_asserted_should_start_nothing(v
 {
     (void)state;
     fake_latched = true;
-    expect_value(hal_motor_request, r, MC_REQUEST_HW_FAULT);
+    expect_value(motor_request, r, MC_REQUEST_HW_FAULT);
     ticks(1);
     fake_button[0] = true;
     will_return(hal_fault_clear, false);
@@ -176,12 +176,12 @@ static void test_fault_latch_should_be_reported_to_the_core_once_per_latch(void 
 {
     (void)state;
     fake_latched = true;
-    expect_value(hal_motor_request, r, MC_REQUEST_HW_FAULT);
+    expect_value(motor_request, r, MC_REQUEST_HW_FAULT);
     ticks(300);
     fake_latched = false;
     ticks(10);
     fake_latched = true;
-    expect_value(hal_motor_request, r, MC_REQUEST_HW_FAULT);
+    expect_value(motor_request, r, MC_REQUEST_HW_FAULT);
     ticks(300);
 }
 
@@ -195,20 +195,20 @@ static void test_s3_should_double_the_pot_reference_until_pressed_again(void **s
     doubled = app_speed_from_pot(8000, true);
     fake_button[1] = true;
     /* On the press edge (tick 20), and by the status period of that tick. */
-    expect_value_count(hal_motor_set_reference, value, doubled, 2);
+    expect_value_count(motor_set_reference, value, doubled, 2);
     for (i = 0; i < APP_DEBOUNCE_MS; i++) {
         ticks(1);
     }
     fake_pot = 16000; /* the pot keeps feeding the reference */
     doubled = app_speed_from_pot(16000, true);
-    expect_value_count(hal_motor_set_reference, value, doubled, 5);
+    expect_value_count(motor_set_reference, value, doubled, 5);
     ticks(5U * APP_STATUS_PERIOD_MS);
     fake_button[1] = false;
-    expect_value_count(hal_motor_set_reference, value, doubled, 5);
+    expect_value_count(motor_set_reference, value, doubled, 5);
     ticks(5U * APP_STATUS_PERIOD_MS);
     fake_button[1] = true;
-    expect_value(hal_motor_request, r, MC_REQUEST_REF_POT);
-    expect_value_count(hal_motor_set_reference, value, doubled, 1); /* before the edge */
+    expect_value(motor_request, r, MC_REQUEST_REF_POT);
+    expect_value_count(motor_set_reference, value, doubled, 1); /* before the edge */
     ticks(APP_DEBOUNCE_MS);
     ticks(10U * APP_STATUS_PERIOD_MS); /* back on the pot: no more references */
 }
@@ -362,9 +362,9 @@ static void test_uart_commands_should_post_start_stop_and_return_to_the_pot(void
 {
     (void)state;
     fake_rx = "gxsp";
-    expect_value(hal_motor_request, r, MC_REQUEST_START);
-    expect_value(hal_motor_request, r, MC_REQUEST_STOP);
-    expect_value(hal_motor_request, r, MC_REQUEST_REF_POT);
+    expect_value(motor_request, r, MC_REQUEST_START);
+    expect_value(motor_request, r, MC_REQUEST_STOP);
+    expect_value(motor_request, r, MC_REQUEST_REF_POT);
     app_service_uart(&app);
 }
 
@@ -377,7 +377,7 @@ static void test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds(
     app_service_uart(&app);
     fake_rx = "g";
     will_return(hal_fault_clear, true); /* cleared: START */
-    expect_value(hal_motor_request, r, MC_REQUEST_START);
+    expect_value(motor_request, r, MC_REQUEST_START);
     app_service_uart(&app);
 }
 

@@ -250,7 +250,7 @@ static void test_adc_read_should_scale_every_code_of_every_channel_exactly(void 
     err_stats_init(&e_i);
     err_stats_init(&e_u);
     for (n = 0; n < 1024u; n++) {
-        mc_adc_frame_t f;
+        hal_adc_frame_t f;
         /* References in double: a current code reads (n - 512) / 512 of
          * BOARD_I_FULLSCALE_A, a unipolar one n / 1024 of its full scale. */
         double i_ref = HAL_BOARD_I_SIGN * (n - 512.0) / 512.0 * 32768.0;
@@ -281,7 +281,7 @@ static void test_adc_read_should_scale_every_code_of_every_channel_exactly(void 
 static void test_adc_read_should_map_the_rails_to_the_core_range(void **state)
 {
     (void)state;
-    mc_adc_frame_t f;
+    hal_adc_frame_t f;
 
     ADC1BUF0 = 0x8000u; /* 0 V */
     ADC1BUF1 = 0x8000u;
@@ -307,7 +307,7 @@ static void test_adc_read_should_map_the_rails_to_the_core_range(void **state)
 static void test_pwm_write_should_load_the_three_duties_and_give_the_pins_to_the_pwm(void **state)
 {
     (void)state;
-    mc_pwm_out_t out = {{100u, 1000u, 1900u}, true};
+    hal_pwm_out_t out = {{100u, 1000u, 1900u}, true};
 
     /* The three writes with the period-boundary update disabled, enabled
      * again after them (docs/board.md, "Bring-up facts": UDIS). */
@@ -326,8 +326,8 @@ static void test_pwm_write_should_load_the_three_duties_and_give_the_pins_to_the
 static void test_pwm_write_should_override_all_six_switches_off_when_outputs_are_off(void **state)
 {
     (void)state;
-    mc_pwm_out_t on = {{1000u, 1000u, 1000u}, true};
-    mc_pwm_out_t off = {{1000u, 1000u, 1000u}, false};
+    hal_pwm_out_t on = {{1000u, 1000u, 1000u}, true};
+    hal_pwm_out_t off = {{1000u, 1000u, 1000u}, false};
 
     hal_pwm_write(&on);
     hal_pwm_write(&off);
@@ -337,7 +337,7 @@ static void test_pwm_write_should_override_all_six_switches_off_when_outputs_are
 static void test_pwm_write_should_clamp_duties_above_pwm_duty_max(void **state)
 {
     (void)state;
-    mc_pwm_out_t out = {{PWM_DUTY_MAX, PWM_DUTY_MAX + 1u, 0xFFFFu}, true};
+    hal_pwm_out_t out = {{PWM_DUTY_MAX, PWM_DUTY_MAX + 1u, 0xFFFFu}, true};
 
     hal_pwm_write(&out);
     assert_int_equal(P1DC1, PWM_DUTY_MAX);

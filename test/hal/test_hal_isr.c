@@ -1,4 +1,4 @@
-/* test_hal_isr.c - the ADC trampoline and the motor mailbox, with the core mocked (cmocka). */
+/* test_hal_isr.c - the HAL's interrupt trampoline alone, the firmware's hooks mocked (cmocka). */
 #include "test_support.h"
 
 #include "sfr_standin.h"
@@ -6,44 +6,24 @@
 #include "hal_dspic33f.h"
 
 /*
- * hal_isr.c is linked here against the mocks below instead of the core, so
- * the test sees exactly what the trampoline hands to mc_step_control() and what it
- * does with the answer, and in which order relative to the registers.
+ * hal_isr.c + hal_dspic33f.c on the SFR stand-in, linked against mocks of
+ * the three hooks hal.h asks the firmware for: what the trampoline hands
+ * up, what it does with the answer, and in which order relative to the
+ * registers. No core, no firmware header: the HAL stands alone.
  */
 
-static mc_t *seen_mc; /* the instance the first core call received */
+static hal_pwm_out_t last_out; /* what the control hook returned last */
 
-static void check_same_motor(mc_t *mc)
-{
-    if (seen_mc == NULL) {
-        seen_mc = mc;
-    }
-    assert_ptr_equal(mc, seen_mc);
-}
-
-void mc_init(mc_t *mc)
-{
-    function_called();
-    check_same_motor(mc);
-    assert_int_equal(IEC0bits.AD1IE, 0); /* not stepped while being reset */
-}
-
-static mc_pwm_out_t last_out; /* what the control part returned last */
-
-void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+void hal_hook_control(const hal_adc_frame_t *in, hal_pwm_out_t *out)
 {
     int ia = in->ia, ib = in->ib, vbus = in->vbus, pot = in->pot;
 
     function_called();
-    check_same_motor(mc);
-    /* The flag is cleared before the step, the duties written after it. */
-    assert_int_equal(IFS0bits.AD1IF, 0);
+    assert_int_equal(IFS0bits.AD1IF, 0); /* the flag is cleared before the hook */
 #if HAL_TIMING_PIN_PORT == HAL_PORT_C
     assert_int_equal((LATC >> HAL_TIMING_PIN_BIT) & 1u, 1u); /* high for the whole interrupt */
 #endif
-    assert_int_equal(P1DC1, 0xAAAA);
-    assert_int_equal(P1DC2, 0xAAAA);
-    assert_int_equal(P1DC3, 0xAAAA);
+    assert_int_equal(P1DC1, 0xAAAA); /* the duties are written after it */
     check_expected(ia);
     check_expected(ib);
     check_expected(vbus);
@@ -55,58 +35,25 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     last_out = *out;
 }
 
-/* The rest of the step comes after the duties and the pins: they are
- * already in the registers when it runs (mc.h timing contract). */
-void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
+/* The finishing hook comes after the duties and the pins. */
+void hal_hook_finish(hal_pwm_out_t *out)
 {
     function_called();
-    check_same_motor(mc);
-    assert_int_equal(out->duty[0], last_out.duty[0]); /* the same out */
-    assert_int_equal(out->duty[1], last_out.duty[1]);
-    assert_int_equal(out->duty[2], last_out.duty[2]);
-    assert_int_equal(out->outputs_on, last_out.outputs_on);
+    assert_memory_equal(out, &last_out, sizeof *out);
     assert_int_equal(P1DC1, last_out.duty[0]);
     assert_int_equal(P1DC2, last_out.duty[1]);
     assert_int_equal(P1DC3, last_out.duty[2]);
     assert_int_equal(P1OVDCON & 0x3F00u, last_out.outputs_on ? 0x3F00u : 0u);
-    assert_int_equal(IFS0bits.T2IF, 0); /* the window's slow step is triggered after it */
-    if ((bool)mock()) {                 /* this part faulted */
-        out->duty[0] = PWM_DUTY_MAX / 2U;
-        out->duty[1] = PWM_DUTY_MAX / 2U;
-        out->duty[2] = PWM_DUTY_MAX / 2U;
-        out->outputs_on = false;
+    assert_int_equal(IFS0bits.T2IF, 0); /* the slow interrupt is raised after it */
+    if ((bool)mock()) {
+        hal_pwm_off();
     }
 }
 
-void mc_slow_step(mc_t *mc)
+void hal_hook_slow(void)
 {
     function_called();
-    check_same_motor(mc);
     assert_int_equal(IFS0bits.T2IF, 0); /* cleared first */
-}
-
-void mc_request(mc_t *mc, mc_request_t r)
-{
-    int request = (int)r;
-    check_same_motor(mc);
-    assert_int_equal(SRbits.IPL, 7);
-    check_expected(request);
-}
-
-void mc_set_reference(mc_t *mc, int16_t ref)
-{
-    int value = ref;
-    check_same_motor(mc);
-    assert_int_equal(SRbits.IPL, 7);
-    check_expected(value);
-}
-
-void mc_status(const mc_t *mc, mc_status_t *st)
-{
-    check_same_motor((mc_t *)(uintptr_t)mc);
-    assert_int_equal(SRbits.IPL, 7);
-    st->state = (mc_state_t)mock();
-    st->fault = (uint16_t)mock();
 }
 
 static int setup(void **state)
@@ -119,24 +66,29 @@ static int setup(void **state)
     return 0;
 }
 
-static void expect_step(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
-                        bool on)
+static void expect_period(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
+                          bool on, bool off_in_finish)
 {
-    expect_function_call(mc_step_control);
-    expect_value(mc_step_control, ia, ia);
-    expect_value(mc_step_control, ib, ib);
-    expect_value(mc_step_control, vbus, vbus);
-    expect_value(mc_step_control, pot, pot);
-    will_return(mc_step_control, d0);
-    will_return(mc_step_control, d1);
-    will_return(mc_step_control, d2);
-    will_return(mc_step_control, on);
-    expect_function_call(mc_step_finish);
-    will_return(mc_step_finish, false);
+    expect_function_call(hal_hook_control);
+    expect_value(hal_hook_control, ia, ia);
+    expect_value(hal_hook_control, ib, ib);
+    expect_value(hal_hook_control, vbus, vbus);
+    expect_value(hal_hook_control, pot, pot);
+    will_return(hal_hook_control, d0);
+    will_return(hal_hook_control, d1);
+    will_return(hal_hook_control, d2);
+    will_return(hal_hook_control, on);
+    expect_function_call(hal_hook_finish);
+    will_return(hal_hook_finish, off_in_finish);
 }
 
-static void
-test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties(
+/* Before any period: marks that the mock sees the duties unwritten. */
+static void mark_duties(void)
+{
+    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu;
+}
+
+static void test_adc_isr_should_clear_the_flag_read_four_buffers_and_write_the_hooks_duties(
     void **state)
 {
     (void)state;
@@ -146,8 +98,8 @@ test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_thr
     ADC1BUF2 = 0xFF80u; /* two codes below    -> ib  -/+128 */
     ADC1BUF3 = 0xC000u; /* 1/4 of AVDD     -> vbus 8192 */
     IFS0bits.AD1IF = 1;
-    expect_step(64 * HAL_BOARD_I_SIGN, -128 * HAL_BOARD_I_SIGN, 8192, 24576, 11u, 1000u, 1999u,
-                true);
+    expect_period(64 * HAL_BOARD_I_SIGN, -128 * HAL_BOARD_I_SIGN, 8192, 24576, 11u, 1000u, 1999u,
+                  true, false);
 
     _ADC1Interrupt();
 
@@ -162,170 +114,106 @@ test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_thr
     assert_int_equal(P1OVDCON, 0x3F00);
 }
 
-static void test_adc_isr_should_override_the_outputs_off_when_the_core_says_off(void **state)
+static void test_adc_isr_should_override_the_outputs_off_when_the_hook_says_off(void **state)
 {
     (void)state;
     P1OVDCON = 0x3F00u;
     /* Buffers at 0 = mid-scale: zero current, half of vbus and pot. */
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false, false);
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0000);
     assert_int_equal(P1DC1, 1000);
 }
 
-/* A fault the core's finishing part raises (mc_step_finish turns out off)
- * switches the outputs off in the same interrupt, after the duties. */
-static void test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults(void **state)
+/* hal_pwm_off() from the finishing hook: off in the same interrupt, the
+ * duties left as written (the override wins). */
+static void test_pwm_off_from_the_finishing_hook_should_switch_off_at_once(void **state)
 {
     (void)state;
-    P1OVDCON = 0x0000u;
-    expect_function_call(mc_step_control);
-    expect_value(mc_step_control, ia, 0);
-    expect_value(mc_step_control, ib, 0);
-    expect_value(mc_step_control, vbus, 16384);
-    expect_value(mc_step_control, pot, 16384);
-    will_return(mc_step_control, 900u);
-    will_return(mc_step_control, 1000u);
-    will_return(mc_step_control, 1100u);
-    will_return(mc_step_control, true);
-    expect_function_call(mc_step_finish);
-    will_return(mc_step_finish, true);
+    expect_period(0, 0, 16384, 16384, 900u, 1000u, 1100u, true, true);
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0000);
-    assert_int_equal(P1DC1, 900); /* the PWM already had them; the override wins */
+    assert_int_equal(P1DC1, 900);
+    assert_int_equal(P1DC3, 1100);
 }
 
-/* The bootstrap precharge after hal_motor_start(): the low switches on
- * while the core keeps the outputs off, for HAL_PRECHARGE_PERIODS; the core
+/* The bootstrap precharge after hal_control_start(): the low switches on
+ * while the hooks keep the outputs off, for HAL_PRECHARGE_PERIODS; a hook
  * turning the outputs on ends it at once, for good. */
-static void
-test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on(void **state)
+static void test_adc_isr_should_precharge_after_start_until_the_hook_turns_the_outputs_on(
+    void **state)
 {
     (void)state;
-    expect_function_call(mc_init);
-    hal_motor_start();
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    hal_control_start(20U);
+    expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false, false);
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0015);
     assert_int_equal(P1DC1, 1000);
-    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu; /* the mock checks the duties are written after it */
-    expect_step(0, 0, 16384, 16384, 900u, 1000u, 1100u, true);
+    mark_duties();
+    expect_period(0, 0, 16384, 16384, 900u, 1000u, 1100u, true, false);
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x3F00);
-    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu;
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
+    mark_duties();
+    expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false, false);
     _ADC1Interrupt();
-    assert_int_equal(P1OVDCON, 0x0000); /* not again before the next hal_motor_start() */
+    assert_int_equal(P1OVDCON, 0x0000); /* not again before the next hal_control_start() */
 }
 
-static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(void **state)
+static void test_control_start_should_drop_stale_flags_then_enable_both_interrupts(void **state)
 {
     (void)state;
     IEC0bits.AD1IE = 1;
     IFS0bits.AD1IF = 1;
     IFS0bits.T2IF = 1;
-    expect_function_call(mc_init);
-    hal_motor_start();
+    hal_control_start(20U);
     assert_int_equal(IFS0bits.AD1IF, 0);
     assert_int_equal(IFS0bits.T2IF, 0);
     assert_int_equal(IEC0bits.AD1IE, 1);
     assert_int_equal(IEC0bits.T2IE, 1);
+    hal_control_stop();
+    assert_int_equal(IEC0bits.AD1IE, 0);
+    assert_int_equal(IEC0bits.T2IE, 0);
 }
 
-static void test_adc_isr_should_raise_the_slow_step_interrupt_after_every_window_counted_from_start(
-    void **state)
+/* The slow interrupt after every slow_periods-th period counted from
+ * hal_control_start(), for a divider of 1, the core's 20 and the largest. */
+static void test_adc_isr_should_raise_the_slow_interrupt_every_slow_periods_from_start(void **state)
 {
+    static const uint16_t dividers[] = {1U, 20U, 65535U};
     (void)state;
-    expect_function_call(mc_init);
-    hal_motor_start();
-    for (unsigned w = 0; w < 3U; w++) {
-        for (unsigned k = 1; k <= MC_SLOW_STEP_PERIODS; k++) {
-            P1DC1 = 0xAAAAu; /* the mock's marker: not yet written this period */
-            P1DC2 = 0xAAAAu;
-            P1DC3 = 0xAAAAu;
-            expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
-            _ADC1Interrupt();
-            /* Raised by the window's last step, not before. */
-            assert_int_equal(IFS0bits.T2IF, (k == MC_SLOW_STEP_PERIODS) ? 1 : 0);
+    for (unsigned d = 0; d < sizeof dividers / sizeof dividers[0]; d++) {
+        uint16_t n = dividers[d];
+        hal_control_start(n);
+        for (unsigned w = 0; w < 2U; w++) {
+            for (uint32_t k = 1; k <= n; k++) {
+                mark_duties();
+                expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false, false);
+                _ADC1Interrupt();
+                /* Raised by the last period of each run of n, not before. */
+                assert_int_equal(IFS0bits.T2IF, (k == n) ? 1 : 0);
+            }
+            expect_function_call(hal_hook_slow);
+            _T2Interrupt();
+            assert_int_equal(IFS0bits.T2IF, 0);
         }
-        expect_function_call(mc_slow_step);
-        _T2Interrupt();
-        assert_int_equal(IFS0bits.T2IF, 0);
     }
-}
-
-static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void **state)
-{
-    (void)state;
-    mc_status_t st;
-
-    SRbits.IPL = 0;
-    expect_value(mc_request, request, MC_REQUEST_START_STOP);
-    hal_motor_request(MC_REQUEST_START_STOP);
-    assert_int_equal(SRbits.IPL, 0);
-
-    expect_value(mc_set_reference, value, -1234);
-    hal_motor_set_reference(-1234);
-    assert_int_equal(SRbits.IPL, 0);
-
-    will_return(mc_status, MC_STATE_FAULT);
-    will_return(mc_status, MC_FAULT_HARDWARE);
-    hal_motor_status(&st);
-    assert_int_equal(st.state, MC_STATE_FAULT);
-    assert_int_equal(st.fault, MC_FAULT_HARDWARE);
-    assert_int_equal(SRbits.IPL, 0);
-}
-
-static unsigned observed;
-
-static void observer_spy(void *ctx, const mc_t *mc)
-{
-    assert_ptr_equal(ctx, &observed);
-    check_same_motor((mc_t *)(uintptr_t)mc);
-    /* After the duties: the registers already hold this period's output. */
-    assert_int_equal(P1DC1, 7);
-    assert_int_equal(P1DC3, 9);
-    observed++;
-}
-
-static void test_adc_isr_should_call_the_observer_after_the_duties_until_removed(void **state)
-{
-    (void)state;
-    observed = 0;
-    hal_motor_observe(observer_spy, &observed);
-    assert_int_equal(SRbits.IPL, 0);
-    expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);
-    _ADC1Interrupt();
-    assert_int_equal(observed, 1);
-    assert_ptr_equal(hal_motor_core(), seen_mc); /* the main loop's handle is the ISR's motor */
-    hal_motor_observe(NULL, NULL);
-    setup(NULL);
-    expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);
-    _ADC1Interrupt();
-    assert_int_equal(observed, 1);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(
-            test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_three_duties,
-            setup),
-        cmocka_unit_test_setup(
-            test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults, setup),
-        cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
+            test_adc_isr_should_clear_the_flag_read_four_buffers_and_write_the_hooks_duties, setup),
+        cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_hook_says_off,
                                setup),
-        cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
+        cmocka_unit_test_setup(test_pwm_off_from_the_finishing_hook_should_switch_off_at_once,
                                setup),
         cmocka_unit_test_setup(
-            test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on, setup),
-        cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
+            test_adc_isr_should_precharge_after_start_until_the_hook_turns_the_outputs_on, setup),
+        cmocka_unit_test_setup(test_control_start_should_drop_stale_flags_then_enable_both_interrupts,
                                setup),
         cmocka_unit_test_setup(
-            test_adc_isr_should_raise_the_slow_step_interrupt_after_every_window_counted_from_start,
-            setup),
-        cmocka_unit_test_setup(test_motor_mailbox_should_call_the_core_with_interrupts_masked,
-                               setup),
+            test_adc_isr_should_raise_the_slow_interrupt_every_slow_periods_from_start, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,4 @@
-/* test_hal_isr_core.c - the ADC trampoline with the real core: registers follow mc_step(). */
+/* test_hal_isr_core.c - the trampoline, motor.c and the real core: registers follow mc_step(). */
 #include "test_support.h"
 
 #include <stdio.h>
@@ -6,9 +6,10 @@
 #include "sfr_standin.h"
 
 #include "hal_dspic33f.h"
+#include "motor.h"
 
 /*
- * hal_isr.c + hal_dspic33f.c + the real mc core, on the stand-in: the ADC
+ * hal_isr.c + hal_dspic33f.c + firmware/motor.c + the real mc core, on the stand-in: the ADC
  * buffers are set as the converter would leave them (currents at mid-scale,
  * the nominal bus, the pot at mid travel), the vector is called once per
  * period, and after every call the PWM registers must hold exactly what the
@@ -50,7 +51,7 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
 
     sfr_standin_reset();
     hal_init();
-    hal_motor_start();
+    motor_start();
     assert_int_equal(IEC0bits.AD1IE, 1);
     set_converter();
 
@@ -60,16 +61,16 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
         period();
         assert_int_equal(P1OVDCON, n < (unsigned)HAL_PRECHARGE_PERIODS ? 0x0015 : 0x0000);
     }
-    printf("measured: bootstrap precharge for %u periods (%.1f ms) after hal_motor_start()\n",
+    printf("measured: bootstrap precharge for %u periods (%.1f ms) after motor_start()\n",
            (unsigned)HAL_PRECHARGE_PERIODS, 1000.0 * HAL_PRECHARGE_PERIODS / PWM_FREQUENCY_HZ);
-    hal_motor_status(&st);
+    motor_status(&st);
     assert_int_equal(st.state, MC_STATE_STOPPED);
     assert_int_equal(P1OVDCON, 0x0000);
 
-    hal_motor_request(MC_REQUEST_START_STOP);
+    motor_request(MC_REQUEST_START_STOP);
     for (n = 0; n < 20000u; n++) { /* 1 s: calibrate, lock, open loop */
         period();
-        hal_motor_status(&st);
+        motor_status(&st);
         if (P1DC1 != st.duty[0] || P1DC2 != st.duty[1] || P1DC3 != st.duty[2] ||
             P1OVDCON != (st.outputs_on ? 0x3F00u : 0x0000u)) {
             mismatches++;
@@ -83,10 +84,10 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
     assert_int_equal(mismatches, 0);
     assert_cmp(on_periods, >, 0u); /* the core did turn the bridge on through the HAL */
 
-    hal_motor_request(MC_REQUEST_STOP);
+    motor_request(MC_REQUEST_STOP);
     IFS0bits.AD1IF = 1;
     _ADC1Interrupt();
-    hal_motor_status(&st);
+    motor_status(&st);
     assert_false(st.outputs_on);
     assert_int_equal(P1OVDCON, 0x0000);
 }

@@ -10,7 +10,7 @@
 #include "monitor_app.h"
 
 /*
- * A fake board around a real mc_t: the hal_motor_* mailbox calls the core,
+ * A fake board around a real mc_t: the motor_* mailbox calls the core,
  * the UART is two byte queues with a transmitter that takes at most
  * uart_room bytes per pass (like the dsPIC's 4-deep FIFO), and "the ISR" is
  * mc_step() followed by monitor_sample(), 20 periods per millisecond.
@@ -47,15 +47,15 @@ void hal_led_set(hal_led_t led, bool on)
     (void)led;
     (void)on;
 }
-void hal_motor_request(mc_request_t request)
+void motor_request(mc_request_t request)
 {
     mc_request(&motor, request);
 }
-void hal_motor_set_reference(int16_t ref)
+void motor_set_reference(int16_t ref)
 {
     mc_set_reference(&motor, ref);
 }
-void hal_motor_status(mc_status_t *st)
+void motor_status(mc_status_t *st)
 {
     mc_status(&motor, st);
 }

@@ -1,6 +1,6 @@
 """A small evaluator for the C constant expressions of the firmware's headers.
 
-The values of firmware/motors/*.h, firmware/boards/*.h and firmware/UserParms.h
+The values of firmware/motors/*.h, boards/*.h and firmware/UserParms.h
 are numbers, other macros and a little arithmetic on them:
 
     20000L   4.4   7.5e-06   (-1)   (0.8 * MOTOR_RAMP_END_RPM)

@@ -30,6 +30,7 @@ from .units import NAME_RE, SQRT3, TWO_PI, InputError
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 FIRMWARE = os.path.join(REPO, "firmware")
+BOARD_H = os.path.join(REPO, "boards", "board.h")  # the PWM settings, which the HAL reads too
 
 MAX_HEADER_BYTES = 1 << 20  # the shipped headers are 3..25 kB
 MAX_IF_NESTING = 64  # conditionals open at once in one file
@@ -429,11 +430,11 @@ def board_name_ok(board: str) -> str:
 
 
 def _board_header(board: str) -> str:
-    """firmware/boards/board_<board>.h, or InputError naming the boards there are."""
-    board_h = os.path.join(FIRMWARE, "boards", f"board_{board_name_ok(board)}.h")
+    """boards/board_<board>.h, or InputError naming the boards there are."""
+    board_h = os.path.join(REPO, "boards", f"board_{board_name_ok(board)}.h")
     if not os.path.isfile(board_h):
-        have = sorted(f[6:-2] for f in os.listdir(os.path.join(FIRMWARE, "boards")) if f.startswith("board_"))
-        raise InputError("board", f"no firmware/boards/board_{board}.h (boards: {', '.join(have)})")
+        have = sorted(f[6:-2] for f in os.listdir(os.path.join(REPO, "boards")) if f.startswith("board_"))
+        raise InputError("board", f"no boards/board_{board}.h (boards: {', '.join(have)})")
     return board_h
 
 
@@ -441,19 +442,18 @@ def profile_env(motor_header: str, board: str) -> Env:
     """Env of a motor header as built with BOARD=board: the board, the motor, UserParms.h,
     with the -D options the build passes (MC_BOARD_<BOARD>, MC_MOTOR_HEADER)."""
     board_h = _board_header(board)
-    # UserParms.h includes the board first, then the motor; both are #ifndef
-    # guarded per macro, and no macro is defined in both, so either order
-    # gives the same values; the motor's overrides of UserParms defaults
-    # (PWM_FREQUENCY_HZ...) must come before UserParms.h.
+    # UserParms.h includes boards/board.h (the board profile, then the PWM
+    # settings the HAL reads too), then the motor; a motor profile cannot
+    # move the PWM, only check it (emit.py).
     pre = {f"MC_BOARD_{board.upper()}": "1", "MC_MOTOR_HEADER": '"motor.h"'}
-    return Env(read_headers([board_h, motor_header, os.path.join(FIRMWARE, "UserParms.h")], pre,
+    return Env(read_headers([board_h, BOARD_H, motor_header, os.path.join(FIRMWARE, "UserParms.h")], pre,
                             profile=motor_header))
 
 
 def board_env(board: str) -> Env:
     """Env of a board with UserParms.h's defaults (no motor)."""
     pre = {f"MC_BOARD_{board_name_ok(board).upper()}": "1"}
-    return Env(read_headers([_board_header(board), os.path.join(FIRMWARE, "UserParms.h")], pre))
+    return Env(read_headers([_board_header(board), BOARD_H, os.path.join(FIRMWARE, "UserParms.h")], pre))
 
 
 # ---- the core's arithmetic --------------------------------------------------

@@ -2,7 +2,7 @@
 
     name = "hurst075"            # profile name: firmware/motors/motor_<name>.h
     description = "..."          # optional, becomes MOTOR_NAME
-    board = "mclv"               # firmware/boards/board_<board>.h
+    board = "mclv"               # boards/board_<board>.h
     pwm_frequency = "20 kHz"     # optional (UserParms.h default otherwise)
 
     [motor]
@@ -280,7 +280,7 @@ def parse(data: dict[str, Any]) -> Description:
     d.board = g("", "board")
     if not NAME_RE.fullmatch(d.board):
         raise InputError("board", f"{d.board[:40]!r}: a board name is lower-case letters, digits and _ "
-                                  f"(firmware/boards/board_<board>.h)")
+                                  f"(boards/board_<board>.h)")
     d.pwm_hz = g("", "pwm_frequency")
     d.pole_pairs = g("motor", "pole_pairs")
     d.r_ph = g("motor", "resistance") * g("motor", "resistance_kind")

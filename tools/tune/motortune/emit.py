@@ -122,8 +122,10 @@ def render(desc: Any, t: Any, tool_cmd: str) -> str:
               f"#define MOTOR_TUNE_BOARD {c_string(t.board)} /* the board these values were derived for */",
               "#endif"]
     if d.pwm_hz is not None:
-        lines += ["", "/* PWM frequency of the description (UserParms.h takes it from here). */",
-                  "#ifndef PWM_FREQUENCY_HZ", f"#define PWM_FREQUENCY_HZ {t.fpwm}L", "#endif"]
+        lines += ["", "/* PWM frequency of the description: the board's (boards/board.h) must match. */",
+                  f"#if defined(PWM_FREQUENCY_HZ) && PWM_FREQUENCY_HZ != {t.fpwm}L",
+                  f'#error "PWM_FREQUENCY_HZ: this profile was derived for {t.fpwm} Hz (build with -DPWM_FREQUENCY_HZ={t.fpwm}L)"',
+                  "#endif"]
     for title, macros in SECTIONS:
         present = [m for m in macros if m in vals]
         if not present:

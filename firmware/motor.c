@@ -1,0 +1,100 @@
+/* motor.c - the one running motor: the HAL's interrupt hooks and the main loop's mailbox. */
+#include <stddef.h>
+
+#include "motor.h"
+
+#include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/architecture.md) */
+
+static mc_t motor;
+
+/* The optional observer (motor_observe), read by the ADC interrupt. */
+static motor_observer_t observer;
+static void *observer_ctx;
+
+/* ---- the HAL's hooks (hal.h), in its interrupts ---------------------------- */
+
+void hal_hook_control(const hal_adc_frame_t *frame, hal_pwm_out_t *out)
+{
+    mc_step_control(&motor, frame, out);
+}
+
+/* If the finishing part faults (a failed start, a stall, an overrun), it
+ * turns out off (mc.h), and the outputs go off at once, not at the next
+ * period; the observer comes last, so it never delays either. */
+void hal_hook_finish(hal_pwm_out_t *out)
+{
+    bool on = out->outputs_on;
+    mc_step_finish(&motor, out);
+    if (on && !out->outputs_on) {
+        hal_pwm_off();
+    }
+    if (observer != NULL) {
+        observer(observer_ctx, &motor);
+    }
+}
+
+void hal_hook_slow(void)
+{
+    mc_slow_step(&motor);
+}
+
+/* ---- the mailbox ------------------------------------------------------------ */
+
+void motor_start(void)
+{
+    hal_control_stop();
+    mc_init(&motor);
+    hal_control_start((uint16_t)MC_SLOW_STEP_PERIODS);
+}
+
+void motor_request(mc_request_t request)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_request(&motor, request);
+    hal_critical_exit(s);
+}
+
+void motor_set_reference(int16_t ref)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_set_reference(&motor, ref);
+    hal_critical_exit(s);
+}
+
+void motor_status(mc_status_t *status)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    mc_status(&motor, status);
+    hal_critical_exit(s);
+}
+
+int16_t motor_get_gain(mc_gain_t gain)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    int16_t v = mc_get_gain(&motor, gain);
+    hal_critical_exit(s);
+    return v;
+}
+
+bool motor_set_gain(mc_gain_t gain, int16_t value)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    bool ok = mc_set_gain(&motor, gain, value);
+    hal_critical_exit(s);
+    return ok;
+}
+
+/* Both words change together: masked, so the interrupt never sees a new
+ * function with the old context. */
+void motor_observe(motor_observer_t fn, void *ctx)
+{
+    hal_irq_state_t s = hal_critical_enter();
+    observer = fn;
+    observer_ctx = ctx;
+    hal_critical_exit(s);
+}
+
+mc_t *motor_core(void)
+{
+    return &motor;
+}

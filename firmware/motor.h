@@ -1,0 +1,49 @@
+/* motor.h - the one running motor: the object the ADC interrupt steps, and its mailbox. */
+#ifndef MOTOR_H
+#define MOTOR_H
+
+/*
+ * The dsPIC image has one mc_t. It lives here, in firmware/, and belongs to
+ * the ADC interrupt, which steps it through the HAL's hooks (hal.h,
+ * hal_hook_control/finish/slow, implemented in motor.c). Everything else,
+ * the main loop (app.c) and the monitor alike, reaches it only through the
+ * calls below, each of which runs the core's call with the interrupts that
+ * step it masked (hal_critical_enter: CPU priority 7), so a request never
+ * lands mid-step and a status is the snapshot of one period. The masked
+ * time is one short core call (a copy of mc_status_t at most), far below
+ * the slack the interrupt leaves (docs/board.md "Timing"); a conversion
+ * that completes meanwhile is serviced on unmasking.
+ */
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "mc.h"
+
+/* mc_init() on the motor, then start the control interrupts
+ * (hal_control_start): from here on the core runs every PWM period and the
+ * slow step every MC_SLOW_STEP_PERIODS. */
+void motor_start(void);
+
+void motor_request(mc_request_t request);
+void motor_set_reference(int16_t ref);
+void motor_status(mc_status_t *status);
+
+/* The live gains (mc.h note 3): mc_get_gain() / mc_set_gain() on the
+ * motor, masked. */
+int16_t motor_get_gain(mc_gain_t gain);
+bool motor_set_gain(mc_gain_t gain, int16_t value);
+
+/* An observer of the running motor (e.g. the data monitor's recorder):
+ * called by the ADC interrupt once per period, after the duties are
+ * written and the core's step is complete, so it never delays them. It
+ * runs in the interrupt: constant time, no waiting, no UART. NULL removes
+ * it. */
+typedef void (*motor_observer_t)(void *ctx, const mc_t *mc);
+void motor_observe(motor_observer_t fn, void *ctx);
+
+/* The motor itself, for the monitor until it uses the calls above (the
+ * next change removes this). */
+mc_t *motor_core(void);
+
+#endif /* MOTOR_H */
