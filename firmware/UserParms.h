@@ -67,12 +67,11 @@
 /* MC_DEADTIME_MEASURE: measure the inverter's dead-time voltage at every
  * lock (mc.c note 4) and compensate and model that instead of
  * PWM_DEADTIME_NS; 0 = trust PWM_DEADTIME_NS. The real loss differs from
- * the programmed dead time by the switches' delays and the diodes' drop: a
- * 1 us error is 6.4 V on a 320 V bus, against 33 V of back-EMF at a
- * high-speed motor's lowest closed-loop speed. Needs MOTOR_LOCK_CURRENT_A
- * of at least 2.31 dead-time bands (MC_DEADTIME_BAND_A); adds 57 ms or more
- * to the lock, at most 0.57 s with a slowly swinging rotor (mc_derived.h
- * MC_DTM_*). */
+ * the programmed dead time by the switches' delays and the diodes' drop,
+ * which on a high-voltage bus is a large share of the back-EMF at the
+ * lowest closed-loop speed (docs/tuning.md, "Behind the defaults"). Needs
+ * MOTOR_LOCK_CURRENT_A of at least 2.31 dead-time bands
+ * (MC_DEADTIME_BAND_A) and lengthens the lock (mc_derived.h MC_DTM_*). */
 #ifndef MC_DEADTIME_MEASURE
 #define MC_DEADTIME_MEASURE 1
 #endif
@@ -87,8 +86,7 @@
  * partly on either diode and the real voltage loss is proportional to the
  * mean current: the band must match the ripple, which depends on the motor.
  * Peak ripple of one phase ~ Vbus Ts / (8 L) at 50 % duty; with space-vector
- * modulation sharing it between phases, about Vbus / (12 L fpwm) (0.052 A
- * for the Hurst on 24 V, 0.33 A for the high-speed motor on 320 V). A band
+ * modulation sharing it between phases, about Vbus / (12 L fpwm). A band
  * much narrower than the ripple switches the full dead-time voltage on the
  * ripple (chatter, and an applied-voltage error at light load that the
  * estimator reads as back-EMF); a wider one under-compensates. */
@@ -99,19 +97,13 @@
 /* Light-load floor of the Id reference (A, magnitude): the core asks
  * Id <= -(MC_ID_MIN_A - |Iq|), so it is off once |Iq| reaches it and no
  * torque capacity is lost. Inside the dead-time band the inverter loses
- * Td/Ts Vbus / band volts per amp (18 ohm for the Hurst), so at no load
- * (20 mA of phase current, 2 ADC codes) one code of current error is 0.16 V
- * of applied-voltage error for the estimator against 2.1 V of back-EMF at
- * 500 rpm: the angle error peaked at 5 to 6 deg. Kept out of the band (only
- * zero crossings pass through it), the loss depends on the current's sign
- * only. Costs 1.5 R Id^2 (0.17 W for the Hurst at no load), no torque
- * (surface magnets). Default: 4 band-widths, at most 40 % of
- * MOTOR_CURRENT_MAX_A (Hurst 0.21 A, Hurst300 1.18 A, high-speed motor
- * 0.8 A). Trials (Hurst, 500 rpm no load, five noise seeds, max angle
- * error): 4 band-widths 1.3 to 2.0 deg, 6: 1.4 to 2.0, 8: 1.2 to 1.75; but
- * 8 slowed the locked-rotor trip from 22 to 36..39 ms (bound 50) and raised
- * the bias of the +-30 % R, L corners from 1.9 to 2.7 deg (the model error
- * acts on Id). 0 = off. */
+ * Td/Ts Vbus / band volts per amp, so at light load one ADC code of
+ * current error is a large applied-voltage error for the estimator, which
+ * reads it as back-EMF. Kept out of the band (only zero crossings pass
+ * through it), the loss depends on the current's sign only. Costs
+ * 1.5 R Id^2, no torque (surface magnets). Default: 4 band-widths, at most
+ * 40 % of MOTOR_CURRENT_MAX_A; the trials behind it are in docs/tuning.md
+ * ("Behind the defaults"). 0 = off. */
 #ifndef MC_ID_MIN_A
 #define MC_ID_MIN_A                                                                                \
     ((4.0 * MC_DEADTIME_BAND_A < 0.4 * MOTOR_CURRENT_MAX_A) ? 4.0 * MC_DEADTIME_BAND_A             \

@@ -124,17 +124,15 @@ static void on_s2(app_t *app)
  * last explicit choice wins and the core's status shows it to every side:
  * ref_remote (a set reference, not the pot) and ref_seq (counts the set
  * references). S3 takes the reference for the board; while doubling, the
- * app writes the doubled pot every status period, but only if the status
- * still shows its own last write (ref_seq unchanged, ref_remote still set):
- * otherwise another side has taken the reference (or handed it back to the
- * pot) and S3's mode ends.
+ * app writes the doubled pot every status period, but only while the
+ * status still shows its own last write (mc_reference_held): otherwise
+ * another side has taken the reference (or handed it back to the pot) and
+ * S3's mode ends.
  */
 #if !defined(TORQUEMODE)
 static void board_reference(app_t *app)
 {
-    motor_status(&app->status);
-    motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
-    app->ref_seq_mine = (uint8_t)(app->status.ref_seq + 1U);
+    app->ref_seq_mine = motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
 }
 #endif
 
@@ -314,7 +312,7 @@ void app_tick_1ms(app_t *app)
         update_leds(app);
 #if !defined(TORQUEMODE)
         if (app->double_speed) {
-            if (app->status.ref_seq == app->ref_seq_mine && app->status.ref_remote) {
+            if (mc_reference_held(&app->status, app->ref_seq_mine)) {
                 board_reference(app);
             } else {
                 app->double_speed = false; /* another side took the reference */

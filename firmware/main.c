@@ -49,7 +49,7 @@ int main(void)
     app_init(&app);
     motor_start();
 #if !defined(APP_NO_MONITOR)
-    monitor_init(&monitor, motor_core());
+    monitor_init(&monitor);
     monitor_set_start_guard(&monitor, monitor_may_start, &app);
     monitor_app_client(&monitor, &monitor_client);
     app_set_uart_client(&app, &monitor_client);

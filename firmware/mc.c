@@ -137,6 +137,11 @@ q15_t mc_pot_to_torque(int16_t pot)
     return (q15_t)(((int32_t)p * MC_IQ_MAX_Q15) >> 15);
 }
 
+bool mc_reference_held(const mc_status_t *st, uint8_t seq)
+{
+    return st->ref_remote && st->ref_seq == seq;
+}
+
 uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
 {
     cnt[0] = (q15_abs_sat(in->speed) < MC_STALL_SPEED_Q15) ? (uint16_t)(cnt[0] + 1U) : 0U;
@@ -283,14 +288,20 @@ static void mc_outputs_off(mc_t *mc)
     mc->preset_pending = false;
 }
 
-static void mc_fault(mc_t *mc, uint16_t code)
+/* FAULT's entry: the cause recorded, the outputs off. */
+static void mc_enter_fault(mc_t *mc, uint16_t code)
 {
-    if (mc->state == MC_STATE_FAULT) {
-        return; /* the first cause stays */
-    }
     mc->fault = code;
     mc_outputs_off(mc);
     mc_enter(mc, MC_STATE_FAULT);
+}
+
+/* A fault raised in any state; in FAULT the first cause stays. */
+static void mc_fault(mc_t *mc, uint16_t code)
+{
+    if (mc->state != MC_STATE_FAULT) {
+        mc_enter_fault(mc, code);
+    }
 }
 
 /* CALIBRATE, after coasting for `wait` periods. */
@@ -301,22 +312,6 @@ static void mc_begin_calibration(mc_t *mc, uint16_t wait)
     mc->offset_acc_a = 0;
     mc->offset_acc_b = 0;
     mc_enter(mc, MC_STATE_CALIBRATE);
-}
-
-/* A START: from STOPPED, or from FAULT once the cause is gone. The bus is
- * checked here too: from STOPPED the overvoltage protection has already
- * tripped, but in FAULT it records nothing (the first cause stays), so a
- * START with the bus still out of its window must fault again here. */
-static void mc_start(mc_t *mc)
-{
-    if (mc->vbus <= MC_VBUS_UV_Q15 || mc->vbus >= MC_VBUS_OV_Q15) {
-        mc->state = MC_STATE_STOPPED; /* let mc_fault record the new cause */
-        mc_fault(mc, (mc->vbus >= MC_VBUS_OV_Q15) ? MC_FAULT_OVERVOLTAGE : MC_FAULT_UNDERVOLTAGE);
-        return;
-    }
-    mc->fault = MC_FAULT_NONE;
-    mc->retries = 0U;
-    mc_begin_calibration(mc, MC_CALIB_SKIP_PERIODS);
 }
 
 static void mc_stop(mc_t *mc)
@@ -380,13 +375,12 @@ static void mc_enter_closed_loop(mc_t *mc)
     /* The speed PI starts from the load's share of the ramp current, the
      * measured current on the estimated q axis low-passed over 32 windows
      * by the slow step (ol_iq), plus a quarter of the ramp current, within
-     * 0..I_ramp. One sample of that current, the preset before, can be
-     * anything in +-I_ramp under a rotor swinging about the forced angle
-     * (-0.47 A stopped a light rotor within 15 ms); the low-passed one alone
-     * fell short of a stick-slip Coulomb load; the whole ramp current
-     * (AN1078's preset) shot an unloaded Hurst from 500 to 1,217 rpm. The
-     * slow step presets the PI with it; until its first result arrives,
-     * the references are what the preset PI puts out. */
+     * 0..I_ramp: one sample swings with the rotor about the forced angle,
+     * the low-passed one alone falls short of a stick-slip load, and the
+     * whole ramp current (AN1078's preset) overshoots an unloaded motor
+     * (docs/tuning.md, "Behind the defaults"). The slow step presets the PI
+     * with it; until its first result arrives, the references are what the
+     * preset PI puts out. */
     mc->i_ref.q =
         q15_clamp(q15_add_sat(mc->ol_iq, (q15_t)(MC_RAMP_CURRENT_Q15 / 4)), 0, MC_RAMP_CURRENT_Q15);
     mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
@@ -1216,22 +1210,31 @@ Q15_INLINE bool mc_overcurrent(q15_t i)
     return i >= MC_OVERCURRENT_Q15 || i <= (q15_t)(-MC_OVERCURRENT_Q15);
 }
 
-void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+/* ---- one period: the control part --------------------------------------------- */
+
+/* The requests the main loop posted since the last period (mc.h note 1). */
+typedef struct {
+    bool toggle;   /* START_STOP: start when stopped or faulted, else stop */
+    bool start;    /* START */
+    bool stop;     /* STOP */
+    bool hw_fault; /* HW_FAULT */
+} mc_events_t;
+
+/* Takes the posted requests into ev, applies posted gains and the choice
+ * of reference. */
+static void mc_take_events(mc_t *mc, mc_events_t *ev)
 {
-    /* 1. Frame, requests and reference. */
-    mc->vbus = in->vbus;
-    mc->pot = in->pot;
-    bool req_toggle = false;
-    bool req_hw = false;
-    bool req_start = false;
-    bool req_stop = false;
+    ev->toggle = false;
+    ev->start = false;
+    ev->stop = false;
+    ev->hw_fault = false;
     uint8_t rseq = mc->req_seq;
     if (rseq != mc->req_seen) { /* something was posted (mc.h note 1) */
         mc->req_seen = rseq;
-        req_toggle = mc_take(mc, MC_REQUEST_START_STOP);
-        req_hw = mc_take(mc, MC_REQUEST_HW_FAULT);
-        req_start = mc_take(mc, MC_REQUEST_START);
-        req_stop = mc_take(mc, MC_REQUEST_STOP);
+        ev->toggle = mc_take(mc, MC_REQUEST_START_STOP);
+        ev->hw_fault = mc_take(mc, MC_REQUEST_HW_FAULT);
+        ev->start = mc_take(mc, MC_REQUEST_START);
+        ev->stop = mc_take(mc, MC_REQUEST_STOP);
         uint8_t gseq = mc->gain_seq;
         if (gseq != mc->gain_seen) {
             mc->gain_seen = gseq;
@@ -1243,14 +1246,24 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
             mc->ref_from_remote = !mc->ref_to_pot;
         }
     }
-    /* 2. Offsets off; ic from the other two. */
+}
+
+/* The frame in the core's terms: offsets off, ic from the other two. */
+static void mc_measure(mc_t *mc, const mc_adc_frame_t *in)
+{
+    mc->vbus = in->vbus;
+    mc->pot = in->pot;
     mc->ia = q15_sub_sat(in->ia, mc->offset_a);
     mc->ib = q15_sub_sat(in->ib, mc->offset_b);
     mc->ic = q15_dsp_dbl_sub2_sat(0, mc->ia, mc->ib); /* -ia - ib, saturated once */
+}
 
-    /* 3. Protections, before anything is driven. */
+/* The protections, in every state, before anything is driven: the one
+ * place the period's faults are raised. */
+static void mc_protect(mc_t *mc, const mc_events_t *ev)
+{
     bool running = mc_driving(mc->state);
-    if (req_hw) {
+    if (ev->hw_fault) {
         mc_fault(mc, MC_FAULT_HARDWARE);
     }
     if (running) {
@@ -1263,54 +1276,124 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     if (mc->vbus >= MC_VBUS_OV_Q15) {
         mc_fault(mc, MC_FAULT_OVERVOLTAGE);
     }
+}
 
-    /* 4. State machine. */
+/* A START, from STOPPED or from FAULT once the cause is gone: CALIBRATE,
+ * whose first period this is. The bus is checked here too: from STOPPED
+ * the overvoltage protection has already tripped, but in FAULT it records
+ * nothing (the first cause stays), so a START with the bus still out of
+ * its window enters FAULT again with that cause. */
+static void mc_start(mc_t *mc, const mc_adc_frame_t *in)
+{
+    if (mc->vbus <= MC_VBUS_UV_Q15 || mc->vbus >= MC_VBUS_OV_Q15) {
+        mc_enter_fault(mc,
+                       (mc->vbus >= MC_VBUS_OV_Q15) ? MC_FAULT_OVERVOLTAGE : MC_FAULT_UNDERVOLTAGE);
+        return;
+    }
+    mc->fault = MC_FAULT_NONE;
+    mc->retries = 0U;
+    mc_begin_calibration(mc, MC_CALIB_SKIP_PERIODS);
+    mc_calibrate(mc, in);
+}
+
+/* The state handlers: the period's events in the state the protections
+ * left, and its work. Each returns true when the current loops run this
+ * period (the driving states). */
+
+static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
+{
+    if (ev->toggle || ev->start) {
+        mc_start(mc, in);
+    }
+    return false;
+}
+
+static bool mc_on_fault(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
+{
+    /* timer > 0: not the fault raised by this very frame. */
+    if ((ev->toggle || ev->start) && mc->timer > 0U) {
+        mc_start(mc, in);
+    }
+    return false;
+}
+
+static bool mc_on_calibrate(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
+{
+    if (ev->toggle || ev->stop) {
+        mc_stop(mc);
+    } else {
+        mc_calibrate(mc, in);
+    }
+    return false;
+}
+
+/* LOCK: once the lock is done, OPEN_LOOP with the ramp current; this
+ * period still at the lock angle. */
+static bool mc_on_lock(mc_t *mc, const mc_events_t *ev)
+{
+    if (ev->toggle || ev->stop) {
+        mc_stop(mc);
+        return false;
+    }
+    if (MC_LOCK_DONE(mc)) {
+        mc->i_ref.q = MC_RAMP_CURRENT_Q15;
+        mc_enter(mc, MC_STATE_OPEN_LOOP);
+    }
+    return true;
+}
+
+/* OPEN_LOOP and CLOSED_LOOP: their changes of state come from the
+ * finishing part and the slow step. */
+static bool mc_on_running(mc_t *mc, const mc_events_t *ev)
+{
+    if (ev->toggle || ev->stop) {
+        mc_stop(mc);
+        return false;
+    }
+    return true;
+}
+
+static bool mc_dispatch(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
+{
     switch (mc->state) {
         case MC_STATE_STOPPED:
-            if (req_toggle || req_start) {
-                mc_start(mc);
-            }
-            break;
+            return mc_on_stopped(mc, ev, in);
         case MC_STATE_FAULT:
-            /* timer > 0: not the fault raised by this very frame. */
-            if ((req_toggle || req_start) && mc->timer > 0U) {
-                mc->state = MC_STATE_STOPPED;
-                mc_start(mc); /* back to FAULT at once if the bus is still out */
-            }
-            break;
-        default:
-            if (req_toggle || req_stop) {
-                mc_stop(mc);
-            }
-            break;
+            return mc_on_fault(mc, ev, in);
+        case MC_STATE_CALIBRATE:
+            return mc_on_calibrate(mc, ev, in);
+        case MC_STATE_LOCK:
+            return mc_on_lock(mc, ev);
+        default: /* OPEN_LOOP, CLOSED_LOOP */
+            return mc_on_running(mc, ev);
     }
+}
 
-    /* The loops once for every running state (a single call site, so the
-     * compiler inlines the current control into this function), at the
-     * angle the previous period's mc_step_finish prepared (mc_prepare,
-     * also after the period that ended CALIBRATE). */
-    bool control = false;
-    if (mc->state == MC_STATE_CALIBRATE) {
-        mc_calibrate(mc, in);
-    } else if (mc->state == MC_STATE_LOCK && MC_LOCK_DONE(mc)) {
-        mc->i_ref.q = MC_RAMP_CURRENT_Q15;
-        mc_enter(mc, MC_STATE_OPEN_LOOP); /* this period still at the lock angle */
-        control = true;
-    } else {
-        control = mc_driving(mc->state);
-    }
-    if (control) {
-        mc->outputs_on = true;
-        mc->i_ab = clarke_forward(mc->ia, mc->ib);
-        mc->theta = mc->theta_next;
-        mc_current_control(mc, mc->sc_next, mc->scv_next);
-    }
+/* The current loops, at the angle the previous period's mc_step_finish
+ * prepared (mc_prepare, also after the period that ended CALIBRATE). */
+static void mc_control(mc_t *mc)
+{
+    mc->outputs_on = true;
+    mc->i_ab = clarke_forward(mc->ia, mc->ib);
+    mc->theta = mc->theta_next;
+    mc_current_control(mc, mc->sc_next, mc->scv_next);
+}
 
+void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
+{
+    mc_events_t ev;
+    mc_take_events(mc, &ev);
+    mc_measure(mc, in);
+    mc_protect(mc, &ev);
+    if (mc_dispatch(mc, &ev, in)) {
+        mc_control(mc);
+    }
     mc_output(mc, out);
 }
 
-void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
+bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
 {
+    bool turned_off = false;
     /* The outputs are on exactly when mc_step_control ran the loops. */
     if (mc->outputs_on) {
         mc_estimate(mc);
@@ -1348,14 +1431,16 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
             mc->timer == (uint32_t)mc->calib_wait + (uint32_t)MC_CALIB_PERIODS) {
             mc_calibrate_end(mc);
         }
+        turned_off = out->outputs_on;
         mc_output(mc, out);
     }
+    return turned_off;
 }
 
 void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 {
     mc_step_control(mc, in, out);
-    mc_step_finish(mc, out);
+    (void)mc_step_finish(mc, out);
 }
 
 void mc_status(const mc_t *mc, mc_status_t *st)
@@ -1414,9 +1499,8 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    margin (mc_enter_closed_loop says why).
  *    Open-loop damping: a rotor pulled by a current at a forced angle is an
  *    undamped spring and mass; with little friction it swings about the
- *    forced angle for the whole ramp (with no friction and three times the
- *    Hurst's inertia, by +-250 rpm at 500 rpm, and the hand-off met it
- *    swinging and stalled). Once the estimate is valid, each window moves
+ *    forced angle for the whole ramp, and a hand-off that meets it swinging
+ *    stalls (docs/tuning.md, "Behind the defaults"). Once the estimate is valid, each window moves
  *    the forced angle back by MOTOR_OL_DAMP_S times the rotor's excess
  *    speed (mc_ol_damp): the torque then falls as the rotor runs ahead and
  *    rises as it falls behind, a viscous damping of the swing. The excess
@@ -1458,10 +1542,10 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    drop; the core adds back what it believes (MC_DEADTIME_COMP) and feeds
  *    the estimator the duty less that loss, so an error in it is an
  *    applied-voltage error the estimator reads as back-EMF, at every speed
- *    and load. PWM_DEADTIME_NS is only what the PWM module is told: 1 us
- *    off on the 320 V bus is 6.4 V against 33 V of back-EMF at a high-speed
- *    motor's lowest closed-loop speed, and the motor ran up to 40 % off its
- *    speed. At the lock the rotor is at rest and its current I is on beta,
+ *    and load. PWM_DEADTIME_NS is only what the PWM module is told, and on
+ *    a high-voltage bus the difference is a large share of the back-EMF at
+ *    the lowest closed-loop speed (docs/tuning.md, "Behind the defaults").
+ *    At the lock the rotor is at rest and its current I is on beta,
  *    +-sqrt(3)/2 I in phases B and C, both outside the band, so the real
  *    voltage on beta is R I exactly, and the estimator's voltage u (what
  *    the duties less the modelled loss give) misses it by (g - 1) D, D the
@@ -1489,8 +1573,8 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  *    sensors, so a sensor that stops following its current (a dead
  *    amplifier frozen at one code, an open input reading its bias) hides
  *    the current it should limit: the current PI winds up to the voltage
- *    limit and the real current runs to Vmax / R (about 5 A on the Hurst,
- *    against a 3.5 A trip). A live sensor lets the current loops make the
+ *    limit and the real current runs to Vmax / R, which can be beyond the
+ *    trip. A live sensor lets the current loops make the
  *    measured current follow the reference within a few periods (their
  *    bandwidth is 2000 to 4600 rad/s); a failed one does not. Every period
  *    with the outputs on, the interrupt adds the error on d and q to the

@@ -160,8 +160,7 @@ typedef struct {
                                its E_FS = SMC_EMF_FS_RATIO (2) x MC_VOLTAGE_FULLSCALE_V; the two
                                filter stages leave about SMC_STAGE_GAIN (0.3..0.4) of the true
                                phase amplitude, so this is a consistency figure (the stall
-                               check's), not volts of back-EMF: 1503 rpm on the simulated
-                               Hurst (6.3 V) reads 2385 */
+                               check's), not volts of back-EMF */
     int16_t ia, ib;         /* offset-corrected phase currents, Q15 of BOARD_I_FULLSCALE_A */
     uint16_t duty[3];       /* duties of the last step (what the next period applies) */
     bool outputs_on;        /* as in the last mc_pwm_out_t */
@@ -378,12 +377,13 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
  * whole step could finish (the dsPIC's interrupt): mc_step_control() does
  * everything up to the duties and fills *out as mc_step() does;
  * mc_step_finish() must follow it, with the same out, before the next
- * period's call, and nothing else may touch mc in between. If the finishing
- * part faults (a failed start, a stall, an overrun), it turns *out off
- * (duties PWM_DUTY_MAX / 2, outputs_on false), and the caller applies that
- * at once. The two in a row are mc_step(), bit for bit. */
+ * period's call, and nothing else may touch mc in between. The two in a
+ * row are mc_step(), bit for bit. mc_step_finish() returns true when the
+ * finishing part faulted (a failed start, a stall, an overrun) and turned
+ * *out off (duties PWM_DUTY_MAX / 2, outputs_on false): the caller switches
+ * the outputs off at once, not at the next period. */
 void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out);
-void mc_step_finish(mc_t *mc, mc_pwm_out_t *out);
+bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out);
 
 /* The slow work of one window (the slow step above): call it after every
  * MC_SLOW_STEP_PERIODS-th mc_step() (counting from mc_init()), from a
@@ -409,6 +409,13 @@ q15_t mc_pot_to_torque(int16_t pot);
  * [SPEED_REF_MIN_RPM, SPEED_REF_MAX_RPM]; TORQUEMODE: Iq reference, Q15 of
  * BOARD_I_FULLSCALE_A, clamped to +-MOTOR_CURRENT_MAX_A. */
 void mc_set_reference(mc_t *mc, int16_t ref);
+
+/* The reference's owner rule, for every side that sets it: the reference
+ * has one owner at a time, the last explicit choice (mc_set_reference or
+ * MC_REQUEST_REF_POT). A writer whose own last choice was number seq
+ * (mc_status_t.ref_seq right after it) still holds the reference while the
+ * status shows a set reference and no choice since. */
+bool mc_reference_held(const mc_status_t *st, uint8_t seq);
 
 /* Run-time gain change (note 3): posted like mc_request(), applied at the
  * start of the next mc_step() to every loop it concerns at once, so the d
@@ -459,12 +466,11 @@ void mc_status(const mc_t *mc, mc_status_t *st);
  *    loses nothing. So duty clamping, bus ripple and the dead time itself
  *    (compensated or not) are all seen by the model. Inside the dead-time
  *    band the loss is a steep function of the current (Td/Ts Vbus / band,
- *    18 ohm for the Hurst), so at light load any current error is volts of
- *    model error: the Id floor (MC_ID_MIN_A) keeps the phase currents out
- *    of the band. Evaluating the loss after the fact, at the mean of the
- *    currents measured at both ends of the period, was tried: same
- *    accuracy with the floor (1.3 to 2.2 deg max at 500 rpm, no load, three
- *    noise seeds, against 1.3 to 2.0), 13 % more instructions per step.
+ *    so at light load any current error is volts of model error: the Id
+ *    floor (MC_ID_MIN_A) keeps the phase currents out of the band. (The
+ *    loss is predicted from this sample's currents, not evaluated after the
+ *    fact at the mean of both ends of the period: docs/tuning.md, "Behind
+ *    the defaults".)
  *    The duties must be ready by t_(n+1), half a period after the sample,
  *    which on the dsPIC is less time than the whole step takes, so the
  *    current loops do not wait for this sample's estimator update: they

@@ -25,7 +25,7 @@
  */
 
 #include "q15.h"
-#include "smc.h"
+#include "smc_params.h"
 #include "UserParms.h"
 
 /* MC_CHECK(PARAM, cond, "why"): stops the build when cond is false, the
@@ -106,7 +106,7 @@ MC_CHECK_FOR(PWM_FREQUENCY_HZ, BOARD_FCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ <= 
              "<= 32767 counts");
 
 /* PWM_DUTY_MAX, the duty full scale, is boards/board.h's. */
-#define MC_TS_S      (1.0 / (double)PWM_FREQUENCY_HZ)
+#define MC_TS_S (1.0 / (double)PWM_FREQUENCY_HZ)
 
 /* The sample instant as a fraction of the period after its start (mc.h
  * timing contract): the midpoint of the center-aligned PWM, where every
@@ -634,9 +634,9 @@ MC_CHECK(MC_STALL_BEMF_HIGH_FRACTION,
 
 /* ---- estimator (the motor model is checked above) ------------------------------------- */
 
-/* Kslide must exceed the largest back-EMF (smc.h note 5), which above the
+/* Kslide must exceed the largest back-EMF (docs/estimator.md note 5), which above the
  * base speed is larger than V_FS; the estimator's back-EMF full scale is
- * E_FS = 2 V_FS (smc.h note 2). */
+ * E_FS = 2 V_FS (docs/estimator.md note 2). */
 MC_CHECK_FOR(MOTOR_SMC_GAIN_V, BOARD_VBUS_NOMINAL_V,
              MOTOR_SMC_GAIN_V > 0.0 && MOTOR_SMC_GAIN_V < 2.0 * MC_VOLTAGE_FULLSCALE_V,
              "Kslide must be in (0, 2 V_FS = 2 BOARD_VBUS_NOMINAL_V / sqrt 3)");
@@ -714,7 +714,7 @@ MC_CHECK_FOR(MOTOR_SPEED_NOMINAL_RPM, MOTOR_KE_VPK_LL_PER_KRPM, MC_FW_APPLY_(MC_
              "the back-EMF at the nominal speed (Id of table entry 0, no load) needs more "
              "voltage than BOARD_VBUS_NOMINAL_V gives: lower the speed (field weakening "
              "starts there)");
-/* The observer's back-EMF full scale is E_FS = 2 V_FS (smc.h note 2): the
+/* The observer's back-EMF full scale is E_FS = 2 V_FS (docs/estimator.md note 2): the
  * back-EMF at the top speed must stay inside it. */
 MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_KE_VPK_LL_PER_KRPM,
              MC_W_E_(MOTOR_SPEED_FW_MAX_RPM) * MC_PSI_VS_ <

@@ -11,21 +11,22 @@ static mc_t motor;
 static motor_observer_t observer;
 static void *observer_ctx;
 
-/* ---- the HAL's hooks (hal.h), in its interrupts ---------------------------- */
+/* ---- the HAL's hooks (hal.h), in its interrupts ---------------------------- *
+ * ctx is &motor (motor_start hands it to hal_control_start, with the
+ * window length the core counts too: MC_SLOW_STEP_PERIODS, both from
+ * mc_init). Passed through, it is already where the core's functions take
+ * their object, so the control and slow hooks are a jump into the core. */
 
-void hal_hook_control(const hal_adc_frame_t *frame, hal_pwm_out_t *out)
+void hal_hook_control(void *ctx, const hal_adc_frame_t *frame, hal_pwm_out_t *out)
 {
-    mc_step_control(&motor, frame, out);
+    mc_step_control((mc_t *)ctx, frame, out);
 }
 
-/* If the finishing part faults (a failed start, a stall, an overrun), it
- * turns out off (mc.h), and the outputs go off at once, not at the next
- * period; the observer comes last, so it never delays either. */
-void hal_hook_finish(hal_pwm_out_t *out)
+/* A fault of the finishing part switches the outputs off at once, not at
+ * the next period; the observer comes last, so it never delays that. */
+void hal_hook_finish(void *ctx, hal_pwm_out_t *out)
 {
-    bool on = out->outputs_on;
-    mc_step_finish(&motor, out);
-    if (on && !out->outputs_on) {
+    if (mc_step_finish((mc_t *)ctx, out)) {
         hal_pwm_off();
     }
     if (observer != NULL) {
@@ -33,9 +34,9 @@ void hal_hook_finish(hal_pwm_out_t *out)
     }
 }
 
-void hal_hook_slow(void)
+void hal_hook_slow(void *ctx)
 {
-    mc_slow_step(&motor);
+    mc_slow_step((mc_t *)ctx);
 }
 
 /* ---- the mailbox ------------------------------------------------------------ */
@@ -44,7 +45,7 @@ void motor_start(void)
 {
     hal_control_stop();
     mc_init(&motor);
-    hal_control_start((uint16_t)MC_SLOW_STEP_PERIODS);
+    hal_control_start(&motor, (uint16_t)MC_SLOW_STEP_PERIODS);
 }
 
 void motor_request(mc_request_t request)
@@ -54,11 +55,14 @@ void motor_request(mc_request_t request)
     hal_critical_exit(s);
 }
 
-void motor_set_reference(int16_t ref)
+uint8_t motor_set_reference(int16_t ref)
 {
+    mc_status_t st;
     hal_irq_state_t s = hal_critical_enter();
     mc_set_reference(&motor, ref);
+    mc_status(&motor, &st);
     hal_critical_exit(s);
+    return st.ref_seq;
 }
 
 void motor_status(mc_status_t *status)
@@ -92,9 +96,4 @@ void motor_observe(motor_observer_t fn, void *ctx)
     observer = fn;
     observer_ctx = ctx;
     hal_critical_exit(s);
-}
-
-mc_t *motor_core(void)
-{
-    return &motor;
 }

@@ -26,8 +26,12 @@
 void motor_start(void);
 
 void motor_request(mc_request_t request);
-void motor_set_reference(int16_t ref);
 void motor_status(mc_status_t *status);
+
+/* mc_set_reference() on the motor; returns the number of this choice of
+ * reference (mc_status_t.ref_seq right after it), the caller's claim: see
+ * mc_reference_held() (mc.h). */
+uint8_t motor_set_reference(int16_t ref);
 
 /* The live gains (mc.h note 3): mc_get_gain() / mc_set_gain() on the
  * motor, masked. */
@@ -41,9 +45,5 @@ bool motor_set_gain(mc_gain_t gain, int16_t value);
  * it. */
 typedef void (*motor_observer_t)(void *ctx, const mc_t *mc);
 void motor_observe(motor_observer_t fn, void *ctx);
-
-/* The motor itself, for the monitor until it uses the calls above (the
- * next change removes this). */
-mc_t *motor_core(void);
 
 #endif /* MOTOR_H */

@@ -15,10 +15,10 @@
  *   result leaves Q15, i.e. only for |ia + 2 ib| > sqrt(3) full scale
  *   (inputs that are not a balanced three-phase set); it never wraps.
  *   Accuracy (test/foc/test_clarke_park.c, 3.9e7 input pairs plus every
- *   edge row): alpha exact; |beta - (ia + 2 ib)/sqrt(3)| <= 0.7 LSB
- *   (0.5 rounding + 0.2 from the constant; measured 0.694 LSB); saturated
- *   cases equal the clamped exact value. On a rounded balanced set of any
- *   amplitude, beta is within 1.49 LSB of A sin(theta) (bound 1.57 LSB).
+ *   edge row; it prints the measured figures): alpha exact; |beta - (ia + 2 ib)/sqrt(3)| <= 0.7 LSB
+ *   (0.5 rounding + 0.2 from the constant); saturated cases equal the
+ *   clamped exact value. On a rounded balanced set of any amplitude, beta
+ *   is within 1.57 LSB of A sin(theta).
  *   Cost: two accumulator loads and two multiply-accumulates, no division.
  */
 #define CLARKE_INV_SQRT3_Q16 ((int32_t)37837) /* round(65536 / sqrt(3)) */

@@ -37,10 +37,11 @@
  * bracketing table entries, so it cannot overflow.
  * Accuracy: |Id_ref - exact interpolation| <= 0.5 LSB + |step| / 65536 LSB
  * (step = difference of the bracketing entries); at table points, below
- * nominal and above max exact. Measured over every speed -32768..32767
- * (test/foc/test_fieldweak.c): 0.55 LSB max for an AN1078-like falling
- * table (0 to -0.7) on 12 spans; 1.15 LSB for tables alternating between
- * +-full scale (step 65535), never above the bound.
+ * nominal and above max exact. test/foc/test_fieldweak.c checks it over
+ * every speed -32768..32767 for an AN1078-like falling table (0 to -0.7)
+ * on 12 spans and for tables alternating between +-full scale (step
+ * 65535), and prints the measured figures (docs/foc_control_blocks.md,
+ * "Measured accuracy").
  */
 #define FIELDWEAK_TABLE_SIZE 16
 

@@ -20,8 +20,9 @@
  * parks one error beyond the limit instead of running away. Once the error
  * reverses, U decays toward the new Out + Err with factor (1 - Kc) per
  * call, so the output leaves the limit within a few 1/Kc calls however
- * long it was saturated (test_pi.c: 111 calls with Kc = Ki = 0.01, as
- * predicted, against 651 with Kc = 0, after 20,000 saturated calls).
+ * long it was saturated (test_pi.c checks it with Kc = Ki = 0.01 after
+ * 20,000 saturated calls, against the prediction and Kc = 0; figures:
+ * docs/foc_control_blocks.md, "Measured accuracy").
  *
  * Gains >= 1 are kept as a Q15 mantissa with the shift named beside it:
  * proportional gain = kp * 2^kp_shift, kp_shift in 0..7 (larger values are
@@ -36,9 +37,10 @@
  * saturate like the accumulator with SATA = 1. U is rounded to Q15 (nearest, ties up, q15.h)
  * and clamped to the limits. Nothing wraps for any input or gain.
  * Accuracy: |Out - double model of these same equations| <= 1 LSB (pi.c
- * note 1); measured 0.99 LSB max, 0.09 mean, over 800,000 steps of 400
- * random runs (random gains, kp_shift 0..7, limits changed at run time,
- * open and closed loop, 57 % of steps at a limit) in test/foc/test_pi.c.
+ * note 1), checked over 800,000 steps of 400 random runs (random gains,
+ * kp_shift 0..7, limits changed at run time, open and closed loop) in
+ * test/foc/test_pi.c, which prints the measured figures
+ * (docs/foc_control_blocks.md, "Measured accuracy").
  */
 typedef struct {
     q15_t kp;         /* Q15 proportional gain mantissa, 0..32767 */

@@ -17,8 +17,8 @@
  *                  set, hands it to hal_hook_control(), writes the duties
  *                  it gets back, then calls hal_hook_finish(); every
  *                  slow_periods-th period it raises the slow interrupt,
- *                  which calls hal_hook_slow(). The three hooks are the
- *                  firmware's (firmware/motor.c);
+ *                  whose trampoline calls hal_hook_slow(). The three hooks
+ *                  are the firmware's (firmware/motor.c);
  *   main loop      buttons, LEDs, UART, the 1 ms tick, the fault latch,
  *                  never the PWM or ADC directly.
  *
@@ -115,11 +115,12 @@ void hal_critical_exit(hal_irq_state_t saved);
 /* ---- the control interrupts ---------------------------------------------- */
 
 /* Enable the ADC interrupt and the slow interrupt: from the next
- * conversion set on, the hooks below run every PWM period, and
- * hal_hook_slow() after every slow_periods-th (1..65535), counted from
- * here. The first 10 ms the bootstrap capacitors precharge (the low
+ * conversion set on, the control and finish hooks below run every PWM
+ * period and the slow hook after every slow_periods-th (1..65535, counted
+ * from here), each given ctx (the firmware's object; the HAL only hands it
+ * back). The first 10 ms the bootstrap capacitors precharge (the low
  * switches on while the hooks keep the outputs off). */
-void hal_control_start(uint16_t slow_periods);
+void hal_control_start(void *ctx, uint16_t slow_periods);
 
 /* Disable both interrupts (a conversion set that completes meanwhile is
  * dropped): the hooks no longer run. */
@@ -131,14 +132,14 @@ void hal_control_stop(void);
  * from this period's conversion set. The HAL writes them as soon as this
  * returns, before the period boundary that loads them. Constant time, no
  * waiting, no UART. */
-void hal_hook_control(const hal_adc_frame_t *frame, hal_pwm_out_t *out);
+void hal_hook_control(void *ctx, const hal_adc_frame_t *frame, hal_pwm_out_t *out);
 
 /* The same interrupt, after the duties are in the registers: the rest of
  * the period's work. out is what hal_hook_control() returned; to turn the
  * outputs off now, call hal_pwm_off(). */
-void hal_hook_finish(hal_pwm_out_t *out);
+void hal_hook_finish(void *ctx, hal_pwm_out_t *out);
 
 /* The slow interrupt (lower priority, pre-empted by the ADC interrupt). */
-void hal_hook_slow(void);
+void hal_hook_slow(void *ctx);
 
 #endif /* HAL_H */

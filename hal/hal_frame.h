@@ -1,4 +1,5 @@
-/* hal_frame.h - the two values one PWM period hands across the seam: the ADC set in, the duties out. */
+/* hal_frame.h - the two values one PWM period hands across the seam: the ADC set in, the duties
+ * out. */
 #ifndef HAL_FRAME_H
 #define HAL_FRAME_H
 

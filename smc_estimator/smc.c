@@ -1,10 +1,19 @@
-/* smc.c - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages. */
+/* smc.c - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages.
+ * "note N" is docs/estimator.md, "Derivation", note N. */
 #include "smc.h"
 
 #include "atan2.h"
 
+/* Fixed design constants of the speed path (notes 7-8). */
+#define SMC_LAG_DEADZONE      1024 /* settled: lag steps below 5.6 deg per window are noise */
+#define SMC_LAG_TRANSIENT     5461 /* a lag step above 30 deg starts a tracking phase */
+#define SMC_STARTUP_WINDOWS   32U  /* tracking phase after reset, preset or a transient */
+#define SMC_K_LPF_SHIFT       2U   /* settled: K follows the speed 4 times slower */
+#define SMC_K_LPF_SHIFT_START 1U   /* tracking: 2 times slower */
+#define SMC_EMF_RAW_K_SHIFT   2    /* the model back-EMF is smoothed with 4 K */
+
 /*
- * Slow side, once per window (smc_slow_step, smc.h note 10): the lag
+ * Slow side, once per window (smc_slow_step, note 10): the lag
  * correction (one atan2), the speed scaling (note 7), K, the compensation
  * from the transfer functions (notes 3-4: two atan2 calls and about twenty
  * 16 x 16 products), the back-EMF amplitude and one 32 / 16 division for

@@ -3,7 +3,8 @@
 #ifndef SMC_UPDATE_H
 #define SMC_UPDATE_H
 
-/* Included by smc.h only (its declarations come first). */
+/* Included by smc.h only (its declarations come first). "note N" is
+ * docs/estimator.md, "Derivation", note N. */
 #include "atan2.h"
 
 /*

@@ -10,10 +10,17 @@
  * reference (replacing the pot) and change a whitelist of tuning parameters.
  * docs/monitor.md is the protocol specification.
  *
+ * The parts, one job each:
+ *   monitor_link.[ch]  framing: bytes <-> frames, CRC, transmit queue;
+ *   monitor_vars.[ch]  the registry: one row per variable, one per gain;
+ *   monitor_rec.[ch]   the recorder: sampling in the ISR, DATA frames;
+ *   monitor.c          the protocol: one table row per command, and the
+ *                      adapter, the only place the main loop calls the core.
+ *
  * Two contexts, as on the dsPIC:
  *   ISR        monitor_sample() once per PWM period, after mc_step(): O(1),
  *              it never waits and never touches the UART (a decimation count,
- *              then at most one mc_status() copy and nch int16 stores);
+ *              then at most nch variable reads and int16 stores);
  *   main loop  monitor_rx_byte() for each received byte (only while
  *              monitor_rx_ready()), monitor_tick_1ms() every millisecond (the
  *              receive timeout), monitor_poll() on every pass (queues the
@@ -29,10 +36,6 @@
  * (the ISR then returns at once) and sets run last.
  * Every shared field is one byte or one 16-bit word (atomic on the dsPIC).
  *
- * Frame (both directions), all multi-byte fields little-endian:
- *   0xA5 | LEN | CMD | PAYLOAD[LEN] | CRC16 lo | CRC16 hi
- * LEN <= MONITOR_MAX_PAYLOAD; CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF,
- * no reflection, no final xor) over LEN, CMD and PAYLOAD.
  * A reply has CMD | 0x80; an error reply has CMD 0x7F and the payload
  * [request CMD, MONITOR_ERR_*]; a request that gets an error reply changed
  * nothing. Recorded data goes out as unsolicited MONITOR_CMD_DATA frames.
@@ -42,24 +45,17 @@
 #include <stdint.h>
 
 #include "mc.h"
+#include "monitor_link.h"
+#include "monitor_vars.h"
 
-/* ---- sizes (override with -D) -------------------------------------------- */
+/* ---- sizes (override MONITOR_BUF_WORDS with -D) ------------------------------- */
 
 #define MONITOR_MAX_CH 4U /* channels sampled together */
 #ifndef MONITOR_BUF_WORDS
 #define MONITOR_BUF_WORDS 256U /* recorder RAM, int16 words (512 bytes) */
 #endif
-#define MONITOR_MAX_PAYLOAD 40U /* longest payload accepted or sent */
-#ifndef MONITOR_TX_SIZE
-#define MONITOR_TX_SIZE 128U /* transmit queue, bytes, power of two <= 256 */
-#endif
-#define MONITOR_FRAME_OVERHEAD 5U /* SOF LEN CMD CRC CRC */
-#define MONITOR_REPLY_MAX      (MONITOR_MAX_PAYLOAD + MONITOR_FRAME_OVERHEAD) /* 45 */
-#define MONITOR_RX_TIMEOUT_MS  20U /* a frame with a longer gap between bytes is dropped */
-#define MONITOR_DECIM_MAX      10000U
-#define MONITOR_VERSION        1U
-
-#define MONITOR_SOF 0xA5U
+#define MONITOR_DECIM_MAX 10000U
+#define MONITOR_VERSION   1U
 
 /* ---- commands (host -> device; the reply has CMD | 0x80) ------------------ */
 #define MONITOR_CMD_INFO       0x01U /* []                 -> version, counts, sizes, f_pwm */
@@ -78,6 +74,7 @@
 #define MONITOR_REPLY          0x80U
 
 /* error codes */
+#define MONITOR_ERR_NONE    0U /* not sent: the request succeeded */
 #define MONITOR_ERR_CRC     1U /* CRC mismatch */
 #define MONITOR_ERR_LENGTH  2U /* LEN above MONITOR_MAX_PAYLOAD, or wrong for the command */
 #define MONITOR_ERR_UNKNOWN 3U /* no such command */
@@ -107,92 +104,48 @@
 #define MONITOR_REC_RUNNING 2U /* recording (stream: and sending) */
 #define MONITOR_REC_SENDING 3U /* snapshot full, being sent */
 
-/* variable kinds (VAR_INFO) */
-#define MONITOR_KIND_Q15 0U /* engineering value = raw / 32768 * fs */
-#define MONITOR_KIND_INT 1U /* engineering value = raw (enum, code, flag) */
-
-/* ---- the variables and parameters -------------------------------------- */
-
-typedef struct {
-    const char *name; /* short, no spaces */
-    const char *unit;
-    uint8_t kind;     /* MONITOR_KIND_* */
-    int32_t fs_milli; /* full scale x 1000 in `unit` (Q15 kind) */
-} monitor_var_t;
-
-typedef struct {
-    const char *name;
-    int16_t min, max; /* inclusive range SET_PARAM accepts */
-} monitor_param_t;
-
-#define MONITOR_NUM_VARS   18U
-#define MONITOR_NUM_PARAMS 4U
-extern const monitor_var_t monitor_vars[MONITOR_NUM_VARS];
-extern const monitor_param_t monitor_params[MONITOR_NUM_PARAMS];
-
-/* Value of variable idx in mc, as mc_status() reports it in the field of
- * that name (0 for idx out of range). */
-int16_t monitor_var_read(const mc_t *mc, uint8_t idx);
-
-/* Current value of parameter idx in mc (0 for idx out of range). */
-int16_t monitor_param_get(const mc_t *mc, uint8_t idx);
-
 /* ---- the instance -------------------------------------------------------- */
 
-typedef enum {
-    MONITOR_RX_SOF,
-    MONITOR_RX_LEN,
-    MONITOR_RX_CMD,
-    MONITOR_RX_PAYLOAD,
-    MONITOR_RX_CRC0,
-    MONITOR_RX_CRC1
-} monitor_rx_state_t;
-
 typedef struct {
-    mc_t *mc; /* the motor commands and the recorder act on */
+    monitor_link_t link; /* framing (monitor_link.c, main loop) */
 
-    /* receiver (main loop) */
-    monitor_rx_state_t rx_state;
-    uint8_t rx_len, rx_cmd, rx_pos;
-    uint16_t rx_crc; /* running CRC of LEN CMD PAYLOAD */
-    uint8_t rx_crc_lo;
-    uint8_t rx_idle_ms; /* ms since the last byte of a partial frame */
-    uint8_t rx_buf[MONITOR_MAX_PAYLOAD];
+    /* protocol counters (monitor.c, main loop), reported by STATUS */
     uint16_t rx_errors;  /* error replies sent (saturates) */
     uint16_t rx_dropped; /* frames dropped for lack of TX room (saturates) */
 
-    /* transmitter (main loop) */
-    uint8_t tx[MONITOR_TX_SIZE];
-    uint8_t tx_head, tx_tail;
+    /* the motor's side (monitor.c, main loop; the motor itself through motor.h) */
+    bool (*may_start)(void *ctx); /* START's guard (the board's start rule), NULL: none */
+    void *may_start_ctx;
+    bool remote;          /* the monitor set the reference (SET_SPEED) ... */
+    uint8_t ref_seq_mine; /* ... and mc_status_t.ref_seq was this after it: the status
+                             reports REMOTE only while both hold (mc_reference_held) */
 
-    /* recorder configuration (main loop, only while run == 0) */
+    /* The recorder (monitor_rec.c). Its fields are not gathered in a struct
+     * of their own because tools/sim/sim_pty.c reads `wr` by this name. */
+    /* configuration (main loop, only while run == 0) */
     uint16_t decim;             /* 1..MONITOR_DECIM_MAX PWM periods per sample */
+    uint16_t cap;               /* sample sets the buffer holds: MONITOR_BUF_WORDS / nch */
     uint8_t nch;                /* 1..MONITOR_MAX_CH */
     uint8_t ch[MONITOR_MAX_CH]; /* variable indices */
-    uint16_t cap;               /* sample sets the buffer holds: MONITOR_BUF_WORDS / nch */
     uint8_t mode, trig;
-    bool remote;                  /* the monitor set the reference (SET_SPEED) ... */
-    uint8_t ref_seq_mine;         /* ... and mc_status_t.ref_seq was this after it: the status
-                                     reports REMOTE only while both hold (app.c's owner rule) */
-    bool (*may_start)(void *ctx); /* START's guard (the fault pin), NULL: none */
-    void *may_start_ctx;
-
-    /* recorder handshake */
+    /* handshake */
     volatile uint8_t run;          /* main: 1 = the ISR records */
     volatile uint8_t trig_req;     /* main: TRIGGER received */
     volatile uint8_t isr_started;  /* ISR: the snapshot trigger has fired */
     volatile uint8_t isr_done;     /* ISR: snapshot buffer full */
     volatile uint8_t isr_overflow; /* ISR: stream stopped, buffer was full */
+    uint8_t last_state;            /* ISR: motor state at the previous sample */
     volatile uint16_t wr;          /* ISR: sample sets written (mod 2^16) */
     volatile uint16_t rd;          /* main: sample sets sent (mod 2^16) */
     uint16_t wi, ri;               /* ISR / main: ring slot of the next set */
     uint16_t div;                  /* ISR: periods since the last sample */
-    uint8_t last_state;            /* ISR: motor state at the previous sample */
     int16_t buf[MONITOR_BUF_WORDS];
 } monitor_t;
 
-/* Everything idle, channels {speed_est}, decimation 1, no START guard. */
-void monitor_init(monitor_t *m, mc_t *mc);
+/* Everything idle, channels {speed_est}, decimation 1, no START guard. The
+ * commands act on the motor through its mailbox (motor.h), the recorder on
+ * the motor monitor_sample() is given. */
+void monitor_init(monitor_t *m);
 
 /* MOTOR START asks may_start(ctx) first and is refused (MONITOR_ERR_STATE)
  * when it says no: the application's rule for every START (app.c's
@@ -210,7 +163,8 @@ void monitor_tick_1ms(monitor_t *m);
 void monitor_poll(monitor_t *m);
 bool monitor_tx_byte(monitor_t *m, uint8_t *byte); /* next byte to send, false if none */
 
-/* CRC-16/CCITT-FALSE update of crc with one byte. */
-uint16_t monitor_crc16(uint16_t crc, uint8_t byte);
+/* Current value of parameter idx, through the mailbox (0 for idx out of
+ * range). */
+int16_t monitor_param_get(uint8_t idx);
 
 #endif /* MONITOR_H */

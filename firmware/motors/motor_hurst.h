@@ -66,7 +66,7 @@
 #endif
 
 /* ---- sliding-mode observer ------------------------------------------------ */
-/* The estimator's recommended gains (smc.h note 5), by one rule for every
+/* The estimator's recommended gains (docs/estimator.md note 5), by one rule for every
  * profile: MaxSMCError dead-beat, = SMC_MAXERR_DEADBEAT(...) in amps =
  * Kslide (exp(Ts R / L) - 1) / R at 20 kHz, so the observer is a linear,
  * ripple-free loop (AN1078's relay gains chatter: 2 to 13 deg); Kslide =
@@ -86,7 +86,7 @@
               */
 #endif
 #ifndef MC_SPEED_FILTER_HZ
-#define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (smc.h note 7; docs/estimator.md) */
+#define MC_SPEED_FILTER_HZ 100.0 /* estimated-speed filter (docs/estimator.md note 7) */
 #endif
 
 /* ---- current PI (d and q): Kp = L * wc, Ki = R * wc cancels the winding pole,

@@ -4,8 +4,10 @@
 #include "hal_dspic33f.h"
 #include "hal_regs.h"
 
-/* Periods between slow interrupts (hal_control_start), and the periods
- * counted since the last one. */
+/* The firmware's object, handed back to every hook, the periods between
+ * slow interrupts (hal_control_start), and the periods counted since the
+ * last one. */
+static void *hook_ctx;
 static uint16_t slow_periods;
 static uint16_t slow_div;
 
@@ -30,7 +32,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     hal_regs_timing_pin(true);
     IFS0bits.AD1IF = 0;
     hal_regs_adc_read(&frame);
-    hal_hook_control(&frame, &out);
+    hal_hook_control(hook_ctx, &frame, &out);
     hal_regs_duty_write(&out);
     if (out.outputs_on) {
         precharge_left = 0U;
@@ -41,7 +43,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
     } else {
         P1OVDCON = HAL_P1OVDCON_OFF;
     }
-    hal_hook_finish(&out);
+    hal_hook_finish(hook_ctx, &out);
     if (++slow_div >= slow_periods) {
         slow_div = 0U;
         IFS0bits.T2IF = 1; /* the slow interrupt, as soon as this one returns */
@@ -53,7 +55,7 @@ void HAL_ISR_FAST _ADC1Interrupt(void)
 void HAL_ISR _T2Interrupt(void)
 {
     IFS0bits.T2IF = 0;
-    hal_hook_slow();
+    hal_hook_slow(hook_ctx);
 }
 
 void hal_control_stop(void)
@@ -62,9 +64,10 @@ void hal_control_stop(void)
     IEC0bits.T2IE = 0;
 }
 
-void hal_control_start(uint16_t periods)
+void hal_control_start(void *ctx, uint16_t periods)
 {
     hal_control_stop();
+    hook_ctx = ctx;
     slow_periods = periods;
     slow_div = 0U;
     precharge_left = HAL_PRECHARGE_PERIODS;

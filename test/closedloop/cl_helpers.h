@@ -8,72 +8,9 @@
 #include <stdio.h>
 
 #include "sim_core.h"
+#include "sim_window.h"
 
 #define CL_PERIOD_S (1.0 / (double)PWM_FREQUENCY_HZ)
-
-/* Steady-state figures over a window, closed loop only. */
-typedef struct {
-    long n, n_all;
-    double spd_sum, ref_sum, est_sum;
-    double ang_sum, ang_sum2, ang_max;
-    double spd_min, spd_max;
-    bool left_closed_loop;
-} cl_window_t;
-
-static inline void cl_window_init(cl_window_t *w)
-{
-    w->n = 0;
-    w->n_all = 0;
-    w->spd_sum = w->ref_sum = w->est_sum = 0.0;
-    w->ang_sum = w->ang_sum2 = w->ang_max = 0.0;
-    w->spd_min = 1e9;
-    w->spd_max = -1e9;
-    w->left_closed_loop = false;
-}
-
-static inline void cl_window_add(cl_window_t *w, const simcore_sample_t *n)
-{
-    w->n_all++;
-    if (n->state != MC_STATE_CLOSED_LOOP) {
-        w->left_closed_loop = true;
-        return;
-    }
-    w->n++;
-    w->spd_sum += n->speed_rpm;
-    w->ref_sum += n->speed_ref_rpm;
-    w->est_sum += n->speed_est_rpm;
-    w->ang_sum += n->theta_err_deg;
-    w->ang_sum2 += n->theta_err_deg * n->theta_err_deg;
-    w->ang_max = fmax(w->ang_max, fabs(n->theta_err_deg));
-    w->spd_min = fmin(w->spd_min, n->speed_rpm);
-    w->spd_max = fmax(w->spd_max, n->speed_rpm);
-}
-
-static inline double cl_speed(const cl_window_t *w)
-{
-    return (w->n > 0) ? w->spd_sum / (double)w->n : 0.0;
-}
-static inline double cl_ref(const cl_window_t *w)
-{
-    return (w->n > 0) ? w->ref_sum / (double)w->n : 0.0;
-}
-static inline double cl_est(const cl_window_t *w)
-{
-    return (w->n > 0) ? w->est_sum / (double)w->n : 0.0;
-}
-static inline double cl_speed_err_pct(const cl_window_t *w)
-{
-    double r = cl_ref(w);
-    return (r != 0.0) ? 100.0 * (cl_speed(w) - r) / r : 100.0;
-}
-static inline double cl_ang_mean(const cl_window_t *w)
-{
-    return (w->n > 0) ? w->ang_sum / (double)w->n : 180.0;
-}
-static inline double cl_ang_rms(const cl_window_t *w)
-{
-    return (w->n > 0) ? sqrt(w->ang_sum2 / (double)w->n) : 180.0;
-}
 
 /* Core + bench for the given motor and board profiles, noise and dead time of
  * the board; cfg has been set by simcore_cfg_default() (and then adjusted). */
@@ -142,14 +79,15 @@ static inline void cl_run_until_ref(simcore_t *s, double ref_rpm, double max_s)
     }
 }
 
-/* Steady window of `seconds`. */
-static inline void cl_measure(simcore_t *s, double seconds, cl_window_t *w)
+/* A steady window of `seconds` (sim_window.h), closed loop only: a sample
+ * outside closed loop is skipped, and w->n_skipped > 0 says the loop was left. */
+static inline void cl_measure(simcore_t *s, double seconds, sim_window_t *w)
 {
     long n = (long)(seconds / CL_PERIOD_S + 0.5);
-    cl_window_init(w);
+    sim_window_init(w);
     while (n-- > 0) {
         simcore_step(s);
-        cl_window_add(w, &s->now);
+        sim_window_add(w, &s->now, s->now.state == MC_STATE_CLOSED_LOOP);
     }
 }
 

@@ -63,7 +63,7 @@ static void test_locked_rotor_should_fault_and_switch_off(void **state)
     t_f = run_until_fault(&s, 0.5);
     printf(
         "measured: locked rotor at 1000 rpm: FAULT %s after %.2f ms, peak phase current %.2f A\n",
-        mc_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.i_peak_a);
+        mc_fault_name(s.now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_lock) : -1.0, s.log.i_peak_a);
     assert_cmp(t_f, >=, 0.0);
     assert_cmp(t_f - t_lock, <=, 0.050);
     cl_event(&s, SIM_EV_UNLOCK_ROTOR, 0.0, 0.0);
@@ -158,19 +158,20 @@ static void check_sensor_fault(simcore_t *s, sim_event_kind_t kind, double phase
                                bool own, const char *what)
 {
     double t_ev, t_f;
-    double peak0 = s->i_peak_a;
+    double peak0 = s->log.i_peak_a;
     cl_event(s, kind, phase, v2);
     t_ev = s->rig.t;
-    s->i_peak_a = 0.0;
+    s->log.i_peak_a = 0.0;
     t_f = run_until_fault(s, 0.2);
     printf("measured: %s: FAULT %s after %.1f ms, peak true phase current %.2f A\n", what,
-           mc_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0, s->i_peak_a);
+           mc_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0,
+           s->log.i_peak_a);
     assert_cmp(t_f, >=, 0.0);
     assert_cmp(t_f - t_ev, <=, 0.050);
     if (own) {
         assert_int_equal(s->now.fault, MC_FAULT_CURRENT_SENSOR);
     }
-    s->i_peak_a = (peak0 > s->i_peak_a) ? peak0 : s->i_peak_a;
+    s->log.i_peak_a = (peak0 > s->log.i_peak_a) ? peak0 : s->log.i_peak_a;
     cl_event(s, SIM_EV_SENSOR_OK, phase, 0.0);
     cl_run(s, 0.3);
 }

@@ -50,7 +50,7 @@ static void test_core_should_start_from_any_angle_under_up_to_half_rated_load(vo
             simcore_step(&s);
             if (s.now.state == MC_STATE_OPEN_LOOP) {
                 /* mean true speed of the last 20 ms of open loop */
-                if (s.now.t_s > s.t_start_s) {
+                if (s.now.t_s > s.log.t_start_s) {
                     pre_sum = 0.9975 * pre_sum + s.now.speed_rpm;
                 }
             }

@@ -605,7 +605,10 @@ static void test_the_two_part_step_should_equal_mc_step_bit_for_bit(void **state
         memset(&out, 0, sizeof(out)); /* padding compared below, as b.out's (static) */
         mc_step_control(&twin, &in, &out);
         bool on_after_control = out.outputs_on;
-        mc_step_finish(&twin, &out);
+        bool turned_off = mc_step_finish(&twin, &out);
+        /* The finishing part says it turned the outputs off exactly when
+         * it did, so its caller switches them off at once. */
+        assert_int_equal(turned_off, on_after_control && !out.outputs_on);
         mc_slow_step(&twin);
         assert_memory_equal(&out, &b.out, sizeof(out));
         mc_status_t st;

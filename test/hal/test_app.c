@@ -55,7 +55,7 @@ void motor_request(mc_request_t request)
 }
 static bool fake_ref_free; /* references counted, not checked against expectations */
 static unsigned fake_ref_calls;
-void motor_set_reference(int16_t ref)
+uint8_t motor_set_reference(int16_t ref)
 {
     int value = ref;
     fake_ref_calls++;
@@ -64,6 +64,7 @@ void motor_set_reference(int16_t ref)
     }
     fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
     fake_status.ref_remote = true;
+    return fake_status.ref_seq;
 }
 void motor_status(mc_status_t *st)
 {

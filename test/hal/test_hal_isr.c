@@ -13,12 +13,14 @@
  */
 
 static hal_pwm_out_t last_out; /* what the control hook returned last */
+static int the_ctx;            /* the object handed to hal_control_start() */
 
-void hal_hook_control(const hal_adc_frame_t *in, hal_pwm_out_t *out)
+void hal_hook_control(void *ctx, const hal_adc_frame_t *in, hal_pwm_out_t *out)
 {
     int ia = in->ia, ib = in->ib, vbus = in->vbus, pot = in->pot;
 
     function_called();
+    assert_ptr_equal(ctx, &the_ctx);
     assert_int_equal(IFS0bits.AD1IF, 0); /* the flag is cleared before the hook */
 #if HAL_TIMING_PIN_PORT == HAL_PORT_C
     assert_int_equal((LATC >> HAL_TIMING_PIN_BIT) & 1u, 1u); /* high for the whole interrupt */
@@ -35,10 +37,12 @@ void hal_hook_control(const hal_adc_frame_t *in, hal_pwm_out_t *out)
     last_out = *out;
 }
 
-/* The finishing hook comes after the duties and the pins. */
-void hal_hook_finish(hal_pwm_out_t *out)
+/* The finishing hook comes after the duties and the pins; it may switch
+ * the outputs off. */
+void hal_hook_finish(void *ctx, hal_pwm_out_t *out)
 {
     function_called();
+    assert_ptr_equal(ctx, &the_ctx);
     assert_memory_equal(out, &last_out, sizeof *out);
     assert_int_equal(P1DC1, last_out.duty[0]);
     assert_int_equal(P1DC2, last_out.duty[1]);
@@ -50,22 +54,14 @@ void hal_hook_finish(hal_pwm_out_t *out)
     }
 }
 
-void hal_hook_slow(void)
+void hal_hook_slow(void *ctx)
 {
     function_called();
+    assert_ptr_equal(ctx, &the_ctx);
     assert_int_equal(IFS0bits.T2IF, 0); /* cleared first */
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    sfr_standin_reset();
-    P1DC1 = 0xAAAAu;
-    P1DC2 = 0xAAAAu;
-    P1DC3 = 0xAAAAu;
-    return 0;
-}
-
+/* off_in_finish: the finishing hook calls hal_pwm_off(). */
 static void expect_period(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
                           bool on, bool off_in_finish)
 {
@@ -88,8 +84,23 @@ static void mark_duties(void)
     P1DC1 = P1DC2 = P1DC3 = 0xAAAAu;
 }
 
-static void test_adc_isr_should_clear_the_flag_read_four_buffers_and_write_the_hooks_duties(
-    void **state)
+/* Started with the_ctx, one period with the outputs on behind it (so the
+ * bootstrap precharge is over), then the registers back to reset. */
+static int setup(void **state)
+{
+    (void)state;
+    sfr_standin_reset();
+    hal_control_start(&the_ctx, 20U);
+    mark_duties();
+    expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, true, false);
+    _ADC1Interrupt();
+    sfr_standin_reset();
+    mark_duties();
+    return 0;
+}
+
+static void
+test_adc_isr_should_clear_the_flag_read_four_buffers_and_write_the_hooks_duties(void **state)
 {
     (void)state;
     /* Buffers: CH0 pot (AN8), CH1 IA (AN0), CH2 IB (AN1), CH3 VBUS (AN2). */
@@ -140,11 +151,11 @@ static void test_pwm_off_from_the_finishing_hook_should_switch_off_at_once(void 
 /* The bootstrap precharge after hal_control_start(): the low switches on
  * while the hooks keep the outputs off, for HAL_PRECHARGE_PERIODS; a hook
  * turning the outputs on ends it at once, for good. */
-static void test_adc_isr_should_precharge_after_start_until_the_hook_turns_the_outputs_on(
-    void **state)
+static void
+test_adc_isr_should_precharge_after_start_until_the_hook_turns_the_outputs_on(void **state)
 {
     (void)state;
-    hal_control_start(20U);
+    hal_control_start(&the_ctx, 20U);
     expect_period(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false, false);
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0015);
@@ -165,7 +176,7 @@ static void test_control_start_should_drop_stale_flags_then_enable_both_interrup
     IEC0bits.AD1IE = 1;
     IFS0bits.AD1IF = 1;
     IFS0bits.T2IF = 1;
-    hal_control_start(20U);
+    hal_control_start(&the_ctx, 20U);
     assert_int_equal(IFS0bits.AD1IF, 0);
     assert_int_equal(IFS0bits.T2IF, 0);
     assert_int_equal(IEC0bits.AD1IE, 1);
@@ -183,7 +194,7 @@ static void test_adc_isr_should_raise_the_slow_interrupt_every_slow_periods_from
     (void)state;
     for (unsigned d = 0; d < sizeof dividers / sizeof dividers[0]; d++) {
         uint16_t n = dividers[d];
-        hal_control_start(n);
+        hal_control_start(&the_ctx, n);
         for (unsigned w = 0; w < 2U; w++) {
             for (uint32_t k = 1; k <= n; k++) {
                 mark_duties();
@@ -210,8 +221,8 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(
             test_adc_isr_should_precharge_after_start_until_the_hook_turns_the_outputs_on, setup),
-        cmocka_unit_test_setup(test_control_start_should_drop_stale_flags_then_enable_both_interrupts,
-                               setup),
+        cmocka_unit_test_setup(
+            test_control_start_should_drop_stale_flags_then_enable_both_interrupts, setup),
         cmocka_unit_test_setup(
             test_adc_isr_should_raise_the_slow_interrupt_every_slow_periods_from_start, setup),
     };

@@ -1,5 +1,8 @@
-/* test_motor.c - firmware/motor.c over the dsPIC HAL: the hooks and the mailbox, the core mocked (cmocka). */
+/* test_motor.c - firmware/motor.c over the dsPIC HAL: the hooks and the mailbox, the core mocked
+ * (cmocka). */
 #include "test_support.h"
+
+#include <string.h>
 
 #include "sfr_standin.h"
 
@@ -60,7 +63,7 @@ void mc_step_control(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
 
 /* The rest of the step comes after the duties and the pins: they are
  * already in the registers when it runs (mc.h timing contract). */
-void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
+bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
 {
     function_called();
     check_same_motor(mc);
@@ -73,12 +76,14 @@ void mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     assert_int_equal(P1DC3, last_out.duty[2]);
     assert_int_equal(P1OVDCON & 0x3F00u, last_out.outputs_on ? 0x3F00u : 0u);
     assert_int_equal(IFS0bits.T2IF, 0); /* the window's slow step is triggered after it */
-    if ((bool)mock()) {                 /* this part faulted */
+    bool off = (bool)mock();
+    if (off) { /* this part faulted */
         out->duty[0] = PWM_DUTY_MAX / 2U;
         out->duty[1] = PWM_DUTY_MAX / 2U;
         out->duty[2] = PWM_DUTY_MAX / 2U;
         out->outputs_on = false;
     }
+    return off;
 }
 
 void mc_slow_step(mc_t *mc)
@@ -108,8 +113,10 @@ void mc_status(const mc_t *mc, mc_status_t *st)
 {
     check_same_motor((mc_t *)(uintptr_t)mc);
     assert_int_equal(SRbits.IPL, 7);
+    memset(st, 0, sizeof *st);
     st->state = (mc_state_t)mock();
     st->fault = (uint16_t)mock();
+    st->ref_seq = 42U;
 }
 
 int16_t mc_get_gain(const mc_t *mc, mc_gain_t g)
@@ -131,16 +138,6 @@ bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t v)
     return (bool)mock();
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    sfr_standin_reset();
-    P1DC1 = 0xAAAAu;
-    P1DC2 = 0xAAAAu;
-    P1DC3 = 0xAAAAu;
-    return 0;
-}
-
 static void expect_step(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t d1, uint16_t d2,
                         bool on)
 {
@@ -155,6 +152,27 @@ static void expect_step(int ia, int ib, int vbus, int pot, uint16_t d0, uint16_t
     will_return(mc_step_control, on);
     expect_function_call(mc_step_finish);
     will_return(mc_step_finish, false);
+}
+
+/* The motor started (its object handed to the HAL as the hooks' context),
+ * one period with the outputs on behind it (so the bootstrap precharge is
+ * over), then the registers back to reset. */
+static int setup(void **state)
+{
+    (void)state;
+    sfr_standin_reset();
+    expect_function_call(mc_init);
+    motor_start();
+    P1DC1 = 0xAAAAu;
+    P1DC2 = 0xAAAAu;
+    P1DC3 = 0xAAAAu;
+    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, true);
+    _ADC1Interrupt();
+    sfr_standin_reset();
+    P1DC1 = 0xAAAAu;
+    P1DC2 = 0xAAAAu;
+    P1DC3 = 0xAAAAu;
+    return 0;
 }
 
 static void
@@ -254,6 +272,9 @@ static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(
     assert_int_equal(IEC0bits.T2IE, 1);
 }
 
+/* The slow interrupt every MC_SLOW_STEP_PERIODS-th period counted from
+ * motor_start(), which is when the core ends its windows (mc.h), and its
+ * hook runs mc_slow_step on the same motor. */
 static void test_adc_isr_should_raise_the_slow_step_interrupt_after_every_window_counted_from_start(
     void **state)
 {
@@ -287,7 +308,9 @@ static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void 
     assert_int_equal(SRbits.IPL, 0);
 
     expect_value(mc_set_reference, value, -1234);
-    motor_set_reference(-1234);
+    will_return(mc_status, MC_STATE_STOPPED); /* the choice's number, read in the same mask */
+    will_return(mc_status, MC_FAULT_NONE);
+    assert_int_equal(motor_set_reference(-1234), 42);
     assert_int_equal(SRbits.IPL, 0);
 
     expect_value(mc_set_gain, gain, MC_GAIN_SPD_KP);
@@ -330,7 +353,6 @@ static void test_adc_isr_should_call_the_observer_after_the_duties_until_removed
     expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);
     _ADC1Interrupt();
     assert_int_equal(observed, 1);
-    assert_ptr_equal(motor_core(), seen_mc); /* the main loop's handle is the ISR's motor */
     motor_observe(NULL, NULL);
     setup(NULL);
     expect_step(0, 0, 16384, 16384, 7u, 8u, 9u, true);

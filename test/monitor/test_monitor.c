@@ -8,6 +8,7 @@
 
 #include "mon_util.h"
 #include "monitor.h"
+#include "sim_mailbox.h"
 
 typedef struct {
     mc_t mc;
@@ -22,7 +23,8 @@ static int setup(void **state)
 {
     memset(&fx, 0, sizeof fx);
     mc_init(&fx.mc);
-    monitor_init(&fx.mon, &fx.mc);
+    sim_mailbox_attach(&fx.mc);
+    monitor_init(&fx.mon);
     *state = &fx;
     return 0;
 }
@@ -359,7 +361,7 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
     (void)state;
     for (i = 0; i < MONITOR_NUM_PARAMS; i++) {
         const monitor_param_t *q = &monitor_params[i];
-        int16_t before = monitor_param_get(&fx.mc, i);
+        int16_t before = monitor_param_get(i);
         uint8_t p[3];
         mon_frame_t *f = transact(MONITOR_CMD_PARAM_INFO, &i, 1);
         expect_ok(f, MONITOR_CMD_PARAM_INFO);
@@ -375,13 +377,13 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
         p[2] = (uint8_t)((uint16_t)(q->min - 1) >> 8);
         expect_error(transact(MONITOR_CMD_SET_PARAM, p, 3), MONITOR_CMD_SET_PARAM,
                      MONITOR_ERR_RANGE);
-        assert_int_equal(monitor_param_get(&fx.mc, i), before);
+        assert_int_equal(monitor_param_get(i), before);
         if (q->max < 32767) {
             p[1] = (uint8_t)((uint16_t)(q->max + 1) & 0xFFU);
             p[2] = (uint8_t)((uint16_t)(q->max + 1) >> 8);
             expect_error(transact(MONITOR_CMD_SET_PARAM, p, 3), MONITOR_CMD_SET_PARAM,
                          MONITOR_ERR_RANGE);
-            assert_int_equal(monitor_param_get(&fx.mc, i), before);
+            assert_int_equal(monitor_param_get(i), before);
         }
         p[1] = 0x00;
         p[2] = 0x80; /* -32768 */
@@ -390,11 +392,11 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
         p[1] = (uint8_t)((uint16_t)q->max & 0xFFU);
         p[2] = (uint8_t)((uint16_t)q->max >> 8);
         expect_ok(transact(MONITOR_CMD_SET_PARAM, p, 3), MONITOR_CMD_SET_PARAM);
-        assert_int_equal(monitor_param_get(&fx.mc, i), q->max);
+        assert_int_equal(monitor_param_get(i), q->max);
         p[1] = (uint8_t)((uint16_t)q->min & 0xFFU);
         p[2] = (uint8_t)((uint16_t)q->min >> 8);
         expect_ok(transact(MONITOR_CMD_SET_PARAM, p, 3), MONITOR_CMD_SET_PARAM);
-        assert_int_equal(monitor_param_get(&fx.mc, i), q->min);
+        assert_int_equal(monitor_param_get(i), q->min);
     }
     /* applied by the core's next step, not before; then to both d and q,
      * ki also to kc */

@@ -7,6 +7,7 @@
 
 #include "mon_util.h"
 #include "monitor.h"
+#include "sim_mailbox.h"
 
 /*
  * Every iteration builds one candidate frame (random bytes, or a valid
@@ -205,7 +206,8 @@ static void test_the_parser_should_survive_a_million_bad_frames_without_a_state_
     (void)state;
 
     mc_init(&mc);
-    monitor_init(&mon, &mc);
+    sim_mailbox_attach(&mc);
+    monitor_init(&mon);
     for (it = 0; it < FUZZ_FRAMES; it++) {
         size_t n, out;
         int k, j;

@@ -9,6 +9,12 @@
 #include "sim_profiles.h"
 #include "sim_rig.h"
 
+/* The Hurst's inductance, H: the automatic dead-time band's. */
+static double hurst_l(void)
+{
+    return sim_motor_profile("hurst")->l_h;
+}
+
 static sim_inverter_params_t mclv_inv(void)
 {
     sim_inverter_params_t p = {
@@ -24,7 +30,7 @@ static void test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_curren
     err_stats_t e;
     (void)state;
     err_stats_init(&e);
-    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_init(&inv, &prm, hurst_l());
     for (d = 0; d <= 2000; d++) {
         uint16_t duty[3] = {d, d, d};
         double i[3] = {1.0, -1.0, 0.0};
@@ -60,9 +66,9 @@ static void test_inverter_should_apply_duty_times_vbus_minus_dead_time_by_curren
     }
     /* automatic band = Vbus / (12 L fpwm) */
     prm.i_band_a = 0.0;
-    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_init(&inv, &prm, hurst_l());
     printf("measured: automatic dead-time band for the Hurst on 24 V = %.4f A\n", inv.i_band_a);
-    assert_cmp(fabs(inv.i_band_a - 24.0 / (12.0 * 1.92e-3 * 20000.0)), <, 1e-12);
+    assert_cmp(fabs(inv.i_band_a - 24.0 / (12.0 * hurst_l() * 20000.0)), <, 1e-12);
 }
 
 /* Mean pin voltage of the switching model over one period, integrated
@@ -99,11 +105,11 @@ static void test_switching_inverter_should_average_to_the_hard_sign_dead_time(vo
     int k;
     (void)state;
     prm.model = SIM_INV_SWITCHING;
-    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_init(&inv, &prm, hurst_l());
     sim_inverter_latch(&inv, duty, true);
     prm.model = SIM_INV_AVERAGED;
     prm.dt_shape = SIM_DT_HARD;
-    sim_inverter_init(&avg, &prm, 1.92e-3);
+    sim_inverter_init(&avg, &prm, hurst_l());
     sim_inverter_latch(&avg, duty, true);
     switching_mean(&inv, i, m);
     sim_inverter_pins(&avg, 24.0, i, v);
@@ -147,7 +153,7 @@ static void test_averaged_inverter_should_offer_three_dead_time_shapes(void **st
     const double half = 0.5 * 24.0, err = 0.04 * 24.0;
     (void)state;
     prm.dt_shape = SIM_DT_HARD;
-    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_init(&inv, &prm, hurst_l());
     sim_inverter_latch(&inv, duty, true);
     sim_inverter_pins(&inv, 24.0, i, v);
     assert_cmp(fabs(v[0] - (half - err)), <, 1e-12);
@@ -179,7 +185,7 @@ static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **
 
     prm.ripple_v = 2.0;
     prm.ripple_hz = 100.0;
-    sim_inverter_init(&inv, &prm, 1.92e-3);
+    sim_inverter_init(&inv, &prm, hurst_l());
     for (k = 0; k < 2000; k++) {
         double x = sim_inverter_vbus(&inv, (double)k * 1e-5);
         sum += x;
@@ -265,7 +271,7 @@ static sim_rig_params_t hurst_rig(void)
     r.amp_tau_s = 0.0; /* ideal current sensors (the shunt window is tested with the core) */
     r.theta_e0 = 0.0;
     r.omega0_m = 0.0;
-    r.fan_rated_rpm = 2700.0;
+    r.fan_rated_rpm = sim_motor_profile("hurst")->rated_rpm;
     return r;
 }
 
@@ -397,7 +403,8 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     ev.kind = SIM_EV_LOAD_FAN;
     ev.v1 = 0.1;
     assert_true(sim_rig_apply(&rig, &ev));
-    assert_cmp(fabs(rig.plant.load.fan_k * pow(2700.0 * M_PI / 30.0, 2.0) - 0.1), <, 1e-12);
+    assert_cmp(fabs(rig.plant.load.fan_k * pow(prm.fan_rated_rpm * M_PI / 30.0, 2.0) - 0.1), <,
+               1e-12);
     ev.kind = SIM_EV_CURRENT_SPIKE;
     ev.v1 = 3.0;
     ev.v2 = 0.0;

@@ -63,10 +63,10 @@ static foc_result_t run_ideal_foc(double deadtime_s, double rpm, double iq_ref, 
     p.amp_tau_s = 0.0; /* with ideal current sensors */
     p.theta_e0 = 0.4;
     p.omega0_m = wm;
-    p.fan_rated_rpm = 2700.0;
+    p.fan_rated_rpm = sim_motor_profile("hurst")->rated_rpm;
     sim_rig_init(&rig, &p);
     *band = rig.inv.i_band_a;
-    we = 5.0 * wm;
+    we = (double)p.motor.pole_pairs * wm;
 
     for (n = 0; n < N; n++) {
         sim_adc_frame_t f;
@@ -136,7 +136,7 @@ static void test_ideal_foc_should_settle_at_the_steady_state_voltage_without_dea
     (void)state;
     sim_motor_params_from_profile(sim_motor_profile("hurst"), &m);
     for (k = 0; k < 3; k++) {
-        double we = 5.0 * rpms[k] * 2.0 * M_PI / 60.0;
+        double we = (double)m.pole_pairs * rpms[k] * 2.0 * M_PI / 60.0;
         foc_result_t r = run_ideal_foc(0.0, rpms[k], 1.0, &band);
         double vd_ref = -we * m.lq_h * 1.0;
         double vq_ref = m.rs_ohm * 1.0 + we * m.psi_vs;

@@ -17,12 +17,13 @@ static sim_motor_params_t hurst(void)
 static void test_psi_from_ke_should_give_the_hurst_flux_linkage_and_rated_torque(void **state)
 {
     const sim_motor_profile_t *mp = sim_motor_profile("hurst");
-    double psi = sim_psi_from_ke(7.3, 5);
-    /* 7.3 V / sqrt(3) peak phase at we = 1000 * 2 pi / 60 * 5 = 523.6 rad/s. */
-    double expect = 7.3 / sqrt(3.0) / (1000.0 * 2.0 * M_PI / 60.0 * 5.0);
+    double p = (double)mp->pole_pairs;
+    double psi = sim_psi_from_ke(mp->ke_ll, mp->pole_pairs);
+    /* Ke / sqrt(3) peak phase at we = 1000 * 2 pi / 60 * p rad/s. */
+    double expect = mp->ke_ll / sqrt(3.0) / (1000.0 * 2.0 * M_PI / 60.0 * p);
     (void)state;
     printf("measured: hurst psi = %.6f V s/rad, Kt = %.5f N m/A, rated torque = %.4f N m\n", psi,
-           1.5 * 5.0 * psi, sim_motor_rated_torque(mp));
+           1.5 * p * psi, sim_motor_rated_torque(mp));
     assert_cmp(fabs(psi - expect), <, 1e-12);
     assert_cmp(fabs(psi - 0.0080492), <, 1e-6);
     assert_cmp(fabs(sim_motor_rated_torque(mp) - 0.0990), <, 0.001);
@@ -156,9 +157,9 @@ test_plant_should_settle_at_the_analytic_currents_torque_and_power_at_constant_s
     m.coulomb_nm = 0.0;
     for (k = 0; k < 3; k++) {
         sim_plant_t p;
-        double wm = rpms[k] * 2.0 * M_PI / 60.0, we = 5.0 * wm;
+        double wm = rpms[k] * 2.0 * M_PI / 60.0, we = (double)m.pole_pairs * wm;
         double id = ids[k], iq = 1.2, vd, vq, h = 12.5e-6;
-        double te_ref = 1.5 * 5.0 * (m.psi_vs * iq + (m.ld_h - m.lq_h) * id * iq);
+        double te_ref = 1.5 * (double)m.pole_pairs * (m.psi_vs * iq + (m.ld_h - m.lq_h) * id * iq);
         double p_in, p_out;
         int n;
         sim_plant_init(&p, &m, 1.0);
@@ -195,8 +196,8 @@ static void test_plant_should_report_phase_currents_and_back_emf_of_the_catalogu
     err_stats_init(&e);
     sim_plant_init(&p, &m, 0.0);
     p.s.omega_m = 1000.0 * 2.0 * M_PI / 60.0;
-    /* 7.3 V peak line to line per 1000 rpm */
-    assert_cmp(fabs(sim_plant_emf_ll_peak(&p) - 7.3), <, 1e-9);
+    /* the catalogue's peak line-to-line volts per 1000 rpm */
+    assert_cmp(fabs(sim_plant_emf_ll_peak(&p) - sim_motor_profile("hurst")->ke_ll), <, 1e-9);
     assert_cmp(fabs(sim_plant_rpm(&p) - 1000.0), <, 1e-9);
     for (k = 0; k < 360; k++) {
         double th = (double)k * M_PI / 180.0;

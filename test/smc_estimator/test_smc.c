@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "pmsm_ideal.h"
-#include "smc.h"
+#include "smc_params.h" /* SMC_PARAMS_INIT; includes smc.h */
 
 /*
  * Profiles (stated in docs/estimator.md):
@@ -23,14 +23,50 @@
  * The drive: a 0.5 A (hurst) / 1 A (hispeed) torque current, field
  * weakening that keeps |v| <= 0.9 V_FS.
  */
-#define TS             50e-6
+#define TS 50e-6
+
+/*
+ * The two motors' data (R, L, Ke, pole pairs, speed full scale) are read
+ * from their firmware profiles. Both profiles define the same macro names:
+ * the high-speed motor's are read first, into its parameter set and the
+ * constants of its drive (hs), and undefined, then the Hurst's profile is
+ * read; HURST_ below are its macros. Only the names undefined here are read.
+ */
+#include "../../firmware/motors/motor_hispeed.h"
+
+#define HS_VFS  (320.0 / 1.7320508075688772)
+#define HS_IFS  8.0
+#define HS_WFS  (MOTOR_SPEED_FULLSCALE_RPM * MOTOR_POLE_PAIRS / 60.0)
+#define HS_FMIN (1600.0 * MOTOR_POLE_PAIRS / 60.0)
+#define HS_KEHZ (MOTOR_KE_VPK_LL_PER_KRPM / 1.7320508075688772 / (1000.0 * MOTOR_POLE_PAIRS / 60.0))
+static const smc_params_t hispeed =
+    SMC_PARAMS_INIT(MOTOR_RS_OHM, MOTOR_LS_H, TS, HS_VFS, HS_IFS, 1.0,
+                    SMC_MAXERR_DEADBEAT(MOTOR_RS_OHM, MOTOR_LS_H, TS, HS_VFS, HS_IFS, 1.0), HS_WFS,
+                    HS_FMIN, 20, 100.0, HS_KEHZ);
+static const struct {
+    double r, l, ke; /* ohm, H, V peak line-line per 1000 rpm */
+    int pp;
+    double wfs_hz; /* speed full scale, electrical Hz */
+} hs = {MOTOR_RS_OHM, MOTOR_LS_H, MOTOR_KE_VPK_LL_PER_KRPM, MOTOR_POLE_PAIRS, HS_WFS};
+#undef HS_WFS
+#undef HS_FMIN
+#undef HS_KEHZ
+#undef MOTOR_NAME
+#undef MOTOR_POLE_PAIRS
+#undef MOTOR_RS_OHM
+#undef MOTOR_LS_H
+#undef MOTOR_KE_VPK_LL_PER_KRPM
+#undef MOTOR_SPEED_FULLSCALE_RPM
+
+#include "../../firmware/motors/motor_hurst.h"
+
 #define HURST_VFS      (24.0 / 1.7320508075688772)
 #define HURST_IFS      4.4
-#define HURST_R        2.67
-#define HURST_L        1.92e-3
-#define HURST_PP       5
-#define HURST_KE       7.3 /* V peak line-line per 1000 rpm */
-#define HURST_WFS      (8000.0 * HURST_PP / 60.0)
+#define HURST_R        MOTOR_RS_OHM
+#define HURST_L        MOTOR_LS_H
+#define HURST_PP       MOTOR_POLE_PAIRS
+#define HURST_KE       MOTOR_KE_VPK_LL_PER_KRPM /* V peak line-line per 1000 rpm */
+#define HURST_WFS      (MOTOR_SPEED_FULLSCALE_RPM * HURST_PP / 60.0)
 #define HURST_FMIN     (400.0 * HURST_PP / 60.0)
 #define HURST_KEHZ     (HURST_KE / 1.7320508075688772 / (1000.0 * HURST_PP / 60.0))
 #define HURST_KS       1.8
@@ -58,19 +94,6 @@ static const smc_params_t hurst_noke =
 static const smc_params_t hurst_relay =
     SMC_PARAMS_INIT(HURST_R, HURST_L, TS, HURST_VFS, HURST_IFS, 1.7, 0.005, HURST_WFS, HURST_FMIN,
                     20, 100.0, HURST_KEHZ);
-
-#define HS_VFS  (320.0 / 1.7320508075688772)
-#define HS_IFS  8.0
-#define HS_R    1.2
-#define HS_L    4.0e-3
-#define HS_PP   2
-#define HS_KE   10.0
-#define HS_WFS  (24000.0 * HS_PP / 60.0)
-#define HS_FMIN (1600.0 * HS_PP / 60.0)
-#define HS_KEHZ (HS_KE / 1.7320508075688772 / (1000.0 * HS_PP / 60.0))
-static const smc_params_t hispeed = SMC_PARAMS_INIT(
-    HS_R, HS_L, TS, HS_VFS, HS_IFS, 1.0, SMC_MAXERR_DEADBEAT(HS_R, HS_L, TS, HS_VFS, HS_IFS, 1.0),
-    HS_WFS, HS_FMIN, 20, 100.0, HS_KEHZ);
 
 typedef struct {
     pmsm_motor_t motor;
@@ -106,14 +129,14 @@ static bench_t bench_hurst(void)
 
 static bench_t bench_hispeed(void)
 {
-    return bench_make(pmsm_motor_from_ke(HS_R, HS_L, HS_KE, HS_PP), HS_VFS, HS_IFS, 1.0, 320.0,
-                      0x7654321U, HS_WFS);
+    return bench_make(pmsm_motor_from_ke(hs.r, hs.l, hs.ke, hs.pp), HS_VFS, HS_IFS, 1.0, 320.0,
+                      0x7654321U, hs.wfs_hz);
 }
 
 /* One period, the estimator driven with its results taken straight after
  * the slow step (the core takes them a few periods later): smc_update, and
  * every irp_percalc periods the window end, the slow step and the apply
- * (smc.h note 10). */
+ * (docs/estimator.md note 10). */
 static void smc_period(smc_t *s, ab_q15_t i, ab_q15_t v)
 {
     smc_update(s, i, v);
@@ -820,7 +843,7 @@ static void test_smc_speed_from_steps_should_match_the_scaled_sum(void **state)
 }
 
 /* A window end, its slow step and the apply: what a preset or a reset has
- * become once the slow side's results are in (smc.h note 10). */
+ * become once the slow side's results are in (docs/estimator.md note 10). */
 static void smc_round_trip(smc_t *s)
 {
     smc_window_end(s);

@@ -1,11 +1,12 @@
 /* bench_monitor.c - instruction count of the live data monitor: the ISR recorder and the main-loop
  * parser. */
-/* bench-requires: firmware/mc.c firmware/monitor/monitor.c */
+/* bench-requires: firmware/mc.c firmware/monitor/monitor.c tools/sim/sim_mailbox.c */
 /* bench-symbols: monitor_init monitor_sample monitor_rx_byte monitor_poll */
 #include "bench.h"
 
 #include "mc.h"
 #include "monitor.h"
+#include "../sim/sim_mailbox.h"
 
 /*
  * The ISR side: monitor_sample() once per PWM period, after mc_step().
@@ -51,7 +52,8 @@ static void setup_stream(uint16_t decim)
     const uint8_t sel[7] = {(uint8_t)(decim & 0xFFU), (uint8_t)(decim >> 8), 4, 2, 3, 7, 8};
     const uint8_t start[2] = {MONITOR_MODE_STREAM, MONITOR_TRIG_NOW};
     mc_init(&mc);
-    monitor_init(&mon, &mc);
+    sim_mailbox_attach(&mc);
+    monitor_init(&mon);
     host_frame(&mon, MONITOR_CMD_SELECT, sel, 7);
     host_frame(&mon, MONITOR_CMD_START, start, 2);
     drain();
@@ -61,7 +63,8 @@ static void run_stopped(uint32_t n)
 {
     uint32_t k;
     mc_init(&mc);
-    monitor_init(&mon, &mc);
+    sim_mailbox_attach(&mc);
+    monitor_init(&mon);
     for (k = 0U; k < n; k++) {
         bench_sink += monitor_sample(&mon, &mc) ? 1 : 0;
     }
@@ -93,7 +96,8 @@ static void run_rx(uint32_t n)
     const uint8_t sel[7] = {10, 0, 4, 2, 3, 7, 8};
     uint32_t k = 0;
     mc_init(&mc);
-    monitor_init(&mon, &mc);
+    sim_mailbox_attach(&mc);
+    monitor_init(&mon);
     /* 12 bytes per SELECT frame, each byte one measured call */
     while (k + 12U <= n) {
         host_frame(&mon, MONITOR_CMD_SELECT, sel, 7);

@@ -5,13 +5,17 @@
 #include "bench.h"
 
 #include "sincos.h"
-#include "smc.h"
+#include "smc_params.h"
+
+/* The Hurst DMB0224C10002's data, read from its profile whatever MOTOR the
+ * host build is for, so the row is the same on every build. */
+#include "motors/motor_hurst.h"
 
 /*
- * Parameters of the Hurst DMB0224C10002 on the MCLV at 20 kHz (per phase
- * 2.67 ohm, 1.92 mH; voltage full scale 24 V / sqrt(3), current 4.4 A;
- * speed full scale 8000 rpm * 5 pole pairs = 666.7 Hz electrical), written
- * out here so the row does not depend on the firmware's profiles.
+ * Parameters of the Hurst on the MCLV at 20 kHz: its R and L, the speed
+ * full scale and the lowest speed in electrical Hz, its back-EMF constant in
+ * V per electrical Hz; the voltage full scale 24 V / sqrt(3) and the current
+ * full scale 4.4 A of the MCLV.
  * Inputs: currents and voltages rotating at 0.3 of full speed with a little
  * noise. smc_update is the per-period step, inline in smc_update.h, so it is
  * measured through a wrapper that is never inlined (its call and return
@@ -24,8 +28,13 @@ __attribute__((noinline)) void bench_smc_update(smc_t *s, ab_q15_t i, ab_q15_t v
     smc_update(s, i, v);
 }
 
-static const smc_params_t params =
-    SMC_PARAMS_INIT(2.67, 1.92e-3, 50e-6, 13.856, 4.4, 0.85, 0.1, 666.7, 41.7, 20, 10.0, 0.0506);
+/* The speed full scale and the lowest speed in electrical Hz; the back-EMF
+ * constant in peak phase volts per electrical Hz. */
+#define WFS_HZ  (MOTOR_SPEED_FULLSCALE_RPM * MOTOR_POLE_PAIRS / 60.0)
+#define FMIN_HZ (MOTOR_SPEED_MIN_RPM * MOTOR_POLE_PAIRS / 60.0)
+#define KE_HZ   (MOTOR_KE_VPK_LL_PER_KRPM / 1.7320508075688772 / (1000.0 * MOTOR_POLE_PAIRS / 60.0))
+static const smc_params_t params = SMC_PARAMS_INIT(MOTOR_RS_OHM, MOTOR_LS_H, 50e-6, 13.856, 4.4,
+                                                   0.85, 0.1, WFS_HZ, FMIN_HZ, 20, 10.0, KE_HZ);
 
 static void run_smc(uint32_t n)
 {

@@ -7,10 +7,11 @@
  *       -Itools/check16 tools/check16/gen_mc_frames.c test/firmware/mc_bench.c \
  *       tools/sim/sim_adc.c tools/sim/sim_core.c tools/sim/sim_inverter.c \
  *       tools/sim/sim_plant.c tools/sim/sim_profiles.c tools/sim/sim_rig.c \
- *       tools/sim/sim_scenario.c tools/sim/sim_parse.c foc/*.c smc_estimator/*.c \
- *       firmware/mc.c tools/sim/mc_names.c -lm -o /tmp/gen_mc_frames
- *   /tmp/gen_mc_frames > tools/check16/mc_frames.h
- * with MC_CHECK16_FLAGS the check16-cflags lines of vec_mc.c. The core is
+ *       tools/sim/sim_scenario.c tools/sim/sim_parse.c tools/sim/sim_motor_*.c
+ * tools/sim/sim_board_*.c \
+ *       tools/sim/sim_log.c tools/sim/sim_window.c tools/sim/sim_trace.c foc/*.c smc_estimator/*.c
+ * \ firmware/mc.c tools/sim/mc_names.c -lm -o /tmp/gen_mc_frames /tmp/gen_mc_frames >
+ * tools/check16/mc_frames.h with MC_CHECK16_FLAGS the check16-cflags lines of vec_mc.c. The core is
  * driven exactly as vec_mc.c replays it (START at frame MC_FRAMES_START,
  * bus and pot from the formulas in mc_frames_bus/pot), so the replay takes
  * the recorded path: calibration, lock, ramp, hand-off, closed loop.

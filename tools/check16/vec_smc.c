@@ -3,7 +3,7 @@
 #include "emit.h"
 
 #include "sincos.h"
-#include "smc.h"
+#include "smc_params.h"
 
 /*
  * Sections:
@@ -20,12 +20,17 @@
  *                    z, e; for both parameter sets.
  */
 
+/* The Hurst's R and L, read from its profile whatever MOTOR the check is
+ * built for. */
+#include "motors/motor_hurst.h"
+
 #define VFS (24.0 / 1.7320508075688772)
-static const smc_params_t set_linear = SMC_PARAMS_INIT(
-    2.67, 1.92e-3, 50e-6, VFS, 4.4, 1.8, SMC_MAXERR_DEADBEAT(2.67, 1.92e-3, 50e-6, VFS, 4.4, 1.8),
-    666.6667, 33.3333, 20, 100.0, 0.0584);
-static const smc_params_t set_relay = SMC_PARAMS_INIT(2.67, 1.92e-3, 50e-6, VFS, 4.4, 1.7, 0.005,
-                                                      666.6667, 33.3333, 20, 100.0, 0.0584);
+static const smc_params_t set_linear =
+    SMC_PARAMS_INIT(MOTOR_RS_OHM, MOTOR_LS_H, 50e-6, VFS, 4.4, 1.8,
+                    SMC_MAXERR_DEADBEAT(MOTOR_RS_OHM, MOTOR_LS_H, 50e-6, VFS, 4.4, 1.8), 666.6667,
+                    33.3333, 20, 100.0, 0.0584);
+static const smc_params_t set_relay = SMC_PARAMS_INIT(
+    MOTOR_RS_OHM, MOTOR_LS_H, 50e-6, VFS, 4.4, 1.7, 0.005, 666.6667, 33.3333, 20, 100.0, 0.0584);
 
 static void emit_params(const smc_params_t *p)
 {

@@ -7,7 +7,10 @@
 #include <sys/stat.h>
 
 #include "sim_core.h"
+#include "sim_opt.h"
 #include "sim_parse.h"
+#include "sim_trace.h"
+#include "sim_window.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -236,50 +239,19 @@ static void apply_load(simcore_t *s, run_draw_t *d)
     }
 }
 
-typedef struct {
-    long n;
-    double ang, ang2, ang_max, spd, est, ref, err, err2;
-} window_t;
-
-static void window_add(window_t *w, const simcore_sample_t *n)
-{
-    double a = n->theta_err_deg;
-    w->n++;
-    w->ang += a;
-    w->ang2 += a * a;
-    if (fabs(a) > w->ang_max) {
-        w->ang_max = fabs(a);
-    }
-    w->spd += n->speed_rpm;
-    w->err += n->speed_rpm - n->speed_ref_rpm;
-    w->err2 += (n->speed_rpm - n->speed_ref_rpm) * (n->speed_rpm - n->speed_ref_rpm);
-    w->est += n->speed_est_rpm;
-    w->ref += n->speed_ref_rpm;
-}
-
-/* The speed error's RMS about its mean over a window (true speed minus the
- * ramped reference), % of the mean reference: a speed loop that rings or
- * limit-cycles shows here, not in the mean error. */
-static double window_ripple(const window_t *w)
-{
-    double m = w->err / (double)w->n;
-    double var = w->err2 / (double)w->n - m * m;
-    return 100.0 * sqrt((var > 0.0) ? var : 0.0) / (w->ref / (double)w->n);
-}
-
 /* Runs one draw; apply_load completes its start need and step class. */
 static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
 {
     static simcore_t s;
     run_draw_t d = *dp;
-    window_t w1, w2;
+    sim_window_t w1, w2; /* the hold window and the one after the step: every sample */
     double t_cl = -1.0, t_step = 1e9, t_meas = 1e9, t_stop = 1e9, t_end = T_CL_LIMIT + 1.0;
     double ramp_t0 = 0.0, ramp_nm0 = 0.0;
     bool started = false, stepped = false, stopped = false, saw_fault = false;
     sim_event_t ev;
     memset(res, 0, sizeof(*res));
-    memset(&w1, 0, sizeof(w1));
-    memset(&w2, 0, sizeof(w2));
+    sim_window_init(&w1);
+    sim_window_init(&w2);
     d.cfg.csv = csv;
     d.cfg.csv_decim = 10;
     if (simcore_init(&s, &d.cfg) != 0) {
@@ -350,10 +322,10 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
             t_end = t_stop + T_STOPPED;
         }
         if (t_cl >= 0.0 && s.rig.t >= t_step - T_HOLD_LEN && s.rig.t < t_step) {
-            window_add(&w1, &s.now);
+            sim_window_add(&w1, &s.now, true);
         }
         if (t_cl >= 0.0 && s.rig.t >= t_meas && s.rig.t < t_stop) {
-            window_add(&w2, &s.now);
+            sim_window_add(&w2, &s.now, true);
         }
         if (t_cl >= 0.0 && !stopped && s.st.state != MC_STATE_CLOSED_LOOP) {
             snprintf(res->why, sizeof(res->why), "left CLOSED_LOOP (%s) at %.3f s",
@@ -366,20 +338,20 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
             break;
         }
     }
-    res->i_peak = s.i_peak_a;
+    res->i_peak = s.log.i_peak_a;
     res->dt_comp_us = (double)s.st.deadtime / (double)BOARD_FCY_HZ * 1e6;
     if (w1.n > 0) {
-        res->ang_mean = w1.ang / (double)w1.n;
-        res->ang_rms = sqrt(w1.ang2 / (double)w1.n);
+        res->ang_mean = sim_window_ang_mean(&w1);
+        res->ang_rms = sim_window_ang_rms(&w1);
         res->ang_max = w1.ang_max;
-        res->spd_err = 100.0 * (w1.spd - w1.ref) / w1.ref;
-        res->est_err = 100.0 * (w1.est - w1.spd) / w1.spd;
-        res->spd_rip = window_ripple(&w1);
+        res->spd_err = sim_window_speed_err_pct(&w1);
+        res->est_err = sim_window_est_err_pct(&w1);
+        res->spd_rip = sim_window_ripple_pct(&w1);
     }
     if (w2.n > 0) {
-        res->spd_err2 = 100.0 * (w2.spd - w2.ref) / w2.ref;
-        res->ang_rms2 = sqrt(w2.ang2 / (double)w2.n);
-        res->spd_rip2 = window_ripple(&w2);
+        res->spd_err2 = sim_window_speed_err_pct(&w2);
+        res->ang_rms2 = sim_window_ang_rms(&w2);
+        res->spd_rip2 = sim_window_ripple_pct(&w2);
     }
     if (saw_fault) {
         snprintf(res->why, sizeof(res->why), "fault %s at %.3f s", mc_fault_name(res->fault),
@@ -457,113 +429,126 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
     fflush(stdout);
 }
 
+/* Every option, once (sim_opt.h). A campaign chunk is bounded so that no
+ * option value asks for unbounded work: COUNT_MAX runs of a few seconds of
+ * simulated time each. */
+enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_CSV, OPT_SEED, OPT_FROM, OPT_COUNT, OPT_KNOWN_FAIL };
+
+#define KNOWN_MAX 8 /* --known-fail seeds a campaign takes */
+
+/* clang-format off */
+static const sim_opt_t OPTS[] = {
+    {.id = OPT_HELP, .name = "--help", .type = SIM_OPT_FLAG, .help = "this list"},
+    {.id = OPT_MOTOR, .name = "--motor", .type = SIM_OPT_NAME, .value = "NAME",
+     .help = "simulated motor (default hurst)"},
+    {.id = OPT_BOARD, .name = "--board", .type = SIM_OPT_NAME, .value = "NAME",
+     .help = "simulated board (default mclv)"},
+    {.id = OPT_CSV, .name = "--csv", .type = SIM_OPT_TEXT, .value = "FILE",
+     .help = "with --seed: that run's trace"},
+    {.id = OPT_SEED, .name = "--seed", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = SIM_OPT_SEED_RANGE,
+     .help = "run this one seed and print its summary (a failure's reproduction)"},
+    {.id = OPT_FROM, .name = "--from", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = SIM_OPT_SEED_RANGE, .help = "a campaign: the first seed"},
+    {.id = OPT_COUNT, .name = "--count", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = {"count", "runs", 1.0, (double)COUNT_MAX, SIM_RANGE_INTEGER},
+     .help = "with --from: how many seeds, from --from on"},
+    {.id = OPT_KNOWN_FAIL, .name = "--known-fail", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = SIM_OPT_SEED_RANGE,
+     .help = "with --from: a seed whose failure goes to stderr, not the exit status"},
+};
+/* clang-format on */
+
+#define N_OPTS (sizeof(OPTS) / sizeof(OPTS[0]))
+
+/* The program's name in its refusals (sim_refuse). */
+#define PROG "robust"
+
 static void usage(FILE *f)
 {
-    fprintf(
-        f,
-        "usage: robust [--motor NAME] [--board NAME] (--seed N [--csv FILE] | --from N --count N\n"
-        "              [--known-fail N]...)\n"
-        "  one CSV row per run on stdout (docs/robustness.md); --seed N runs one seed and\n"
-        "  prints its summary (the reproduce command the campaign prints for a failure);\n"
-        "  a --known-fail seed that fails is reported on stderr, not in the exit status.\n"
-        "  Seeds are whole numbers 0..4294967295 (uint32); --count 1..%ld, seeds\n"
-        "  --from .. --from + count - 1 all within that range; at most 8 --known-fail.\n",
-        (long)COUNT_MAX);
-}
-
-/* One line on stderr, as every refusal: "robust: <field>: <why>". */
-static int refuse(const char *field, const char *why)
-{
-    fprintf(stderr, "robust: %s: %s\n", field, why);
-    return 2;
+    fprintf(f, "usage: robust [--motor NAME] [--board NAME] (--seed N [--csv FILE] | --from N "
+               "--count N\n"
+               "              [--known-fail N]...)\n"
+               "  one CSV row per run on stdout (docs/robustness.md)\n");
+    sim_opt_usage(f, OPTS, N_OPTS);
 }
 
 int main(int argc, char **argv)
 {
-    /* A seed is a uint32_t (draw()); a campaign chunk is bounded so that no
-     * option value asks for unbounded work: 100,000 runs of a few seconds
-     * of simulated time each. */
-    static const sim_range_t seed_range = {"seed", "", 0.0, 4294967295.0, SIM_RANGE_INTEGER};
-    static const sim_range_t count_range = {"count", "runs", 1.0, (double)COUNT_MAX,
-                                            SIM_RANGE_INTEGER};
     const char *motor = "hurst", *board = "mclv", *csv_path = NULL;
     long long from = -1, count = 0, one = -1; /* seeds up to 2^32 - 1 even where long is 32 bits */
-    long long known[8];
+    long long known[KNOWN_MAX];
     int n_known = 0;
     int i, k, failed = 0;
-    char why[320], q[48];
+    char why[320];
     for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        double x = 0.0;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        const char *v;
+        const sim_opt_t *o;
+        double x;
+        if (strcmp(argv[i], "-h") == 0) {
             usage(stdout);
             return 0;
         }
-        if (strcmp(a, "--motor") != 0 && strcmp(a, "--board") != 0 && strcmp(a, "--csv") != 0 &&
-            strcmp(a, "--seed") != 0 && strcmp(a, "--from") != 0 && strcmp(a, "--count") != 0 &&
-            strcmp(a, "--known-fail") != 0) {
-            return refuse(sim_parse_quote(a, q, sizeof(q)),
-                          "unknown option (robust --help lists them)");
+        o = sim_opt_read(PROG, OPTS, N_OPTS, argc, argv, &i, &v, &x);
+        if (o == NULL) {
+            return 2;
         }
-        if (v == NULL) {
-            return refuse(a, "needs a value");
-        }
-        i++;
-        if (strcmp(a, "--motor") == 0 || strcmp(a, "--board") == 0) {
-            if (sim_parse_name(v, why, sizeof(why)) != 0) {
-                return refuse(a, why);
-            }
-            if (a[2] == 'm') {
+        switch (o->id) {
+            case OPT_HELP:
+                usage(stdout);
+                return 0;
+            case OPT_MOTOR:
                 motor = v;
-            } else {
+                break;
+            case OPT_BOARD:
                 board = v;
-            }
-            continue;
-        }
-        if (strcmp(a, "--csv") == 0) {
-            csv_path = v;
-            continue;
-        }
-        if (sim_parse_number(v, (strcmp(a, "--count") == 0) ? &count_range : &seed_range, &x, why,
-                             sizeof(why)) != 0) {
-            return refuse(a, why);
-        }
-        if (strcmp(a, "--seed") == 0) {
-            one = (long long)x;
-        } else if (strcmp(a, "--known-fail") == 0) {
-            if (n_known == (int)(sizeof(known) / sizeof(known[0]))) {
-                return refuse(a, "at most 8 of them");
-            }
-            known[n_known++] = (long long)x;
-        } else if (strcmp(a, "--from") == 0) {
-            from = (long long)x;
-        } else {
-            count = (long long)x;
+                break;
+            case OPT_CSV:
+                csv_path = v;
+                break;
+            case OPT_SEED:
+                one = (long long)x;
+                break;
+            case OPT_FROM:
+                from = (long long)x;
+                break;
+            case OPT_COUNT:
+                count = (long long)x;
+                break;
+            case OPT_KNOWN_FAIL:
+                if (n_known == KNOWN_MAX) {
+                    sim_parse_msg(why, sizeof(why), "at most %d of them", KNOWN_MAX);
+                    return sim_refuse(PROG, o->name, why);
+                }
+                known[n_known++] = (long long)x;
+                break;
+            default:
+                break;
         }
     }
     if (one >= 0 && from >= 0) {
-        return refuse("--seed", "runs one seed: not with --from");
+        return sim_refuse(PROG, "--seed", "runs one seed: not with --from");
     }
     if (from < 0 && count > 0) {
-        return refuse("--count", "only with --from");
+        return sim_refuse(PROG, "--count", "only with --from");
     }
     if (one < 0 && from < 0) {
-        return refuse("--seed", "give --seed N, or --from N --count N");
+        return sim_refuse(PROG, "--seed", "give --seed N, or --from N --count N");
     }
     if (from >= 0 && count == 0) {
-        return refuse("--count", "--from needs it (1..100000 runs)");
+        sim_parse_msg(why, sizeof(why), "--from needs it (1..%ld runs)", (long)COUNT_MAX);
+        return sim_refuse(PROG, "--count", why);
     }
-    if (from >= 0 && (double)from + (double)count - 1.0 > seed_range.hi) {
+    if (from >= 0 && (double)from + (double)count - 1.0 > SIM_OPT_SEED_MAX) {
         sim_parse_msg(why, sizeof(why), "seeds %lld..%.0f pass the last seed, %.0f", from,
-                      (double)from + (double)count - 1.0, seed_range.hi);
-        return refuse("--count", why);
+                      (double)from + (double)count - 1.0, SIM_OPT_SEED_MAX);
+        return sim_refuse(PROG, "--count", why);
     }
     if (one >= 0 && n_known > 0) {
-        return refuse("--known-fail", "only with --from (a campaign)");
+        return sim_refuse(PROG, "--known-fail", "only with --from (a campaign)");
     }
     if (from >= 0 && csv_path != NULL) {
-        return refuse("--csv", "only with --seed (one run's trace)");
+        return sim_refuse(PROG, "--csv", "only with --seed (one run's trace)");
     }
     {
         /* the motor and board exist for this build, before any output */
@@ -590,15 +575,15 @@ int main(int argc, char **argv)
             if (stat(csv_path, &st) == 0 && !S_ISREG(st.st_mode)) {
                 snprintf(part, sizeof(part), "%s", csv_path); /* a device: written in place */
             } else if (snprintf(part, sizeof(part), "%s.part", csv_path) >= (int)sizeof(part)) {
-                return refuse("--csv", "path too long");
+                return sim_refuse(PROG, "--csv", "path too long");
             }
             csv = fopen(part, "w");
             if (csv == NULL) {
                 sim_parse_msg(why, sizeof(why), "cannot write '%s'",
                               sim_parse_quote(part, pq, sizeof(pq)));
-                return refuse("--csv", why);
+                return sim_refuse(PROG, "--csv", why);
             }
-            simcore_csv_header(csv);
+            sim_trace_header(csv);
         }
         if (run_one(&d, &r, csv, true) != 0) {
             if (csv != NULL) {
@@ -618,7 +603,7 @@ int main(int argc, char **argv)
                 }
                 sim_parse_msg(why, sizeof(why), "writing '%s' failed (disk full?)",
                               sim_parse_quote(csv_path, pq, sizeof(pq)));
-                return refuse("--csv", why);
+                return sim_refuse(PROG, "--csv", why);
             }
         }
         print_header();

@@ -1,4 +1,4 @@
-/* sim_core.c - one PWM period of core + bench, metrics, CSV and the summary table. */
+/* sim_core.c - the one bench: the core on the simulated plant, one PWM period a step. */
 /* clock_gettime (wall time for the progress line) is POSIX, not C99. */
 #define _POSIX_C_SOURCE 199309L
 #include "sim_core.h"
@@ -7,16 +7,14 @@
 #include <string.h>
 #include <time.h>
 
+#include "sim_trace.h"
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
 #define Q15_TO(x, fs) ((double)(x) / 32768.0 * (double)(fs))
 #define RAD_TO_DEG    (180.0 / M_PI)
-
-/* Angle-error window: skip this long after entering closed loop (the
- * hand-off bleeds the forced-angle offset away). */
-#define SIMCORE_SETTLE_S 0.1
 
 void simcore_cfg_default(simcore_cfg_t *cfg)
 {
@@ -28,6 +26,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->j_scale = 1.0;
     cfg->theta0_rad = 0.0;
     cfg->rpm0 = 0.0;
+    cfg->pot = 0.0;
     cfg->deadtime_s = -1.0;
     cfg->noise_codes = -1.0;
     cfg->vbus_v = -1.0;
@@ -108,7 +107,6 @@ static const sim_motor_profile_t *motor_from_firmware(const char *name)
     mp.rated_a = (double)MOTOR_CURRENT_MAX_A;
 #endif
     mp.rated_rpm = (double)MOTOR_SPEED_NOMINAL_RPM;
-    mp.max_rpm = (double)MOTOR_SPEED_FW_MAX_RPM;
     fprintf(stderr,
             "sim: no simulator profile '%s': simulating the firmware's motor data "
             "(%s)\n",
@@ -130,16 +128,12 @@ static const sim_board_profile_t *board_from_firmware(const char *name)
     }
 #endif
     bp.name = name;
-    bp.desc = "firmware board data, amplifier offsets and noise assumed";
     bp.vbus_v = (double)BOARD_VBUS_NOMINAL_V;
-    bp.deadtime_s = (double)BOARD_DEADTIME_NS * 1e-9;
-    bp.pwm_hz = (double)PWM_FREQUENCY_HZ;
-    bp.i_fs_a = (double)BOARD_I_FULLSCALE_A;
-    bp.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
-    bp.offset_a_codes = 6.0;
-    bp.offset_b_codes = -4.0;
-    bp.noise_codes = 1.0;
-    bp.amp_tau_s = 0.35e-6; /* as the simulator's boards (sim_profiles.c) */
+    bp.deadtime_s = (double)BOARD_DEADTIME_NS / 1e9;
+    bp.offset_a_codes = SIM_AMP_OFFSET_A_CODES; /* assumed as for every board (sim_profiles.h) */
+    bp.offset_b_codes = SIM_AMP_OFFSET_B_CODES;
+    bp.noise_codes = SIM_ADC_NOISE_CODES;
+    bp.amp_tau_s = SIM_AMP_TAU_S;
     fprintf(stderr, "sim: no simulator profile '%s': simulating the firmware's board data\n", name);
     return &bp;
 #else
@@ -148,11 +142,50 @@ static const sim_board_profile_t *board_from_firmware(const char *name)
 #endif
 }
 
+/* The core's vocabulary for the run's record (sim_log.h). */
+static const sim_log_core_t LOG_CORE = {mc_state_name, mc_fault_name, (int)MC_STATE_CLOSED_LOOP,
+                                        (int)MC_STATE_FAULT};
+
+/* The bench's plant, inverter and ADC from the profiles and cfg. */
+static void rig_params(const simcore_t *s, const simcore_cfg_t *cfg, sim_rig_params_t *rp)
+{
+    memset(rp, 0, sizeof(*rp));
+    sim_motor_params_from_profile(s->mp, &rp->motor);
+    rp->motor.rs_ohm *= cfg->rs_scale;
+    rp->motor.ld_h *= cfg->l_scale;
+    rp->motor.lq_h *= cfg->l_scale;
+    rp->motor.psi_vs *= cfg->ke_scale;
+    rp->motor.j_kgm2 = rp->motor.j_kgm2 * cfg->j_scale + cfg->j_extra_kgm2;
+    rp->motor.b_nms *= cfg->b_scale;
+    if (cfg->coulomb_nm >= 0.0) {
+        rp->motor.coulomb_nm = cfg->coulomb_nm;
+    }
+    rp->inv = cfg->inv;
+    rp->inv.vbus_v = (cfg->vbus_v >= 0.0) ? cfg->vbus_v : s->bp->vbus_v;
+    rp->inv.ripple_v = 0.0;
+    rp->inv.ripple_hz = 0.0;
+    rp->inv.deadtime_s = (cfg->deadtime_s >= 0.0) ? cfg->deadtime_s : s->bp->deadtime_s;
+    rp->inv.pwm_hz = (double)PWM_FREQUENCY_HZ;
+    rp->inv.duty_max = (double)PWM_DUTY_MAX;
+    rp->adc.i_fs_a = (double)BOARD_I_FULLSCALE_A;
+    rp->adc.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
+    rp->adc.bits = 10;
+    rp->adc.offset_a_codes = cfg->offsets_set ? cfg->offset_a_codes : s->bp->offset_a_codes;
+    rp->adc.offset_b_codes = cfg->offsets_set ? cfg->offset_b_codes : s->bp->offset_b_codes;
+    rp->adc.noise_codes = (cfg->noise_codes >= 0.0) ? cfg->noise_codes : s->bp->noise_codes;
+    rp->adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
+    rp->substeps = cfg->substeps;
+    rp->sample_at = (cfg->sample_at >= 0.0) ? cfg->sample_at : MC_SAMPLE_AT; /* the chip's (mc.h) */
+    rp->amp_tau_s = (cfg->amp_tau_s >= 0.0) ? cfg->amp_tau_s : s->bp->amp_tau_s;
+    rp->theta_e0 = cfg->theta0_rad;
+    rp->omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
+    rp->fan_rated_rpm = s->mp->rated_rpm;
+}
+
 int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
 {
     sim_rig_params_t rp;
     memset(s, 0, sizeof(*s));
-    memset(&rp, 0, sizeof(rp));
     s->cfg = *cfg;
     s->mp = sim_motor_profile(cfg->motor);
     s->bp = sim_board_profile(cfg->board);
@@ -175,51 +208,23 @@ int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
                 s->mp->name, s->mp->pole_pairs, (int)MOTOR_POLE_PAIRS, s->mp->name);
         return -1;
     }
-    sim_motor_params_from_profile(s->mp, &rp.motor);
-    rp.motor.rs_ohm *= cfg->rs_scale;
-    rp.motor.ld_h *= cfg->l_scale;
-    rp.motor.lq_h *= cfg->l_scale;
-    rp.motor.psi_vs *= cfg->ke_scale;
-    rp.motor.j_kgm2 = rp.motor.j_kgm2 * cfg->j_scale + cfg->j_extra_kgm2;
-    rp.motor.b_nms *= cfg->b_scale;
-    if (cfg->coulomb_nm >= 0.0) {
-        rp.motor.coulomb_nm = cfg->coulomb_nm;
-    }
-    rp.inv = cfg->inv;
-    rp.inv.vbus_v = (cfg->vbus_v >= 0.0) ? cfg->vbus_v : s->bp->vbus_v;
-    rp.inv.ripple_v = 0.0;
-    rp.inv.ripple_hz = 0.0;
-    rp.inv.deadtime_s = (cfg->deadtime_s >= 0.0) ? cfg->deadtime_s : s->bp->deadtime_s;
-    rp.inv.pwm_hz = (double)PWM_FREQUENCY_HZ;
-    rp.inv.duty_max = (double)PWM_DUTY_MAX;
-    rp.adc.i_fs_a = (double)BOARD_I_FULLSCALE_A;
-    rp.adc.vbus_fs_v = (double)BOARD_VBUS_FULLSCALE_V;
-    rp.adc.bits = 10;
-    rp.adc.offset_a_codes = cfg->offsets_set ? cfg->offset_a_codes : s->bp->offset_a_codes;
-    rp.adc.offset_b_codes = cfg->offsets_set ? cfg->offset_b_codes : s->bp->offset_b_codes;
-    rp.adc.noise_codes = (cfg->noise_codes >= 0.0) ? cfg->noise_codes : s->bp->noise_codes;
-    rp.adc.seed = (cfg->seed != 0u) ? cfg->seed : 1u;
-    rp.substeps = cfg->substeps;
-    rp.sample_at = (cfg->sample_at >= 0.0) ? cfg->sample_at : MC_SAMPLE_AT; /* the chip's (mc.h) */
-    rp.amp_tau_s = (cfg->amp_tau_s >= 0.0) ? cfg->amp_tau_s : s->bp->amp_tau_s;
-    rp.theta_e0 = cfg->theta0_rad;
-    rp.omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
-    rp.fan_rated_rpm = s->mp->rated_rpm;
+    rig_params(s, cfg, &rp);
     sim_rig_init(&s->rig, &rp);
+    s->rig.pot = cfg->pot;
+    s->rig.pot_target = cfg->pot;
     mc_init(&s->mc);
     mc_status(&s->mc, &s->st);
+    s->out.duty[0] = s->out.duty[1] = s->out.duty[2] = PWM_DUTY_MAX / 2U; /* before a step: off */
+    s->out.outputs_on = false;
     s->rated_nm = sim_motor_rated_torque(s->mp);
-    s->t_start_s = -1.0;
-    s->t_closed_s = -1.0;
-    s->t_enter_closed_s = -1.0;
-    s->prev_state = (int)s->st.state;
+    sim_log_init(&s->log, &LOG_CORE, (int)s->st.state);
     return 0;
 }
 
 void simcore_request(simcore_t *s, mc_request_t r)
 {
-    if ((r == MC_REQUEST_START || r == MC_REQUEST_START_STOP) && s->t_start_s < 0.0) {
-        s->t_start_s = s->rig.t;
+    if (r == MC_REQUEST_START || r == MC_REQUEST_START_STOP) {
+        sim_log_start(&s->log, s->rig.t);
     }
     mc_request(&s->mc, r);
 }
@@ -281,79 +286,6 @@ static double wrap_deg(double d)
     return d;
 }
 
-static void log_transition(simcore_t *s, int from, int to)
-{
-    if (s->n_log < SIMCORE_MAX_LOG) {
-        s->log[s->n_log].t_s = s->now.t_s;
-        s->log[s->n_log].from = from;
-        s->log[s->n_log].to = to;
-        s->log[s->n_log].fault = s->now.fault;
-        s->n_log++;
-    }
-}
-
-static void csv_row(const simcore_t *s)
-{
-    const simcore_sample_t *n = &s->now;
-    fprintf(s->cfg.csv,
-            "%.6f,%d,%u,%.2f,%.2f,%.2f,%.2f,%.3f,%.3f,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,"
-            "%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3f,%.5f,%.5f,%.3f,%.3f,%d,%d\n",
-            n->t_s, n->state, n->fault, n->speed_target_rpm, n->speed_ref_rpm, n->speed_est_rpm,
-            n->speed_rpm, n->theta_est_deg, n->theta_deg, n->theta_err_deg, n->id_ref_a, n->id_a,
-            n->iq_ref_a, n->iq_a, n->id_true_a, n->iq_true_a, n->ia_a, n->ib_a, n->ic_a, n->duty[0],
-            n->duty[1], n->duty[2], n->outputs_on ? 1 : 0, n->vbus_v, n->load_nm, n->torque_nm,
-            n->vd_v, n->vq_v, n->estimator_valid ? 1 : 0, (n->t_s < s->zoom_until_s) ? 1 : 0);
-}
-
-void simcore_csv_header(FILE *f)
-{
-    fprintf(f, "t_s,state,fault,speed_target_rpm,speed_ref_rpm,speed_est_rpm,speed_rpm,"
-               "theta_est_deg,theta_deg,theta_err_deg,id_ref_A,id_A,iq_ref_A,iq_A,id_true_A,"
-               "iq_true_A,ia_A,ib_A,ic_A,duty_a,duty_b,duty_c,outputs_on,vbus_V,load_Nm,"
-               "torque_Nm,vd_V,vq_V,estimator_valid,zoom\n");
-}
-
-static void update_metrics(simcore_t *s)
-{
-    const simcore_sample_t *n = &s->now;
-    double ipk = fmax(fabs(n->ia_a), fmax(fabs(n->ib_a), fabs(n->ic_a)));
-    int k;
-    if (ipk > s->i_peak_a) {
-        s->i_peak_a = ipk;
-        s->t_i_peak_s = n->t_s;
-    }
-    if (n->state != s->prev_state) {
-        log_transition(s, s->prev_state, n->state);
-        if (n->state == MC_STATE_CLOSED_LOOP) {
-            s->t_enter_closed_s = n->t_s;
-            if (s->t_closed_s < 0.0) {
-                s->t_closed_s = n->t_s;
-            }
-        }
-        s->prev_state = n->state;
-    }
-    for (k = 0; k < s->n_seg; k++) {
-        simcore_segment_t *g = &s->seg[k];
-        /* half a period of slack: times are sums of periods, events exact */
-        double slack = 0.5 * s->rig.ts;
-        if (n->t_s >= g->win_s - slack && n->t_s < g->t1_s - slack) {
-            g->n_all++;
-            g->state_end = n->state;
-            if (n->state == MC_STATE_CLOSED_LOOP &&
-                n->t_s >= s->t_enter_closed_s + SIMCORE_SETTLE_S) {
-                g->n++;
-                g->ref_sum += n->speed_ref_rpm;
-                g->spd_sum += n->speed_rpm;
-                g->est_sum += n->speed_est_rpm;
-                g->iq_sum += n->iq_true_a;
-                g->ang_sum += n->theta_err_deg;
-                g->ang_sum2 += n->theta_err_deg * n->theta_err_deg;
-                g->ang_max = fmax(g->ang_max, fabs(n->theta_err_deg));
-            }
-        }
-    }
-}
-
 static bool plant_diverged(const simcore_t *s)
 {
     const sim_plant_t *p = &s->rig.plant;
@@ -382,26 +314,19 @@ void simcore_diverged_msg(const simcore_t *s, char *buf, size_t len)
     }
 }
 
-void simcore_step(simcore_t *s)
+void simcore_sample(simcore_t *s, mc_adc_frame_t *in)
 {
-    sim_adc_frame_t f;
-    mc_adc_frame_t in;
-    mc_pwm_out_t out;
-    simcore_sample_t *n = &s->now;
+    sim_sample_t *n = &s->now;
     const sim_plant_t *p = &s->rig.plant;
-    double theta_true;
-
-    if (s->diverged) {
-        return;
-    }
-    sim_rig_sample(&s->rig, &f);
-    in.ia = f.ia;
-    in.ib = f.ib;
-    in.vbus = f.vbus;
-    in.pot = f.pot;
-    theta_true = p->s.theta_e;
+    sim_rig_sample(&s->rig, &s->frame);
+    in->ia = s->frame.ia;
+    in->ib = s->frame.ib;
+    in->vbus = s->frame.vbus;
+    in->pot = s->frame.pot;
+    s->theta_sample = p->s.theta_e;
+    s->rpm_sample = sim_plant_rpm(p);
     n->t_s = s->rig.t;
-    n->speed_rpm = sim_plant_rpm(p);
+    n->speed_rpm = s->rpm_sample;
     n->id_true_a = p->s.id;
     n->iq_true_a = p->s.iq;
     n->ia_a = s->rig.i_abc[0];
@@ -411,18 +336,19 @@ void simcore_step(simcore_t *s)
     n->load_nm =
         p->load.passive_nm + p->load.active_nm + p->load.fan_k * p->s.omega_m * fabs(p->s.omega_m);
     n->torque_nm = sim_plant_torque(p);
+}
 
-    mc_step(&s->mc, &in, &out);
-    mc_slow_step(&s->mc); /* a no-op except after a window end (mc.h note 4) */
+void simcore_finish(simcore_t *s)
+{
+    sim_sample_t *n = &s->now;
     mc_status(&s->mc, &s->st);
-
     n->state = (int)s->st.state;
     n->fault = s->st.fault;
     n->speed_target_rpm = Q15_TO(s->st.speed_target, MC_SPEED_FULLSCALE_RPM);
     n->speed_ref_rpm = Q15_TO(s->st.speed_ref, MC_SPEED_FULLSCALE_RPM);
     n->speed_est_rpm = Q15_TO(s->st.speed_est, MC_SPEED_FULLSCALE_RPM);
     n->theta_est_deg = (double)s->st.theta_est / 32768.0 * 180.0;
-    n->theta_deg = theta_true * RAD_TO_DEG;
+    n->theta_deg = s->theta_sample * RAD_TO_DEG;
     n->theta_err_deg = wrap_deg(n->theta_est_deg - n->theta_deg);
     n->id_ref_a = Q15_TO(s->st.id_ref, BOARD_I_FULLSCALE_A);
     n->iq_ref_a = Q15_TO(s->st.iq_ref, BOARD_I_FULLSCALE_A);
@@ -430,23 +356,35 @@ void simcore_step(simcore_t *s)
     n->iq_a = Q15_TO(s->st.iq, BOARD_I_FULLSCALE_A);
     n->vd_v = Q15_TO(s->st.vd, MC_VOLTAGE_FULLSCALE_V);
     n->vq_v = Q15_TO(s->st.vq, MC_VOLTAGE_FULLSCALE_V);
-    n->duty[0] = (double)out.duty[0] / (double)PWM_DUTY_MAX;
-    n->duty[1] = (double)out.duty[1] / (double)PWM_DUTY_MAX;
-    n->duty[2] = (double)out.duty[2] / (double)PWM_DUTY_MAX;
-    n->outputs_on = out.outputs_on;
+    n->duty[0] = (double)s->out.duty[0] / (double)PWM_DUTY_MAX;
+    n->duty[1] = (double)s->out.duty[1] / (double)PWM_DUTY_MAX;
+    n->duty[2] = (double)s->out.duty[2] / (double)PWM_DUTY_MAX;
+    n->outputs_on = s->out.outputs_on;
     n->estimator_valid = s->st.estimator_valid;
 
-    sim_rig_advance(&s->rig, out.duty, out.outputs_on);
+    sim_rig_advance(&s->rig, s->out.duty, s->out.outputs_on);
     if (plant_diverged(s)) {
         s->diverged = true;
         s->diverged_t_s = s->rig.t;
-        s->diverged_rpm = sim_plant_rpm(p);
+        s->diverged_rpm = sim_plant_rpm(&s->rig.plant);
     }
-    update_metrics(s);
+    sim_log_add(&s->log, n, s->rig.ts);
     if (s->cfg.csv != NULL && s->cfg.csv_decim > 0 &&
         ((s->rig.period - 1) % s->cfg.csv_decim == 0 || n->t_s < s->zoom_until_s)) {
-        csv_row(s);
+        sim_trace_row(s->cfg.csv, n, n->t_s < s->zoom_until_s);
     }
+}
+
+void simcore_step(simcore_t *s)
+{
+    mc_adc_frame_t in;
+    if (s->diverged) {
+        return;
+    }
+    simcore_sample(s, &in);
+    mc_step(&s->mc, &in, &s->out);
+    mc_slow_step(&s->mc); /* a no-op except after a window end (mc.h note 4) */
+    simcore_finish(s);
 }
 
 static double wall_s(void)
@@ -460,52 +398,13 @@ static double wall_s(void)
 
 int simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *name)
 {
-    int next = 0, k;
+    int next = 0;
     long periods = (long)floor(sc->end_s * (double)PWM_FREQUENCY_HZ + 0.5);
     double w0 = wall_s();
     double last_report = 0.0;
     bool reported = false;
 
-    /* Segments between events (events at the same time share one). */
-    s->n_seg = 0;
-    for (k = 0; k < sc->n && s->n_seg < SIMCORE_MAX_SEG; k++) {
-        const sim_event_t *e = &sc->ev[k];
-        simcore_segment_t *g;
-        if (e->kind == SIM_EV_END) {
-            break;
-        }
-        if (e->kind == SIM_EV_ZOOM || e->kind == SIM_EV_NOISE || e->kind == SIM_EV_DEADTIME ||
-            e->kind == SIM_EV_INVERTER || e->kind == SIM_EV_DEADTIME_SHAPE) {
-            continue; /* not a change of operating point */
-        }
-        if (s->n_seg > 0 && s->seg[s->n_seg - 1].t0_s == e->t_s) {
-            g = &s->seg[s->n_seg - 1];
-            if (strlen(g->label) + strlen(sim_event_name(e->kind)) + 2 < sizeof(g->label)) {
-                strcat(g->label, "+");
-                strcat(g->label, sim_event_name(e->kind));
-            }
-            continue;
-        }
-        g = &s->seg[s->n_seg++];
-        memset(g, 0, sizeof(*g));
-        g->t0_s = e->t_s;
-        snprintf(g->label, sizeof(g->label), "%s", sim_event_name(e->kind));
-        if (e->kind == SIM_EV_SPEED || e->kind == SIM_EV_SPEED_RAMP) {
-            if (e->v1 == SIM_SPEED_MAX || e->v1 == SIM_SPEED_MIN) {
-                snprintf(g->label, sizeof(g->label), "%s %s", sim_event_name(e->kind),
-                         (e->v1 == SIM_SPEED_MAX) ? "max" : "min");
-            } else {
-                snprintf(g->label, sizeof(g->label), "%s %.0f", sim_event_name(e->kind), e->v1);
-            }
-        } else if (e->kind == SIM_EV_LOAD || e->kind == SIM_EV_LOAD_FAN || e->kind == SIM_EV_VBUS) {
-            snprintf(g->label, sizeof(g->label), "%s %.3g", sim_event_name(e->kind), e->v1);
-        }
-    }
-    for (k = 0; k < s->n_seg; k++) {
-        s->seg[k].t1_s = (k + 1 < s->n_seg) ? s->seg[k + 1].t0_s : sc->end_s;
-        s->seg[k].win_s = s->seg[k].t0_s + 0.5 * (s->seg[k].t1_s - s->seg[k].t0_s);
-    }
-
+    sim_log_segments(&s->log, sc);
     while (s->rig.period < periods && !s->diverged) {
         double t = s->rig.t;
         while (next < sc->n && sc->ev[next].t_s <= t + 0.5 / (double)PWM_FREQUENCY_HZ) {
@@ -533,11 +432,6 @@ int simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *nam
 
 void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
 {
-    int k;
-    double ang_sum = 0.0, ang_sum2 = 0.0, ang_max = 0.0;
-    long ang_n = 0;
-    int n_fault = 0;
-
     fprintf(f,
             "\n== sim: scenario %s | motor %s (%s) | board %s, at the start: Vbus %.1f V, dead "
             "time %.1f us, ADC noise %.1f LSB\n",
@@ -549,28 +443,10 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
         fprintf(f, "   plant mismatch vs UserParms.h: R x%.2f, L x%.2f, Ke x%.2f\n",
                 s->cfg.rs_scale, s->cfg.l_scale, s->cfg.ke_scale);
     }
-    for (k = 0; k < s->n_seg; k++) {
-        ang_sum += s->seg[k].ang_sum;
-        ang_sum2 += s->seg[k].ang_sum2;
-        ang_max = fmax(ang_max, s->seg[k].ang_max);
-        ang_n += s->seg[k].n;
-    }
-    if (s->t_closed_s >= 0.0 && s->t_start_s >= 0.0) {
-        fprintf(f, "   time to closed loop       %.3f s (START at %.3f s)\n",
-                s->t_closed_s - s->t_start_s, s->t_start_s);
-    } else {
-        fprintf(f, "   time to closed loop       never\n");
-    }
-    if (ang_n > 0) {
-        double mean = ang_sum / (double)ang_n;
-        fprintf(f,
-                "   angle error (est - true)  mean %+.2f deg, rms %.2f deg, max |.| %.2f deg "
-                "(settled closed loop, 2nd half of each segment)\n",
-                mean, sqrt(ang_sum2 / (double)ang_n), ang_max);
-    }
+    sim_log_print_run(&s->log, f);
     fprintf(f,
             "   peak phase current        %.2f A at %.3f s (rated %.2f A, ADC full scale %.2f A)\n",
-            s->i_peak_a, s->t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
+            s->log.i_peak_a, s->log.t_i_peak_s, s->mp->rated_a, (double)BOARD_I_FULLSCALE_A);
     fprintf(f, "   dead time compensated     %.2f us (the inverter's at the end: %.2f us)\n",
             (double)s->st.deadtime / (double)BOARD_FCY_HZ * 1e6, s->rig.inv.prm.deadtime_s * 1e6);
     if (s->rig.amp_tau_s > 0.0) {
@@ -580,36 +456,5 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
                 s->rig.samples_short, SIM_AMP_SETTLE_TAUS * s->rig.amp_tau_s * 1e6,
                 s->rig.t_cond_min_s * 1e6);
     }
-    for (k = 0; k < s->n_log; k++) {
-        if (s->log[k].to == MC_STATE_FAULT) {
-            n_fault++;
-        }
-    }
-    fprintf(f, "   faults                    %d", n_fault);
-    for (k = 0; k < s->n_log; k++) {
-        if (s->log[k].to == MC_STATE_FAULT) {
-            fprintf(f, "%s%s at %.4f s", (n_fault > 0) ? "  " : "", mc_fault_name(s->log[k].fault),
-                    s->log[k].t_s);
-        }
-    }
-    fprintf(f, "\n   states                   ");
-    for (k = 0; k < s->n_log && k < 24; k++) {
-        fprintf(f, " %.3f:%s", s->log[k].t_s, mc_state_name(s->log[k].to));
-    }
-    fprintf(f, "\n   %-20s %7s %7s %-11s %8s %8s %8s %7s %7s %7s %6s\n", "segment (event)",
-            "from_s", "to_s", "state_end", "ref_rpm", "true_rpm", "est_rpm", "spd_err%", "ang_avg",
-            "ang_max", "iq_A");
-    for (k = 0; k < s->n_seg; k++) {
-        const simcore_segment_t *g = &s->seg[k];
-        fprintf(f, "   %-20s %7.3f %7.3f %-11s", g->label, g->t0_s, g->t1_s,
-                (g->n_all > 0) ? mc_state_name(g->state_end) : "-");
-        if (g->n > 0) {
-            double ref = g->ref_sum / (double)g->n, spd = g->spd_sum / (double)g->n;
-            fprintf(f, " %8.1f %8.1f %8.1f %7.2f%% %+7.2f %7.2f %6.3f\n", ref, spd,
-                    g->est_sum / (double)g->n, (ref != 0.0) ? 100.0 * (spd - ref) / ref : 0.0,
-                    g->ang_sum / (double)g->n, g->ang_max, g->iq_sum / (double)g->n);
-        } else {
-            fprintf(f, " %8s %8s %8s %8s %7s %7s %6s\n", "-", "-", "-", "-", "-", "-", "-");
-        }
-    }
+    sim_log_print_states(&s->log, f);
 }

@@ -1,4 +1,4 @@
-/* sim_core.h - the firmware core (mc.h) driven by the simulated bench, in physical units. */
+/* sim_core.h - the one bench: the firmware core (mc.h) on the simulated plant, inverter and ADC. */
 #ifndef SIM_CORE_H
 #define SIM_CORE_H
 
@@ -7,29 +7,41 @@
 #include <stdio.h>
 
 #include "mc.h"
+#include "sim_log.h"
 #include "sim_profiles.h"
 #include "sim_rig.h"
+#include "sim_sample.h"
 #include "sim_scenario.h"
 
 /*
- * Everything the simulator program and the closed-loop tests share. The core
- * is reached only through firmware/mc.h; every conversion between its Q15
- * values and physical units uses the scale macros that header provides
- * (BOARD_I_FULLSCALE_A, BOARD_VBUS_FULLSCALE_V, PWM_FREQUENCY_HZ,
+ * The bench everything closed-loop runs on: the simulator program, sim
+ * --pty, the randomized campaign (robust.c), the closed-loop tests
+ * (test/closedloop), the firmware tests (test/firmware/mc_bench.h) and the
+ * benchmarks (tools/bench). simcore_init builds it from a motor and a board
+ * profile (sim_profiles.h; a profile the simulator lacks is taken from this
+ * build's firmware headers) and a configuration; simcore_step runs one PWM
+ * period: the ADC samples the plant, the core steps, the plant runs on to
+ * the next sample with the duties latched at the period boundary.
+ *
+ * The core is reached only through firmware/mc.h; every conversion between
+ * its Q15 values and physical units uses the scale macros that header
+ * provides (BOARD_I_FULLSCALE_A, BOARD_VBUS_FULLSCALE_V, PWM_FREQUENCY_HZ,
  * PWM_DUTY_MAX, MOTOR_POLE_PAIRS, MC_SPEED_FULLSCALE_RPM, SPEED_REF_MIN_RPM,
- * SPEED_REF_MAX_RPM, MC_VOLTAGE_FULLSCALE_V).
+ * SPEED_REF_MAX_RPM, MC_VOLTAGE_FULLSCALE_V). This file is compiled once
+ * per copy of the core (sim_core_library in tools/sim/CMakeLists.txt).
  */
 
 typedef struct {
-    const char *motor;  /* simulated motor profile (sim_profiles.c) */
-    const char *board;  /* simulated board profile */
-    double rs_scale;    /* plant R = profile R * rs_scale (mismatch with UserParms.h) */
-    double l_scale;     /* plant Ld, Lq */
-    double ke_scale;    /* plant flux linkage */
-    double j_scale;     /* plant inertia */
-    double theta0_rad;  /* initial electrical angle */
-    double rpm0;        /* initial mechanical speed, rpm (a spinning rotor) */
-    double deadtime_s;  /* < 0: the board's */
+    const char *motor; /* simulated motor profile (sim_profiles.h) */
+    const char *board; /* simulated board profile */
+    double rs_scale;   /* plant R = profile R * rs_scale (a mismatch with the firmware's profile) */
+    double l_scale;    /* plant Ld, Lq */
+    double ke_scale;   /* plant flux linkage */
+    double j_scale;    /* plant inertia */
+    double theta0_rad; /* initial electrical angle */
+    double rpm0;       /* initial mechanical speed, rpm (a spinning rotor) */
+    double pot;        /* initial potentiometer position, 0..1 */
+    double deadtime_s; /* < 0: the board's */
     double noise_codes; /* < 0: the board's */
     double vbus_v;      /* < 0: the board's */
     uint32_t seed;      /* ADC noise seed */
@@ -47,61 +59,21 @@ typedef struct {
     bool progress;             /* progress line on stderr for long runs */
 } simcore_cfg_t;
 
-/* One PWM period as seen by an engineer, physical units. Taken at the
- * sampling instant (period start) for the plant, after mc_step() for the core. */
-typedef struct {
-    double t_s;
-    int state;
-    unsigned fault;
-    double speed_target_rpm, speed_ref_rpm, speed_est_rpm, speed_rpm; /* mechanical */
-    double theta_est_deg, theta_deg, theta_err_deg;                   /* electrical, wrapped */
-    double id_ref_a, iq_ref_a, id_a, iq_a;                            /* the core's (its frame) */
-    double id_true_a, iq_true_a;                                      /* the plant's (true frame) */
-    double ia_a, ib_a, ic_a;                                          /* true phase currents */
-    double duty[3]; /* 0..1, computed this period */
-    bool outputs_on;
-    double vbus_v, load_nm, torque_nm;
-    double vd_v, vq_v; /* the core's voltage command */
-    bool estimator_valid;
-} simcore_sample_t;
-
-#define SIMCORE_MAX_LOG 64
-#define SIMCORE_MAX_SEG 96
-
-typedef struct {
-    double t0_s, t1_s, win_s; /* segment and the start of its measuring window */
-    char label[40];           /* the event that opened it */
-    long n;                   /* samples in the window (closed loop only) */
-    long n_all;               /* samples in the window */
-    double ref_sum, spd_sum, est_sum, iq_sum;
-    double ang_sum, ang_sum2, ang_max;
-    int state_end;
-} simcore_segment_t;
-
 typedef struct {
     simcore_cfg_t cfg;
     const sim_motor_profile_t *mp;
     const sim_board_profile_t *bp;
     sim_rig_t rig;
     mc_t mc;
-    mc_status_t st;
-    simcore_sample_t now;
-    double rated_nm;
-    /* run metrics */
-    double t_start_s;  /* first start request, < 0 none */
-    double t_closed_s; /* first CLOSED_LOOP, < 0 never */
-    double t_enter_closed_s;
-    double i_peak_a, t_i_peak_s;
-    int n_log;
-    struct {
-        double t_s;
-        int from, to;
-        unsigned fault;
-    } log[SIMCORE_MAX_LOG];
-    int n_seg;
-    simcore_segment_t seg[SIMCORE_MAX_SEG];
-    int prev_state;
-    double zoom_until_s; /* full-rate trace rows until this time */
+    mc_status_t st;        /* after the last period's step */
+    mc_pwm_out_t out;      /* the duties of the last period */
+    sim_adc_frame_t frame; /* the last period's ADC conversion */
+    double theta_sample;   /* true electrical angle at the last sample, rad */
+    double rpm_sample;     /* true speed then, rpm */
+    sim_sample_t now;      /* the last period, physical units */
+    double rated_nm;       /* the motor's rated torque, N m */
+    sim_log_t log;         /* the run so far */
+    double zoom_until_s;   /* full-rate trace rows until this time */
     /* The plant left what its integration can follow (simcore_step): set once,
      * every later simcore_step is a no-op. */
     bool diverged;
@@ -114,17 +86,28 @@ typedef struct {
  * 0.5 rad keeps the amplitude error per step near 0.01 %). */
 #define SIMCORE_MAX_STEP_RAD 0.5
 
+/* Defaults: hurst on mclv, no mismatch, at rest at angle 0, pot at 0, the
+ * board's dead time, noise and offsets, noise seed 1, 4 sub-steps, the
+ * chip's sample instant, no trace. */
+void simcore_cfg_default(simcore_cfg_t *cfg);
+
 /* Returns 0, or -1 with a message on stderr (unknown profile, pole pairs
  * differ from the core's MOTOR_POLE_PAIRS...). */
 int simcore_init(simcore_t *s, const simcore_cfg_t *cfg);
 
-/* Defaults: hurst on mclv, no mismatch, 4 sub-steps, board dead time and noise. */
-void simcore_cfg_default(simcore_cfg_t *cfg);
-
-/* One PWM period; fills s->now. Once the plant's state is not finite or it
- * turns faster than SIMCORE_MAX_STEP_RAD per sub-step (an active load driving
- * the rotor), sets s->diverged and does nothing from then on. */
+/* One PWM period: simcore_sample, mc_step and mc_slow_step (into s->out),
+ * simcore_finish. Once the plant's state is not finite or it turns faster
+ * than SIMCORE_MAX_STEP_RAD per sub-step (an active load driving the
+ * rotor), sets s->diverged and does nothing from then on. */
 void simcore_step(simcore_t *s);
+
+/* The period in two halves, for a caller that steps the core itself (the
+ * benchmarks): the ADC conversion at this period's sample instant into in,
+ * s->frame and the plant's side of s->now; then, with the core's duties in
+ * s->out, its status and its side of s->now, the plant on to the next
+ * sample, the run's record and trace. */
+void simcore_sample(simcore_t *s, mc_adc_frame_t *in);
+void simcore_finish(simcore_t *s);
 
 /* One line saying where and how the plant diverged (s->diverged set). */
 void simcore_diverged_msg(const simcore_t *s, char *buf, size_t len);
@@ -143,6 +126,5 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name);
 void simcore_set_speed(simcore_t *s, double rpm); /* pot position for this reference */
 void simcore_request(simcore_t *s, mc_request_t r);
 double simcore_pot_for_rpm(double rpm);
-void simcore_csv_header(FILE *f);
 
 #endif /* SIM_CORE_H */

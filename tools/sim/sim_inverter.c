@@ -2,36 +2,24 @@
 #include "sim_inverter.h"
 
 #include <math.h>
-#include <string.h>
 #include <stdbool.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-static int name_index(const char *name, const char *const *names, int n, int *out)
-{
-    int k;
-    for (k = 0; k < n; k++) {
-        if (strcmp(name, names[k]) == 0) {
-            *out = k;
-            return 0;
-        }
-    }
-    return -1;
-}
+const sim_word_t sim_inverter_models[] = {
+    {"averaged", (double)SIM_INV_AVERAGED},
+    {"switching", (double)SIM_INV_SWITCHING},
+    {NULL, 0.0},
+};
 
-int sim_inverter_model_parse(const char *name, int *out)
-{
-    static const char *const models[] = {"averaged", "switching"}; /* sim_inv_model_t order */
-    return name_index(name, models, 2, out);
-}
-
-int sim_inverter_shape_parse(const char *name, int *out)
-{
-    static const char *const shapes[] = {"linear", "hard", "ripple"}; /* sim_dt_shape_t order */
-    return name_index(name, shapes, 3, out);
-}
+const sim_word_t sim_inverter_shapes[] = {
+    {"linear", (double)SIM_DT_LINEAR},
+    {"hard", (double)SIM_DT_HARD},
+    {"ripple", (double)SIM_DT_RIPPLE},
+    {NULL, 0.0},
+};
 
 void sim_inverter_init(sim_inverter_t *inv, const sim_inverter_params_t *prm, double l_h)
 {

@@ -6,6 +6,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "sim_parse.h"
+
 /*
  * Averaged model (no switching ripple): over one integration sub-step the pin
  * of phase k sits, on average, at
@@ -73,11 +75,11 @@ typedef struct {
     bool on;          /* latched output enable */
 } sim_inverter_t;
 
-/* The names scenario files and the command line use: "averaged" /
- * "switching" (sim_inv_model_t), "linear" / "hard" / "ripple"
- * (sim_dt_shape_t). Return 0, or -1 (out untouched) for another name. */
-int sim_inverter_model_parse(const char *name, int *out);
-int sim_inverter_shape_parse(const char *name, int *out);
+/* The names scenario files and the command line use, with the value of
+ * each: "averaged", "switching" (sim_inv_model_t); "linear", "hard",
+ * "ripple" (sim_dt_shape_t). */
+extern const sim_word_t sim_inverter_models[];
+extern const sim_word_t sim_inverter_shapes[];
 
 /* Outputs off, duties 0. l_h: motor inductance used for the automatic band
  * Vbus / (12 L fpwm), about half the peak PWM current ripple. */

@@ -7,7 +7,9 @@
 #include <time.h>
 
 #include "sim_core.h"
+#include "sim_opt.h"
 #include "sim_parse.h"
+#include "sim_trace.h"
 #ifdef SIM_HAVE_PTY
 #include "sim_pty.h"
 #endif
@@ -17,47 +19,47 @@
 #endif
 
 /*
- * The numeric options and their ranges (docs/sim.md). Every value is parsed
- * strictly (sim_parse.h) and refused in one line on stderr, exit status 2,
- * when it is not a plain decimal number inside its range. The ranges are
- * physical or sane, and they bound the work: substeps and the pty's pace
- * are capped so that no value makes a run take unbounded time (a scenario's
- * length is bounded by its own parser, 3,600 s).
+ * Every option, once (sim_opt.h): its value and the value's range
+ * (docs/sim.md). Every number is parsed strictly (sim_parse.h) and refused
+ * in one line on stderr, exit status 2, when it is not a plain decimal
+ * number inside its range. The ranges are physical or sane, and they bound
+ * the work: substeps and the pty's pace are capped so that no value makes a
+ * run take unbounded time (a scenario's length is bounded by its own
+ * parser, 3,600 s).
  */
-typedef struct {
-    const char *opt;
-    const char *unit;
-    double lo, hi;
-    unsigned flags; /* SIM_RANGE_INTEGER, SIM_RANGE_LO_OPEN */
-} num_opt_t;
-
-static const num_opt_t NUM_OPTS[] = {
-    {"--decim", "periods", 1.0, 1e6, SIM_RANGE_INTEGER},  /* one CSV row per N periods */
-    {"--substeps", "", 1.0, 64.0, SIM_RANGE_INTEGER},     /* RK4 steps per 50 us period */
-    {"--theta0", "deg", -360.0, 360.0, 0u},               /* electrical angle */
-    {"--rpm0", "rpm", -100000.0, 100000.0, 0u},           /* mechanical, either direction */
-    {"--deadtime", "us", 0.0, 20.0, 0u},                  /* 40 % of a 50 us period */
-    {"--noise", "codes", 0.0, 100.0, 0u},                 /* sigma, a tenth of the 10-bit range */
-    {"--vbus", "V", 0.0, 1000.0, 0u},                     /* three times the MCHV's 320 V */
-    {"--seed", "", 0.0, 4294967295.0, SIM_RANGE_INTEGER}, /* uint32_t */
-    {"--rs-scale", "", 0.0, 100.0, SIM_RANGE_LO_OPEN},
-    {"--l-scale", "", 0.0, 100.0, SIM_RANGE_LO_OPEN},
-    {"--ke-scale", "", 0.0, 100.0, SIM_RANGE_LO_OPEN},
-    {"--j-scale", "", 0.0, 100.0, SIM_RANGE_LO_OPEN},
-    {"--b-scale", "", 0.0, 100.0, 0u},     /* 0: no viscous friction */
-    {"--j-extra", "kg m^2", 0.0, 1.0, 0u}, /* 10^5 x the Hurst's rotor */
-    {"--coulomb", "N m", 0.0, 10.0, 0u},   /* as the scenario's loads */
-    {"--dt-band", "A", 0.0, 10.0, 0u},     /* 0: automatic, Vbus/(12 L fpwm) */
-    {"--r-on", "ohm", 0.0, 10.0, 0u},
-    {"--v-diode", "V", 0.0, 10.0, 0u},
-#ifdef SIM_HAVE_PTY
-    {"--realtime", "x real time", 0.0, 1000.0, 0u}, /* 0: free-running; else >= 0.01 (below) */
-    {"--baud", "Bd", 1200.0, 1000000.0, SIM_RANGE_INTEGER},
-    {"--duration", "s", 0.0, 3600.0, 0u}, /* 0: until SIGINT/SIGTERM */
-#endif
+enum {
+    OPT_HELP,
+    OPT_NO_PROGRESS,
+    OPT_MOTOR,
+    OPT_BOARD,
+    OPT_CSV,
+    OPT_DECIM,
+    OPT_SUBSTEPS,
+    OPT_THETA0,
+    OPT_RPM0,
+    OPT_DEADTIME,
+    OPT_NOISE,
+    OPT_VBUS,
+    OPT_SEED,
+    OPT_RS_SCALE,
+    OPT_L_SCALE,
+    OPT_KE_SCALE,
+    OPT_J_SCALE,
+    OPT_B_SCALE,
+    OPT_J_EXTRA,
+    OPT_COULOMB,
+    OPT_OFFSETS,
+    OPT_INVERTER,
+    OPT_DT_SHAPE,
+    OPT_DT_BAND,
+    OPT_R_ON,
+    OPT_V_DIODE,
+    OPT_PTY,
+    OPT_REALTIME,
+    OPT_BAUD,
+    OPT_DURATION,
+    OPT_TRUTH
 };
-
-#define N_NUM_OPTS (sizeof(NUM_OPTS) / sizeof(NUM_OPTS[0]))
 
 /* The slowest pace --realtime takes other than 0: at 0.01 x real time one
  * simulated second is 100 s of wall time. */
@@ -65,64 +67,100 @@ static const num_opt_t NUM_OPTS[] = {
 /* An ADC offset of half the 10-bit range puts the amplifier on a rail. */
 #define OFFSET_MAX_CODES 512.0
 
+/* clang-format off */
+static const sim_opt_t OPTS[] = {
+    {.id = OPT_HELP, .name = "--help", .type = SIM_OPT_FLAG, .help = "this list"},
+    {.id = OPT_MOTOR, .name = "--motor", .type = SIM_OPT_NAME, .value = "NAME",
+     .help = "simulated motor (default hurst; the profiles below)"},
+    {.id = OPT_BOARD, .name = "--board", .type = SIM_OPT_NAME, .value = "NAME",
+     .help = "simulated board (default mclv)"},
+    {.id = OPT_CSV, .name = "--csv", .type = SIM_OPT_TEXT, .value = "FILE",
+     .help = "write the trace (default: none)"},
+    {.id = OPT_DECIM, .name = "--decim", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = {"", "periods", 1.0, 1e6, SIM_RANGE_INTEGER},
+     .help = "one CSV row every N PWM periods (default 10)"},
+    {.id = OPT_SUBSTEPS, .name = "--substeps", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = {"", "", 1.0, 64.0, SIM_RANGE_INTEGER},
+     .help = "RK4 steps per 50 us PWM period (default 4)"},
+    {.id = OPT_THETA0, .name = "--theta0", .type = SIM_OPT_NUMBER, .value = "DEG",
+     .range = {"", "deg", -360.0, 360.0, 0u}, .help = "initial electrical rotor angle (default 0)"},
+    {.id = OPT_RPM0, .name = "--rpm0", .type = SIM_OPT_NUMBER, .value = "RPM",
+     .range = {"", "rpm", -100000.0, 100000.0, 0u},
+     .help = "initial rotor speed, either direction (default 0: at rest)"},
+    {.id = OPT_DEADTIME, .name = "--deadtime", .type = SIM_OPT_NUMBER, .value = "US",
+     .range = {"", "us", 0.0, 20.0, 0u}, /* 40 % of a 50 us period */
+     .help = "inverter dead time (default: the board's)"},
+    {.id = OPT_NOISE, .name = "--noise", .type = SIM_OPT_NUMBER, .value = "LSB",
+     .range = {"", "codes", 0.0, 100.0, 0u}, /* a tenth of the 10-bit range */
+     .help = "ADC noise sigma (default: the board's)"},
+    {.id = OPT_VBUS, .name = "--vbus", .type = SIM_OPT_NUMBER, .value = "V",
+     .range = {"", "V", 0.0, 1000.0, 0u}, /* three times the MCHV's 320 V */
+     .help = "DC bus (default: the board's)"},
+    {.id = OPT_SEED, .name = "--seed", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = SIM_OPT_SEED_RANGE, .help = "ADC noise seed (default 1)"},
+    {.id = OPT_RS_SCALE, .name = "--rs-scale", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "", 0.0, 100.0, SIM_RANGE_LO_OPEN},
+     .help = "plant R times X (a mismatch with the firmware's profile)"},
+    {.id = OPT_L_SCALE, .name = "--l-scale", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "", 0.0, 100.0, SIM_RANGE_LO_OPEN}, .help = "plant L times X"},
+    {.id = OPT_KE_SCALE, .name = "--ke-scale", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "", 0.0, 100.0, SIM_RANGE_LO_OPEN}, .help = "plant back-EMF constant times X"},
+    {.id = OPT_J_SCALE, .name = "--j-scale", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "", 0.0, 100.0, SIM_RANGE_LO_OPEN}, .help = "plant inertia times X"},
+    {.id = OPT_B_SCALE, .name = "--b-scale", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "", 0.0, 100.0, 0u}, .help = "plant viscous friction times X (0: none)"},
+    {.id = OPT_J_EXTRA, .name = "--j-extra", .type = SIM_OPT_NUMBER, .value = "KGM2",
+     .range = {"", "kg m^2", 0.0, 1.0, 0u}, /* 10^5 x the Hurst's rotor */
+     .help = "load inertia added to the rotor's"},
+    {.id = OPT_COULOMB, .name = "--coulomb", .type = SIM_OPT_NUMBER, .value = "NM",
+     .range = {"", "N m", 0.0, 10.0, 0u}, /* as the scenarios' loads */
+     .help = "plant dry friction (default: the profile's)"},
+    {.id = OPT_OFFSETS, .name = "--offsets", .type = SIM_OPT_TEXT, .value = "A,B",
+     .help = "current amplifiers' offsets, ADC codes (default: the board's)"},
+    {.id = OPT_INVERTER, .name = "--inverter", .type = SIM_OPT_WORD, .value = "M",
+     .words = sim_inverter_models, .help = "inverter model (default averaged; docs/sim.md)"},
+    {.id = OPT_DT_SHAPE, .name = "--deadtime-shape", .type = SIM_OPT_WORD, .value = "S",
+     .words = sim_inverter_shapes, .help = "averaged model: dead-time shape (default linear)"},
+    {.id = OPT_DT_BAND, .name = "--dt-band", .type = SIM_OPT_NUMBER, .value = "A",
+     .range = {"", "A", 0.0, 10.0, 0u},
+     .help = "averaged model: dead-time band (default 0: automatic, Vbus/(12 L fpwm))"},
+    {.id = OPT_R_ON, .name = "--r-on", .type = SIM_OPT_NUMBER, .value = "OHM",
+     .range = {"", "ohm", 0.0, 10.0, 0u}, .help = "switching model: switch on-resistance"},
+    {.id = OPT_V_DIODE, .name = "--v-diode", .type = SIM_OPT_NUMBER, .value = "V",
+     .range = {"", "V", 0.0, 10.0, 0u}, .help = "switching model: diode forward drop"},
+    {.id = OPT_NO_PROGRESS, .name = "--no-progress", .type = SIM_OPT_FLAG,
+     .help = "no progress line on stderr"},
+#ifdef SIM_HAVE_PTY
+    {.id = OPT_PTY, .name = "--pty", .type = SIM_OPT_FLAG,
+     .help = "no scenario: serve the monitor protocol on a pty (docs/monitor.md)"},
+    {.id = OPT_REALTIME, .name = "--realtime", .type = SIM_OPT_NUMBER, .value = "X",
+     .range = {"", "x real time", 0.0, 1000.0, 0u}, /* and 0 or at least REALTIME_MIN */
+     .help = "with --pty: X times real time (default 1; 0: free-running)"},
+    {.id = OPT_BAUD, .name = "--baud", .type = SIM_OPT_NUMBER, .value = "N",
+     .range = {"", "Bd", 1200.0, 1000000.0, SIM_RANGE_INTEGER},
+     .help = "with --pty: emulated UART rate (default 38400)"},
+    {.id = OPT_DURATION, .name = "--duration", .type = SIM_OPT_NUMBER, .value = "S",
+     .range = {"", "s", 0.0, 3600.0, 0u},
+     .help = "with --pty: stop after S simulated seconds (0: until SIGINT or SIGTERM)"},
+    {.id = OPT_TRUTH, .name = "--truth", .type = SIM_OPT_TEXT, .value = "FILE",
+     .help = "with --pty: the true speed at every recorded sample (CSV)"},
+#endif
+};
+/* clang-format on */
+
+#define N_OPTS (sizeof(OPTS) / sizeof(OPTS[0]))
+
 static void usage(FILE *f)
 {
-    fprintf(
-        f,
-        "usage: sim [options] <scenario.txt>\n"
-        "       sim --pty [options]   the live data monitor on a pseudo-terminal "
-        "(docs/monitor.md)\n"
-        "  --motor NAME      simulated motor (default hurst; %s)\n"
-        "  --board NAME      simulated board (default mclv)\n"
-        "  --csv FILE        write the trace (default: none)\n"
-        "  --decim N         one CSV row every N PWM periods (default 10; 1..1000000)\n"
-        "  --substeps N      RK4 steps per PWM period (default 4; 1..64)\n"
-        "  --theta0 DEG      initial electrical rotor angle (default 0; -360..360)\n"
-        "  --rpm0 RPM        initial rotor speed (default 0: at rest; -100000..100000)\n"
-        "  --deadtime US     inverter dead time (default: the board's, 2 us; 0..20)\n"
-        "  --noise LSB       ADC noise sigma in codes (default: the board's, 1; 0..100)\n"
-        "  --vbus V          DC bus (default: the board's; 0..1000)\n"
-        "  --seed N          noise seed (0..4294967295)\n"
-        "  --rs-scale X --l-scale X --ke-scale X --j-scale X --b-scale X\n"
-        "                    plant parameters times X (mismatch with UserParms.h; 0 < X <= 100,\n"
-        "                    --b-scale 0..100)\n"
-        "  --j-extra KGM2    load inertia added to the rotor's (0..1)\n"
-        "  --coulomb NM      plant dry friction (default: the profile's; 0..10)\n"
-        "  --offsets A,B     current amplifier offsets, ADC codes (default: the board's; "
-        "-512..512)\n"
-        "  --inverter M      averaged (default) or switching (docs/sim.md)\n"
-        "  --deadtime-shape S  averaged model: linear (default), hard or ripple\n"
-        "  --dt-band A       averaged model: dead-time band, A (default 0: automatic; 0..10)\n"
-        "  --r-on OHM        switching model: switch on-resistance (default 0; 0..10)\n"
-        "  --v-diode V       switching model: diode forward drop (default 0; 0..10)\n"
-        "  --no-progress     no progress line on stderr\n"
-        "  --pty             no scenario: serve the monitor protocol on a pty\n"
-        "  --realtime X      with --pty: X times real time (default 1; 0 = free-running, "
-        "else 0.01..1000)\n"
-        "  --baud N          with --pty: emulated UART rate (default 38400; 1200..1000000)\n"
-        "  --duration S      with --pty: stop after S simulated seconds (0..3600; 0 = until "
-        "killed)\n"
-        "  --truth FILE      with --pty: true speed at every recorded sample (CSV)\n",
-        sim_profiles_list());
+    fprintf(f, "usage: sim [options] <scenario.txt>\n"
+               "       sim --pty [options]   the live data monitor on a pseudo-terminal "
+               "(docs/monitor.md)\n");
+    sim_opt_usage(f, OPTS, N_OPTS);
+    fprintf(f, "profiles: %s\n", sim_profiles_list());
 }
 
-/* One line on stderr, as every refusal: "sim: <field>: <why>". */
-static int refuse(const char *field, const char *why)
-{
-    fprintf(stderr, "sim: %s: %s\n", field, why);
-    return 2;
-}
-
-static const num_opt_t *num_opt(const char *a)
-{
-    size_t k;
-    for (k = 0; k < N_NUM_OPTS; k++) {
-        if (strcmp(NUM_OPTS[k].opt, a) == 0) {
-            return &NUM_OPTS[k];
-        }
-    }
-    return NULL;
-}
+/* The program's name in its refusals (sim_refuse). */
+#define PROG "sim"
 
 /* "A,B": two offsets in ADC codes, each strictly parsed. */
 static int parse_offsets(const char *v, double *a, double *b)
@@ -135,13 +173,13 @@ static int parse_offsets(const char *v, double *a, double *b)
         char q[48];
         sim_parse_msg(why, sizeof(why), "'%s' is not A,B (two numbers, ADC codes)",
                       sim_parse_quote(v, q, sizeof(q)));
-        return refuse("--offsets", why);
+        return sim_refuse(PROG, "--offsets", why);
     }
     memcpy(buf, v, n);
     buf[n] = '\0';
     if (sim_parse_number(buf, &ra, a, why, sizeof(why)) != 0 ||
         sim_parse_number(comma + 1, &ra, b, why, sizeof(why)) != 0) {
-        return refuse("--offsets", why);
+        return sim_refuse(PROG, "--offsets", why);
     }
     return 0;
 }
@@ -183,7 +221,8 @@ static int check_stiffness(const simcore_t *s)
                           "%.2g: it would diverge; raise --substeps (<= 64) or bring the scales "
                           "nearer 1",
                           what[k], lam[k], h * 1e6, lam[k] * h, RK4_STABLE);
-            return refuse("--rs-scale/--l-scale/--ke-scale/--j-scale/--b-scale/--substeps", why);
+            return sim_refuse(
+                PROG, "--rs-scale/--l-scale/--ke-scale/--j-scale/--b-scale/--substeps", why);
         }
     }
     return 0;
@@ -207,8 +246,8 @@ int main(int argc, char **argv)
     static simcore_t s;
     static sim_scenario_t sc;
     const char *scen_path = NULL, *csv_path = NULL;
-    const char *pty_only = NULL; /* a --pty option given, for the check below */
-    char err[512], name[128], q[48], why[320], pq[256]; /* pq: a path, quoted */
+    const char *pty_only = NULL;                 /* a --pty option given, for the check below */
+    char err[512], name[128], why[320], pq[256]; /* pq: a path, quoted */
     int i, rc;
     clock_t c0;
     double wall;
@@ -222,20 +261,10 @@ int main(int argc, char **argv)
     cfg.progress = true;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        const num_opt_t *no;
-        double x = 0.0;
-        if (strcmp(a, "--no-progress") == 0) {
-            cfg.progress = false;
-            continue;
-        }
-#ifdef SIM_HAVE_PTY
-        if (strcmp(a, "--pty") == 0) {
-            use_pty = 1;
-            continue;
-        }
-#endif
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        const char *v;
+        const sim_opt_t *o;
+        double x;
+        if (strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
         }
@@ -243,132 +272,138 @@ int main(int argc, char **argv)
             if (scen_path != NULL) {
                 sim_parse_msg(why, sizeof(why), "a second one, '%s' (only one runs)",
                               sim_parse_quote(a, pq, sizeof(pq)));
-                return refuse("scenario", why);
+                return sim_refuse(PROG, "scenario", why);
             }
             scen_path = a;
             continue;
         }
-        if (strncmp(a, "--", 2) != 0 ||
-            (num_opt(a) == NULL && strcmp(a, "--motor") != 0 && strcmp(a, "--board") != 0 &&
-             strcmp(a, "--csv") != 0 && strcmp(a, "--offsets") != 0 &&
-             strcmp(a, "--inverter") != 0 && strcmp(a, "--deadtime-shape") != 0
-#ifdef SIM_HAVE_PTY
-             && strcmp(a, "--truth") != 0
-#endif
-             )) {
-            return refuse(sim_parse_quote(a, q, sizeof(q)),
-                          "unknown option (sim --help lists them)");
+        o = sim_opt_read(PROG, OPTS, N_OPTS, argc, argv, &i, &v, &x);
+        if (o == NULL) {
+            return 2;
         }
-        if (v == NULL) {
-            return refuse(a, "needs a value");
-        }
-        i++;
-        no = num_opt(a);
-        if (no != NULL) {
-            sim_range_t r;
-            r.name = no->opt;
-            r.unit = no->unit;
-            r.lo = no->lo;
-            r.hi = no->hi;
-            r.flags = no->flags;
-            if (sim_parse_number(v, &r, &x, why, sizeof(why)) != 0) {
-                return refuse(a, why);
-            }
-        }
-        if (strcmp(a, "--motor") == 0 || strcmp(a, "--board") == 0) {
-            if (sim_parse_name(v, why, sizeof(why)) != 0) {
-                return refuse(a, why);
-            }
-            if (a[2] == 'm') {
+        switch (o->id) {
+            case OPT_HELP:
+                usage(stdout);
+                return 0;
+            case OPT_NO_PROGRESS:
+                cfg.progress = false;
+                break;
+            case OPT_MOTOR:
                 cfg.motor = v;
-            } else {
+                break;
+            case OPT_BOARD:
                 cfg.board = v;
-            }
-        } else if (strcmp(a, "--csv") == 0) {
-            csv_path = v;
-        } else if (strcmp(a, "--decim") == 0) {
-            cfg.csv_decim = (int)x;
-        } else if (strcmp(a, "--substeps") == 0) {
-            cfg.substeps = (int)x;
-        } else if (strcmp(a, "--theta0") == 0) {
-            cfg.theta0_rad = x * M_PI / 180.0;
-        } else if (strcmp(a, "--rpm0") == 0) {
-            cfg.rpm0 = x;
-        } else if (strcmp(a, "--deadtime") == 0) {
-            cfg.deadtime_s = x * 1e-6;
-        } else if (strcmp(a, "--noise") == 0) {
-            cfg.noise_codes = x;
-        } else if (strcmp(a, "--vbus") == 0) {
-            cfg.vbus_v = x;
-        } else if (strcmp(a, "--seed") == 0) {
-            cfg.seed = (uint32_t)x;
-        } else if (strcmp(a, "--rs-scale") == 0) {
-            cfg.rs_scale = x;
-        } else if (strcmp(a, "--l-scale") == 0) {
-            cfg.l_scale = x;
-        } else if (strcmp(a, "--ke-scale") == 0) {
-            cfg.ke_scale = x;
-        } else if (strcmp(a, "--j-scale") == 0) {
-            cfg.j_scale = x;
-        } else if (strcmp(a, "--b-scale") == 0) {
-            cfg.b_scale = x;
-        } else if (strcmp(a, "--j-extra") == 0) {
-            cfg.j_extra_kgm2 = x;
-        } else if (strcmp(a, "--coulomb") == 0) {
-            cfg.coulomb_nm = x;
-        } else if (strcmp(a, "--offsets") == 0) {
-            if (parse_offsets(v, &cfg.offset_a_codes, &cfg.offset_b_codes) != 0) {
-                return 2;
-            }
-            cfg.offsets_set = true;
-        } else if (strcmp(a, "--inverter") == 0) {
-            if (sim_inverter_model_parse(v, &cfg.inv.model) != 0) {
-                sim_parse_msg(why, sizeof(why), "'%s' is not averaged or switching",
-                              sim_parse_quote(v, q, sizeof(q)));
-                return refuse(a, why);
-            }
-        } else if (strcmp(a, "--deadtime-shape") == 0) {
-            if (sim_inverter_shape_parse(v, &cfg.inv.dt_shape) != 0) {
-                sim_parse_msg(why, sizeof(why), "'%s' is not linear, hard or ripple",
-                              sim_parse_quote(v, q, sizeof(q)));
-                return refuse(a, why);
-            }
-        } else if (strcmp(a, "--dt-band") == 0) {
-            cfg.inv.i_band_a = x;
-        } else if (strcmp(a, "--r-on") == 0) {
-            cfg.inv.r_on_ohm = x;
-        } else if (strcmp(a, "--v-diode") == 0) {
-            cfg.inv.v_diode_v = x;
+                break;
+            case OPT_CSV:
+                csv_path = v;
+                break;
+            case OPT_DECIM:
+                cfg.csv_decim = (int)x;
+                break;
+            case OPT_SUBSTEPS:
+                cfg.substeps = (int)x;
+                break;
+            case OPT_THETA0:
+                cfg.theta0_rad = x * M_PI / 180.0;
+                break;
+            case OPT_RPM0:
+                cfg.rpm0 = x;
+                break;
+            case OPT_DEADTIME:
+                cfg.deadtime_s = x * 1e-6;
+                break;
+            case OPT_NOISE:
+                cfg.noise_codes = x;
+                break;
+            case OPT_VBUS:
+                cfg.vbus_v = x;
+                break;
+            case OPT_SEED:
+                cfg.seed = (uint32_t)x;
+                break;
+            case OPT_RS_SCALE:
+                cfg.rs_scale = x;
+                break;
+            case OPT_L_SCALE:
+                cfg.l_scale = x;
+                break;
+            case OPT_KE_SCALE:
+                cfg.ke_scale = x;
+                break;
+            case OPT_J_SCALE:
+                cfg.j_scale = x;
+                break;
+            case OPT_B_SCALE:
+                cfg.b_scale = x;
+                break;
+            case OPT_J_EXTRA:
+                cfg.j_extra_kgm2 = x;
+                break;
+            case OPT_COULOMB:
+                cfg.coulomb_nm = x;
+                break;
+            case OPT_OFFSETS:
+                if (parse_offsets(v, &cfg.offset_a_codes, &cfg.offset_b_codes) != 0) {
+                    return 2;
+                }
+                cfg.offsets_set = true;
+                break;
+            case OPT_INVERTER:
+                cfg.inv.model = (int)x;
+                break;
+            case OPT_DT_SHAPE:
+                cfg.inv.dt_shape = (int)x;
+                break;
+            case OPT_DT_BAND:
+                cfg.inv.i_band_a = x;
+                break;
+            case OPT_R_ON:
+                cfg.inv.r_on_ohm = x;
+                break;
+            case OPT_V_DIODE:
+                cfg.inv.v_diode_v = x;
+                break;
 #ifdef SIM_HAVE_PTY
-        } else if (strcmp(a, "--realtime") == 0) {
-            if (x > 0.0 && x < REALTIME_MIN) {
-                sim_parse_msg(why, sizeof(why),
-                              "'%s' is outside 0.01..1000 x real time (or 0: free-running)",
-                              sim_parse_quote(v, q, sizeof(q)));
-                return refuse(a, why);
-            }
-            pty.speed = x;
-            pty_only = a;
-        } else if (strcmp(a, "--baud") == 0) {
-            pty.baud = (long)x;
-            pty_only = a;
-        } else if (strcmp(a, "--duration") == 0) {
-            pty.duration_s = x;
-            pty_only = a;
-        } else if (strcmp(a, "--truth") == 0) {
-            pty.truth_path = v;
-            pty_only = a;
+            case OPT_PTY:
+                use_pty = 1;
+                break;
+            case OPT_REALTIME:
+                if (x > 0.0 && x < REALTIME_MIN) {
+                    char q[48];
+                    sim_parse_msg(why, sizeof(why),
+                                  "'%s' is outside 0.01..1000 x real time (or 0: free-running)",
+                                  sim_parse_quote(v, q, sizeof(q)));
+                    return sim_refuse(PROG, a, why);
+                }
+                pty.speed = x;
+                pty_only = a;
+                break;
+            case OPT_BAUD:
+                pty.baud = (long)x;
+                pty_only = a;
+                break;
+            case OPT_DURATION:
+                pty.duration_s = x;
+                pty_only = a;
+                break;
+            case OPT_TRUTH:
+                pty.truth_path = v;
+                pty_only = a;
+                break;
 #endif
+            default:
+                break;
         }
     }
 #ifdef SIM_HAVE_PTY
     if (use_pty) {
         cfg.progress = false;
         if (scen_path != NULL) {
-            return refuse("--pty", "runs no scenario: drop the scenario file or --pty");
+            return sim_refuse(PROG, "--pty", "runs no scenario: drop the scenario file or --pty");
         }
         if (csv_path != NULL) {
-            return refuse("--csv", "only with a scenario (with --pty, --truth writes the trace)");
+            return sim_refuse(PROG, "--csv",
+                              "only with a scenario (with --pty, --truth writes the trace)");
         }
         if (simcore_init(&s, &cfg) != 0 || check_stiffness(&s) != 0) {
             return 2;
@@ -377,10 +412,10 @@ int main(int argc, char **argv)
     }
 #endif
     if (pty_only != NULL) {
-        return refuse(pty_only, "only with --pty");
+        return sim_refuse(PROG, pty_only, "only with --pty");
     }
     if (scen_path == NULL) {
-        return refuse("scenario", "no scenario file given (sim --help)");
+        return sim_refuse(PROG, "scenario", "no scenario file given (sim --help)");
     }
     if (sim_scenario_load(scen_path, &sc, err, sizeof(err)) != 0) {
         fprintf(stderr, "sim: %s\n", err);
@@ -398,21 +433,21 @@ int main(int argc, char **argv)
             a.st_ino == b.st_ino) {
             sim_parse_msg(why, sizeof(why), "'%s' is the scenario file",
                           sim_parse_quote(csv_path, pq, sizeof(pq)));
-            return refuse("--csv", why);
+            return sim_refuse(PROG, "--csv", why);
         }
         s.cfg.csv = fopen(csv_path, "w");
         if (s.cfg.csv == NULL) {
             sim_parse_msg(why, sizeof(why), "cannot write '%s'",
                           sim_parse_quote(csv_path, pq, sizeof(pq)));
-            return refuse("--csv", why);
+            return sim_refuse(PROG, "--csv", why);
         }
-        simcore_csv_header(s.cfg.csv);
+        sim_trace_header(s.cfg.csv);
     }
     c0 = clock();
     rc = simcore_run_scenario(&s, &sc, name);
     wall = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (s.cfg.csv != NULL && fclose(s.cfg.csv) != 0) {
-        return refuse("--csv", "write failed (disk full?)");
+        return sim_refuse(PROG, "--csv", "write failed (disk full?)");
     }
     simcore_print_summary(&s, stdout, name);
     printf("   run: %.2f s simulated in %.2f s CPU (%.0f x real time)%s%s\n", s.rig.t, wall,

@@ -125,6 +125,39 @@ int sim_parse_name(const char *s, char *why, size_t why_len)
     return -1;
 }
 
+int sim_parse_word(const char *tok, const sim_word_t *words, double *out)
+{
+    for (; words->word != NULL; words++) {
+        if (strcmp(tok, words->word) == 0) {
+            *out = words->value;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+const char *sim_parse_words(const sim_word_t *words, const char *sep, const char *last, char *buf,
+                            size_t len)
+{
+    int k;
+    if (len == 0) {
+        return "";
+    }
+    buf[0] = '\0';
+    for (k = 0; words[k].word != NULL; k++) {
+        const char *join = (k == 0) ? "" : ((words[k + 1].word == NULL) ? last : sep);
+        size_t n = strlen(buf);
+        sim_parse_msg(buf + n, len - n, "%s%s", join, words[k].word);
+    }
+    return buf;
+}
+
+int sim_refuse(const char *prog, const char *field, const char *why)
+{
+    fprintf(stderr, "%s: %s: %s\n", prog, field, why);
+    return 2;
+}
+
 void sim_parse_msg(char *buf, size_t len, const char *fmt, ...)
 {
     va_list ap;

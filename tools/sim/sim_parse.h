@@ -43,4 +43,26 @@ void sim_parse_msg(char *buf, size_t len, const char *fmt, ...);
  * Returns 0, or -1 with the one-line reason in why. */
 int sim_parse_name(const char *s, char *why, size_t why_len);
 
+/* A word a value may be instead of a number ("max", "switching", "a") and
+ * the number it stands for. A list of them ends with {NULL, 0}: the one
+ * place its words are written, for parsing and for messages alike. */
+typedef struct {
+    const char *word;
+    double value;
+} sim_word_t;
+
+/* Returns 1 with *out set when tok is one of words, else 0. */
+int sim_parse_word(const char *tok, const sim_word_t *words, double *out);
+
+/* The words for a message, joined by sep and by last before the last one
+ * ("max|min" with "|", "|"; "linear, hard or ripple" with ", ", " or ").
+ * Returns buf. */
+const char *sim_parse_words(const sim_word_t *words, const char *sep, const char *last, char *buf,
+                            size_t len);
+
+/* A refusal, the one way every program of the simulator refuses its input:
+ * one line on stderr, "<prog>: <field>: <why>". Returns 2, their exit status
+ * for bad input. */
+int sim_refuse(const char *prog, const char *field, const char *why);
+
 #endif /* SIM_PARSE_H */

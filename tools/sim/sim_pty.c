@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "monitor.h"
+#include "sim_mailbox.h"
 
 static volatile sig_atomic_t stop_requested;
 
@@ -88,10 +89,10 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     if (cfg->truth_path != NULL) {
         truth = fopen(cfg->truth_path, "w");
         if (truth == NULL) {
-            char pq[256]; /* the path, quoted: one line whatever it holds */
-            fprintf(stderr, "sim: --truth: cannot write '%s'\n",
-                    sim_parse_quote(cfg->truth_path, pq, sizeof(pq)));
-            return 2;
+            char pq[256], why[300]; /* the path, quoted: one line whatever it holds */
+            sim_parse_msg(why, sizeof(why), "cannot write '%s'",
+                          sim_parse_quote(cfg->truth_path, pq, sizeof(pq)));
+            return sim_refuse("sim", "--truth", why);
         }
         fprintf(truth, "rec,index,t_s,speed_true_rpm,speed_est_rpm,state\n");
     }
@@ -117,7 +118,8 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
-    monitor_init(&mon, &s->mc);
+    sim_mailbox_attach(&s->mc); /* the monitor's commands act on this motor */
+    monitor_init(&mon);
     printf("pty: %s\n", name);
     printf("   monitor: UART %ld Bd emulated, %.3g x real time%s, PWM %ld Hz\n", cfg->baud,
            cfg->speed, cfg->speed <= 0.0 ? " (free-running)" : "", (long)PWM_FREQUENCY_HZ);

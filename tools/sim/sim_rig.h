@@ -1,4 +1,4 @@
-/* sim_rig.h - the test bench: plant + inverter + ADC stepped once per PWM period. */
+/* sim_rig.h - plant, inverter and ADC, one PWM period a step (sim_core.h adds the core). */
 #ifndef SIM_RIG_H
 #define SIM_RIG_H
 

@@ -62,14 +62,15 @@ const char *sim_event_name(sim_event_kind_t k)
 /*
  * Value rules: what each value of each event may be. A row names the value
  * as an error message shows it, its unit and its range (sim_parse.h), and
- * the words parse_number() takes instead of a number. Every value of every
- * event in EVENTS needs its row: a value with none is refused when parsed,
- * and sim_scenario_check_rules() (run by test_sim_parse) names the event
- * that lacks one. The ranges are physical or sane bounds, wide enough for
- * every shipped scenario and test, narrow enough that no value makes the
- * run unbounded or overflows a conversion (a periods count cast to long).
- * They cannot stop a load the motor cannot hold from driving the plant out
- * of its model's range over a long run (docs/sim.md, "Input checking").
+ * the words it takes instead of a number (the words' one list, also what
+ * the message names). Every value of every event in EVENTS needs its row:
+ * a value with none is refused when parsed, and sim_scenario_check_rules()
+ * (run by test_sim_parse) names the event that lacks one. The ranges are
+ * physical or sane bounds, wide enough for every shipped scenario and test,
+ * narrow enough that no value makes the run unbounded or overflows a
+ * conversion (a periods count cast to long). They cannot stop a load the
+ * motor cannot hold from driving the plant out of its model's range over a
+ * long run (docs/sim.md, "Input checking").
  */
 #define T_MAX_S       3600.0   /* event times and ramps: one simulated hour, ~72 M periods */
 #define RPM_MAX       100000.0 /* pot speeds: far above any profile's top (17,000 rpm) */
@@ -82,20 +83,26 @@ const char *sim_event_name(sim_event_kind_t k)
 #define SPIKE_PERIODS 20000.0  /* one second of PWM periods at 20 kHz */
 #define ZOOM_MAX_S    10.0     /* full-rate trace: 200,000 rows at 20 kHz */
 
+/* The pot's ends instead of a speed. */
+static const sim_word_t SPEED_WORDS[] = {
+    {"max", SIM_SPEED_MAX}, {"min", SIM_SPEED_MIN}, {NULL, 0.0}};
+/* The measured phase of a sensor event (0 = A, 1 = B). */
+static const sim_word_t PHASE_WORDS[] = {{"a", 0.0}, {"b", 1.0}, {NULL, 0.0}};
+
 typedef struct {
     sim_event_kind_t kind;
     int argi;
-    sim_range_t r;     /* r.name: the value's name in messages */
-    const char *words; /* the words taken instead of a number ("max|min"), or NULL */
-    int words_only;    /* 1: one of the words, never a number */
+    sim_range_t r;           /* r.name: the value's name in messages */
+    const sim_word_t *words; /* the words taken instead of a number, or NULL */
+    int words_only;          /* 1: one of the words, never a number */
 } value_rule_t;
 
 static const value_rule_t RULES[] = {
     {SIM_EV_POT, 0, {"position", "", 0.0, 1.0, 0u}, NULL, 0},
     {SIM_EV_POT_RAMP, 0, {"position", "", 0.0, 1.0, 0u}, NULL, 0},
     {SIM_EV_POT_RAMP, 1, {"ramp time", "s", 0.0, T_MAX_S, 0u}, NULL, 0},
-    {SIM_EV_SPEED, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, "max|min", 0},
-    {SIM_EV_SPEED_RAMP, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, "max|min", 0},
+    {SIM_EV_SPEED, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, SPEED_WORDS, 0},
+    {SIM_EV_SPEED_RAMP, 0, {"rpm", "rpm", 0.0, RPM_MAX, 0u}, SPEED_WORDS, 0},
     {SIM_EV_SPEED_RAMP, 1, {"ramp time", "s", 0.0, T_MAX_S, 0u}, NULL, 0},
     {SIM_EV_LOAD, 0, {"torque", "N m", 0.0, TORQUE_MAX, 0u}, NULL, 0},
     {SIM_EV_LOAD_ACTIVE, 0, {"torque", "N m", -TORQUE_MAX, TORQUE_MAX, 0u}, NULL, 0},
@@ -106,17 +113,17 @@ static const value_rule_t RULES[] = {
     {SIM_EV_CURRENT_SPIKE, 0, {"current", "A", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
     {SIM_EV_CURRENT_SPIKE, 1, {"periods", "", 1.0, SPIKE_PERIODS, SIM_RANGE_INTEGER}, NULL, 0},
     {SIM_EV_DEADTIME, 0, {"dead time", "us", 0.0, DEADTIME_MAX, 0u}, NULL, 0},
-    {SIM_EV_INVERTER, 0, {"model", "", 0.0, 0.0, 0u}, "averaged|switching", 1},
-    {SIM_EV_DEADTIME_SHAPE, 0, {"shape", "", 0.0, 0.0, 0u}, "linear|hard|ripple", 1},
+    {SIM_EV_INVERTER, 0, {"model", "", 0.0, 0.0, 0u}, sim_inverter_models, 1},
+    {SIM_EV_DEADTIME_SHAPE, 0, {"shape", "", 0.0, 0.0, 0u}, sim_inverter_shapes, 1},
     {SIM_EV_NOISE, 0, {"sigma", "codes", 0.0, NOISE_MAX, 0u}, NULL, 0},
-    {SIM_EV_SENSOR_STUCK, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_STUCK, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
     {SIM_EV_SENSOR_STUCK, 1, {"current", "A", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
-    {SIM_EV_SENSOR_OPEN, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
-    {SIM_EV_SENSOR_GAIN, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_OPEN, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
+    {SIM_EV_SENSOR_GAIN, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
     {SIM_EV_SENSOR_GAIN, 1, {"gain", "", -10.0, 10.0, 0u}, NULL, 0},
-    {SIM_EV_SENSOR_DRIFT, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_DRIFT, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
     {SIM_EV_SENSOR_DRIFT, 1, {"drift", "A/s", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
-    {SIM_EV_SENSOR_OK, 0, {"phase", "", 0.0, 0.0, 0u}, "a|b", 1},
+    {SIM_EV_SENSOR_OK, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
     {SIM_EV_ZOOM, 0, {"length", "s", 0.0, ZOOM_MAX_S, SIM_RANGE_LO_OPEN}, NULL, 0},
 };
 
@@ -152,65 +159,33 @@ int sim_scenario_check_rules(char *err, size_t err_len)
     return 0;
 }
 
-/* The words an event's value may be instead of a number. Returns 1 when tok
- * is one (*out set), 0 when it is none, -1 when it must be one and is not. */
-static int parse_word(const char *tok, sim_event_kind_t kind, int argi, double *out)
-{
-    if ((kind == SIM_EV_SPEED || kind == SIM_EV_SPEED_RAMP) && argi == 0) {
-        if (strcmp(tok, "max") == 0) {
-            *out = SIM_SPEED_MAX;
-            return 1;
-        }
-        if (strcmp(tok, "min") == 0) {
-            *out = SIM_SPEED_MIN;
-            return 1;
-        }
-    }
-    if (kind >= SIM_EV_SENSOR_STUCK && kind <= SIM_EV_SENSOR_OK && argi == 0) {
-        /* the measured phase: a or b */
-        *out = (strcmp(tok, "a") == 0) ? 0.0 : 1.0;
-        return (strcmp(tok, "a") == 0 || strcmp(tok, "b") == 0) ? 1 : -1;
-    }
-    if (kind == SIM_EV_INVERTER || kind == SIM_EV_DEADTIME_SHAPE) {
-        int k = 0;
-        int bad = (kind == SIM_EV_INVERTER) ? sim_inverter_model_parse(tok, &k)
-                                            : sim_inverter_shape_parse(tok, &k);
-        *out = (double)k;
-        return bad ? -1 : 1;
-    }
-    return 0;
-}
-
-/* One value: a word, or a number inside its rule's range. */
+/* One value: one of its rule's words, or a number inside its range. */
 static int parse_number(const char *tok, sim_event_kind_t kind, int argi, double *out, char *why,
                         size_t why_len)
 {
     const value_rule_t *rule = find_rule(kind, argi);
-    int w;
+    char words[64] = "", msg[160];
     if (rule == NULL) {
         sim_parse_msg(why, why_len, "value %d has no range (RULES in sim_scenario.c)", argi + 1);
         return -1;
     }
-    w = parse_word(tok, kind, argi, out);
-    if (w > 0) {
-        return 0;
-    }
-    if (w < 0 || rule->words_only) {
-        char q[48];
-        sim_parse_msg(why, why_len, "%s: '%s' is not one of %s", rule->r.name,
-                      sim_parse_quote(tok, q, sizeof(q)),
-                      (rule->words != NULL) ? rule->words : "valid");
-        return -1;
-    }
-    {
-        char msg[160];
-        if (sim_parse_number(tok, &rule->r, out, msg, sizeof(msg)) == 0) {
+    if (rule->words != NULL) {
+        if (sim_parse_word(tok, rule->words, out)) {
             return 0;
         }
-        sim_parse_msg(why, why_len, "%s: %s%s%s", rule->r.name, msg,
-                      (rule->words != NULL) ? ", or one of " : "",
-                      (rule->words != NULL) ? rule->words : "");
+        sim_parse_words(rule->words, "|", "|", words, sizeof(words));
     }
+    if (rule->words_only) {
+        char q[48];
+        sim_parse_msg(why, why_len, "%s: '%s' is not one of %s", rule->r.name,
+                      sim_parse_quote(tok, q, sizeof(q)), words);
+        return -1;
+    }
+    if (sim_parse_number(tok, &rule->r, out, msg, sizeof(msg)) == 0) {
+        return 0;
+    }
+    sim_parse_msg(why, why_len, "%s: %s%s%s", rule->r.name, msg,
+                  (rule->words != NULL) ? ", or one of " : "", (rule->words != NULL) ? words : "");
     return -1;
 }
 

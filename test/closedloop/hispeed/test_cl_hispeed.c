@@ -12,7 +12,7 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
 {
     static simcore_t s;
     simcore_cfg_t cfg;
-    cl_window_t w;
+    sim_window_t w;
     double t0;
     (void)state;
     simcore_cfg_default(&cfg);
@@ -28,12 +28,13 @@ static void test_high_speed_motor_should_reach_17000_rpm_on_the_mchv_bus(void **
            "(min %.0f, max %.0f), est %.0f rpm, speed error %+.3f %%, angle error mean %+.2f deg "
            "rms %.2f deg max %.2f deg, iq %.2f A, reached after %.1f s, closed loop throughout: "
            "%s, state %s fault %s\n",
-           (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed(&w), w.spd_min, w.spd_max,
-           cl_est(&w), cl_speed_err_pct(&w), cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
-           s.now.iq_true_a, s.rig.t - t0, w.left_closed_loop ? "no" : "yes",
-           mc_state_name(s.now.state), mc_fault_name(s.now.fault));
-    assert_false(w.left_closed_loop);
-    assert_cmp(fabs(cl_speed(&w) - 17000.0), <=, 170.0);
+           (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, sim_window_speed(&w), w.spd_min,
+           w.spd_max, sim_window_est(&w), sim_window_speed_err_pct(&w), sim_window_ang_mean(&w),
+           sim_window_ang_rms(&w), w.ang_max, s.now.iq_true_a, s.rig.t - t0,
+           (w.n_skipped > 0) ? "no" : "yes", mc_state_name(s.now.state),
+           mc_fault_name(s.now.fault));
+    assert_int_equal(w.n_skipped, 0); /* closed loop throughout */
+    assert_cmp(fabs(sim_window_speed(&w) - 17000.0), <=, 170.0);
     assert_cmp(w.ang_max, <=, 2.0);
 }
 
@@ -48,7 +49,7 @@ static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void
 {
     static simcore_t s;
     simcore_cfg_t cfg;
-    cl_window_t w;
+    sim_window_t w;
     (void)state;
     simcore_cfg_default(&cfg);
     cl_setup(&s, &cfg, "hispeed", "mchv");
@@ -61,13 +62,14 @@ static void test_high_speed_motor_should_hold_its_lowest_speed_without_load(void
         "angle error mean %+.2f deg rms %.2f deg max %.2f deg, closed loop throughout: %s, "
         "state %s fault %s\n",
         (double)SPEED_REF_MIN_RPM, 100.0 * SPEED_REF_MIN_RPM / SPEED_REF_MAX_RPM,
-        (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, cl_speed_err_pct(&w), cl_speed(&w),
-        w.spd_min, w.spd_max, cl_ang_mean(&w), cl_ang_rms(&w), w.ang_max,
-        w.left_closed_loop ? "no" : "yes", mc_state_name(s.now.state), mc_fault_name(s.now.fault));
-    assert_false(w.left_closed_loop);
+        (double)SPEED_REF_MAX_RPM, s.rig.inv.prm.vbus_v, sim_window_speed_err_pct(&w),
+        sim_window_speed(&w), w.spd_min, w.spd_max, sim_window_ang_mean(&w), sim_window_ang_rms(&w),
+        w.ang_max, (w.n_skipped > 0) ? "no" : "yes", mc_state_name(s.now.state),
+        mc_fault_name(s.now.fault));
+    assert_int_equal(w.n_skipped, 0); /* closed loop throughout */
     assert_int_equal(s.now.state, MC_STATE_CLOSED_LOOP);
-    assert_cmp(fabs(cl_speed_err_pct(&w)), <=, 1.0);
-    assert_cmp(fabs(cl_ang_mean(&w)), <=, 2.0);
+    assert_cmp(fabs(sim_window_speed_err_pct(&w)), <=, 1.0);
+    assert_cmp(fabs(sim_window_ang_mean(&w)), <=, 2.0);
     assert_cmp(w.ang_max, <=, 2.0);
 }
 

@@ -8,6 +8,7 @@
 #include "app.h"
 #include "monitor.h"
 #include "monitor_app.h"
+#include "sim_mailbox.h"
 
 /*
  * A fake board around a real mc_t: the motor_* mailbox calls the core,
@@ -47,18 +48,6 @@ void hal_led_set(hal_led_t led, bool on)
     (void)led;
     (void)on;
 }
-void motor_request(mc_request_t request)
-{
-    mc_request(&motor, request);
-}
-void motor_set_reference(int16_t ref)
-{
-    mc_set_reference(&motor, ref);
-}
-void motor_status(mc_status_t *st)
-{
-    mc_status(&motor, st);
-}
 bool hal_uart_put(uint8_t byte)
 {
     if (uart_room == 0U || tx_n >= sizeof tx_q) {
@@ -88,7 +77,8 @@ static int setup(void **state)
     (void)state;
     mc_init(&motor);
     app_init(&app);
-    monitor_init(&mon, &motor);
+    sim_mailbox_attach(&motor);
+    monitor_init(&mon);
     monitor_app_client(&mon, &client);
     app_set_uart_client(&app, &client);
     rx_head = rx_tail = tx_n = 0;

@@ -1,0 +1,53 @@
+/* sim_mailbox.c - motor.h's mailbox over the attached motor, no interrupts to mask. */
+#include "sim_mailbox.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "motor.h"
+
+static mc_t *attached;
+
+void sim_mailbox_attach(mc_t *mc)
+{
+    attached = mc;
+}
+
+/* A call before sim_mailbox_attach() is a bug of the caller: stop loudly. */
+static mc_t *the_motor(void)
+{
+    if (attached == NULL) {
+        fputs("sim_mailbox: motor_* called with no motor attached\n", stderr);
+        abort();
+    }
+    return attached;
+}
+
+void motor_request(mc_request_t request)
+{
+    mc_request(the_motor(), request);
+}
+
+void motor_status(mc_status_t *status)
+{
+    mc_status(the_motor(), status);
+}
+
+uint8_t motor_set_reference(int16_t ref)
+{
+    mc_status_t st;
+    mc_set_reference(the_motor(), ref);
+    mc_status(the_motor(), &st);
+    return st.ref_seq;
+}
+
+int16_t motor_get_gain(mc_gain_t gain)
+{
+    return mc_get_gain(the_motor(), gain);
+}
+
+bool motor_set_gain(mc_gain_t gain, int16_t value)
+{
+    return mc_set_gain(the_motor(), gain, value);
+}
