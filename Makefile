@@ -7,7 +7,6 @@ JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 
 CMAKE_DEFS := -DBOARD=$(BOARD) -DMOTOR=$(MOTOR)
 CTEST      := ctest --output-on-failure -j $(JOBS)
-PY         := .venv/bin/python
 
 HOST_DIR  := $(BUILD)/host
 ASAN_DIR  := $(BUILD)/asan
@@ -43,8 +42,8 @@ help:
 	@echo "make coverage     gcovr HTML report in $(COV_DIR)/coverage/, fails below the gates"
 	@echo "make check-16bit  core built with avr-gcc (16-bit int), run in simavr, compared bit for bit with the PC"
 	@echo "make cycles       cycle guard: AVR cycles of mc_step per state (simavr) against committed ceilings"
-	@echo "make lint         cppcheck + clang-format check"
-	@echo "make format       clang-format the sources in place"
+	@echo "make lint         cppcheck + clang-format check; ruff + mypy (strict) on tools/ and test/ Python"
+	@echo "make format       clang-format the sources in place (and ruff's safe fixes)"
 	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
 	@echo "make robust       randomized campaign: RUNS= per profile (default 400) on three profiles, report and plots in $(BUILD)/robust/"
 	@echo "make firmware     dsPIC image with XC16 (needs XC16_DIR or xc16-gcc on PATH)"

@@ -11,6 +11,12 @@
 #define BOARD_NAME "MCLV"
 
 /* Instruction clock: 8 MHz crystal, PLL to 40 MIPS (docs/hardware.md 1.2). */
+/* Resolution of the ADC conversions the core reads (ADC1 in 10-bit mode,
+ * docs/hardware.md 1.7), bits. */
+#ifndef BOARD_ADC_BITS
+#define BOARD_ADC_BITS 10
+#endif
+
 #ifndef BOARD_FCY_HZ
 #define BOARD_FCY_HZ 40000000L
 #endif

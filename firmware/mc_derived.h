@@ -203,8 +203,10 @@ MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_SPEED_NOMINAL_RPM,
  * and the core's one-period angle steps, mc.c) and high enough for the
  * observer's speed scale (smc.h); at most 8 times the top speed, so that
  * the speed keeps 4096 counts of resolution. */
+/* The top speed's largest share of the speed full scale. */
+#define MC_SPEED_FS_TOP_FRACTION 0.95
 #define MC_FS_RPM_OK_(fs)                                                                          \
-    ((fs) > 0.0 && MOTOR_SPEED_FW_MAX_RPM <= 0.95 * (fs) &&                                        \
+    ((fs) > 0.0 && MOTOR_SPEED_FW_MAX_RPM <= MC_SPEED_FS_TOP_FRACTION * (fs) &&                    \
      (fs) <= 8.0 * MOTOR_SPEED_FW_MAX_RPM &&                                                       \
      6.283185307179586 * (double)(fs) * (double)MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 1.0 &&         \
      SMC_KSPEED_(MC_TS_S, (double)(fs) * (double)MOTOR_POLE_PAIRS / 60.0, IRP_PERCALC) < 32768.0)
@@ -312,12 +314,16 @@ MC_CHECK(MOTOR_CURRENT_LOOP_BW_RAD_S,
          MOTOR_CURRENT_LOOP_BW_RAD_S > 0.0 && MOTOR_CURRENT_LOOP_BW_RAD_S * MC_TS_S < 1.0,
          "must be in (0, PWM_FREQUENCY_HZ) rad/s");
 #endif
-/* A gain that rounds to 0 leaves the loop without that term. */
+/* A gain that rounds to 0 leaves the loop without that term. The PIs take
+ * a Kp below MC_KP_MAX (a Q15 mantissa and a left shift of 0..7) and a Ki
+ * below MC_KI_MAX (plain Q15). */
+#define MC_KP_MAX 128.0
+#define MC_KI_MAX 1.0
 MC_CHECK_FOR(MOTOR_CURRENT_KP_V_PER_A, BOARD_I_FULLSCALE_A,
-             MC_CUR_KP_ * 32768.0 >= 0.5 && MC_CUR_KP_ < 128.0,
+             MC_CUR_KP_ * 32768.0 >= 0.5 && MC_CUR_KP_ < MC_KP_MAX,
              "Kp * I_FS / V_FS must be in [1 Q15 count, 128): > 0 and not rounding to 0");
 MC_CHECK_FOR(MOTOR_CURRENT_KI_V_PER_AS, BOARD_I_FULLSCALE_A,
-             MC_CUR_KI_ * 32768.0 >= 0.5 && MC_CUR_KI_ < 1.0,
+             MC_CUR_KI_ * 32768.0 >= 0.5 && MC_CUR_KI_ < MC_KI_MAX,
              "Ki * Ts * I_FS / V_FS must be in [1 Q15 count, 1): > 0 and not rounding to 0");
 #define MC_CUR_KP       MC_MANT_OF(MC_CUR_KP_)
 #define MC_CUR_KP_SHIFT ((uint8_t)MC_SHIFT_OF(MC_CUR_KP_))
@@ -329,9 +335,9 @@ MC_CHECK_FOR(MOTOR_CURRENT_KI_V_PER_AS, BOARD_I_FULLSCALE_A,
 #define MC_SPD_KI_                                                                                 \
     ((double)MOTOR_SPEED_KI_A_PER_RPM_S / (double)MC_SPEED_LOOP_HZ * MC_SPEED_FULLSCALE_RPM /      \
      BOARD_I_FULLSCALE_A)
-MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_SPD_KP_ * 32768.0 >= 0.5 && MC_SPD_KP_ < 128.0,
+MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_SPD_KP_ * 32768.0 >= 0.5 && MC_SPD_KP_ < MC_KP_MAX,
          "Kp * speed FS / I_FS must be in [1 Q15 count, 128): > 0 and not rounding to 0");
-MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_SPD_KI_ * 32768.0 >= 0.5 && MC_SPD_KI_ < 1.0,
+MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_SPD_KI_ * 32768.0 >= 0.5 && MC_SPD_KI_ < MC_KI_MAX,
          "Ki / MC_SPEED_LOOP_HZ * speed FS / I_FS must be in [1 Q15 count, 1): > 0 and not "
          "rounding to 0");
 /* Kp's low-speed schedule divides by this speed in Q15 (mc.c): at least 16
@@ -353,9 +359,11 @@ MC_CHECK(MC_SPEED_KP_MIN_FRACTION,
 
 /* ---- start-up -------------------------------------------------------------------- */
 
+/* The lock's period count is a uint16_t. */
+#define MC_LOCK_PERIODS_MAX 65000.0
 MC_CHECK(MOTOR_LOCK_TIME_S,
          MOTOR_LOCK_TIME_S *PWM_FREQUENCY_HZ >= 1.0 &&
-             MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ <= 65000.0,
+             MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ <= MC_LOCK_PERIODS_MAX,
          "must be 1..65000 PWM periods");
 #define MC_LOCK_PERIODS ((uint16_t)(MOTOR_LOCK_TIME_S * PWM_FREQUENCY_HZ + 0.5))
 
@@ -391,7 +399,9 @@ MC_CHECK(MC_RETRY_COAST_S,
      MC_RAMP_PERIODS_)
 MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_PERIODS_ >= 100.0 && MC_RAMP_PERIODS_ <= 4.0e6,
          "must be 100..4e6 PWM periods");
-MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_STEP_INC_ >= 8.0,
+/* The ramp's smallest step increment (32-bit angle counts per period). */
+#define MC_RAMP_STEP_INC_MIN 8.0
+MC_CHECK(MOTOR_RAMP_TIME_S, MC_RAMP_STEP_INC_ >= MC_RAMP_STEP_INC_MIN,
          "ramp too slow for the 32-bit angle (step increment < 8)");
 #define MC_RAMP_STEP_INC ((uint32_t)(MC_RAMP_STEP_INC_ + 0.5))
 #define MC_RAMP_STEP_END (MC_RAMP_STEP_INC * (uint32_t)(MC_RAMP_PERIODS_ + 0.5))
@@ -475,17 +485,21 @@ MC_CHECK(MC_SPEED_LOOP_HZ, MC_SENSOR_BAL_SYNC_ / 10.0 >= 1.0,
 /* Open-loop damping (UserParms.h): the forced angle's shift in angle
  * counts = (forced - estimated step, counts per period) * MC_OL_DAMP_K / 16,
  * MC_OL_DAMP_K = MOTOR_OL_DAMP_S * fpwm in Q4; held to +-MC_OL_DAMP_MAX. */
+/* MC_OL_DAMP_K: at most MC_OL_DAMP_PERIODS_MAX periods, in Q4 periods. */
+#define MC_OL_DAMP_PERIODS_MAX       1000.0
+#define MC_OL_DAMP_COUNTS_PER_PERIOD 16.0
 MC_CHECK(MOTOR_OL_DAMP_S,
-         MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ <= 1000.0 &&
-             MC_ZERO_OR_COUNTS_(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ, 16.0),
+         MOTOR_OL_DAMP_S >= 0.0 && MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ <= MC_OL_DAMP_PERIODS_MAX &&
+             MC_ZERO_OR_COUNTS_(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ, MC_OL_DAMP_COUNTS_PER_PERIOD),
          "must be 0 (off) or 1/16..1000 PWM periods");
 MC_CHECK(MC_OL_DAMP_MAX_DEG,
          MC_OL_DAMP_MAX_DEG >= 0.0 && MC_OL_DAMP_MAX_DEG <= 90.0 &&
              MC_ZERO_OR_COUNTS_(MC_OL_DAMP_MAX_DEG / 360.0, 65536.0),
          "must be 0 or 1 angle count (0.0055 deg) .. 90 deg");
 #define MC_OL_DAMP_MEAN_N ((int32_t)(MC_OL_DAMP_MEAN_WINDOWS))
-#define MC_OL_DAMP_K      ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * 16.0 + 0.5))
-#define MC_OL_DAMP_MAX    ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
+#define MC_OL_DAMP_K                                                                               \
+    ((int32_t)(MOTOR_OL_DAMP_S * PWM_FREQUENCY_HZ * MC_OL_DAMP_COUNTS_PER_PERIOD + 0.5))
+#define MC_OL_DAMP_MAX ((int32_t)(MC_OL_DAMP_MAX_DEG * 65536.0 / 360.0 + 0.5))
 
 /* ---- dead time ---------------------------------------------------------------------- */
 
@@ -524,9 +538,10 @@ MC_CHECK(PWM_FREQUENCY_HZ, BOARD_FCY_HZ / PWM_FREQUENCY_HZ + MC_DT_COUNTS_ + 1.0
          "compensated duty is formed in int16)");
 /* The band's default is BOARD_VBUS_NOMINAL_V / (12 MOTOR_LS_H fpwm)
  * (UserParms.h): L is the value a user changes that moves it. */
+#define MC_DEADTIME_BAND_MAX_FRACTION 0.25 /* of BOARD_I_FULLSCALE_A */
 MC_CHECK_FOR(MC_DEADTIME_BAND_A, MOTOR_LS_H,
              MC_DEADTIME_BAND_A * 32768.0 >= 0.5 * BOARD_I_FULLSCALE_A &&
-                 MC_DEADTIME_BAND_A < 0.25 * BOARD_I_FULLSCALE_A,
+                 MC_DEADTIME_BAND_A < MC_DEADTIME_BAND_MAX_FRACTION * BOARD_I_FULLSCALE_A,
              "must be in [1 Q15 count, BOARD_I_FULLSCALE_A / 4)");
 #define MC_DT_BAND_Q15 MC_Q15_AMPS(MC_DEADTIME_BAND_A)
 /* Inside the band the correction is i * MC_DT_COUNTS / band = (i * MC_DT_SLOPE) >> 15. */
@@ -571,9 +586,12 @@ MC_CHECK_FOR(MC_ID_MIN_A, MOTOR_CURRENT_MAX_A,
 MC_CHECK(MC_SPEED_LOOP_HZ,
          MC_DEADTIME_MEASURE == 0 || (MC_DTM_N + 2.0 * MC_DTM_WAIT) * IRP_PERCALC <= 32767.0,
          "too slow for the dead-time measurement's averages (mc.c note 4)");
+/* The lock current the measurement needs, in dead-time bands: at 3/4 of
+ * it, phases B and C (sqrt(3)/2 of it) stay 1.5 bands out of the band. */
+#define MC_DTM_LOCK_BANDS (1.5 / (0.75 * 0.8660254037844386))
 MC_CHECK_FOR(MOTOR_LOCK_CURRENT_A, MC_DEADTIME_BAND_A,
              MC_DEADTIME_MEASURE == 0 ||
-                 MOTOR_LOCK_CURRENT_A >= 1.5 * MC_DEADTIME_BAND_A / (0.75 * 0.8660254037844386),
+                 MOTOR_LOCK_CURRENT_A >= MC_DTM_LOCK_BANDS * MC_DEADTIME_BAND_A,
              "must be at least 2.31 dead-time bands (MC_DEADTIME_BAND_A) to measure the dead time "
              "at the lock (mc.c note 4); raise it or set MC_DEADTIME_MEASURE 0");
 #define MC_DTM_CURRENT_Q15 ((q15_t)((3L * (long)MC_LOCK_CURRENT_Q15) / 4L)) /* the second level */

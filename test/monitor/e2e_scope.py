@@ -3,26 +3,44 @@ selects channels, starts the motor at 2000 rpm through the protocol, records 1 s
 estimated speed is compared with the simulator's true speed at the same PWM periods.
 
 usage: e2e_scope.py <sim executable> <repo root> <output dir>
+Exit status 77 (CTest: skipped, with the reason on stdout) without a pseudo-terminal or
+without the venv's pyserial and matplotlib.
 """
 
+from __future__ import annotations
+
 import csv
+import importlib.util
 import math
 import os
 import signal
 import subprocess
 import sys
 import time
+from typing import NoReturn
 
 RPM = 2000.0
 TOL = 0.01  # 1 %
+SKIP = 77  # CTest SKIP_RETURN_CODE (test/monitor/CMakeLists.txt)
 
 
-def fail(msg):
+def fail(msg: str) -> NoReturn:
     print(f"FAIL: {msg}")
     sys.exit(1)
 
 
-def main():
+def skip_without_tools() -> None:
+    why = [f"{m} is not installed (run tools/bootstrap)" for m in ("serial", "matplotlib")
+           if importlib.util.find_spec(m) is None]
+    if not os.path.exists("/dev/ptmx"):
+        why.append("no pseudo-terminals here (/dev/ptmx)")
+    if why:
+        print(f"SKIPPED: {'; '.join(why)}")
+        sys.exit(SKIP)
+
+
+def main() -> None:
+    skip_without_tools()
     sim, root, out = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(out, exist_ok=True)
     truth_path = os.path.join(out, "e2e_truth.csv")
@@ -35,6 +53,7 @@ def main():
     # 2x real time: the start-up takes ~2 s of simulated time; the UART is emulated in simulated time.
     proc = subprocess.Popen([sim, "--pty", "--realtime", "2", "--truth", truth_path, "--duration", "60"],
                             stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None
     try:
         line = proc.stdout.readline()
         if not line.startswith("pty: "):
@@ -58,8 +77,10 @@ def main():
         print(tail.strip())
     wall = time.monotonic() - t0
 
-    rows = list(csv.DictReader(open(scope_csv)))
-    truth = list(csv.DictReader(open(truth_path)))
+    with open(scope_csv) as f:
+        rows = list(csv.DictReader(f))
+    with open(truth_path) as f:
+        truth = list(csv.DictReader(f))
     if not rows or not truth:
         fail("no samples")
     last_rec = truth[-1]["rec"]
@@ -68,17 +89,19 @@ def main():
     dur = float(rows[-1]["t_s"]) - float(rows[0]["t_s"])
     if n < 100 or dur < 0.99:
         fail(f"only {n} samples over {dur:.3f} s")
-    est, true, rel = [], [], []
-    for r in rows:
-        i = int(r["index"])
+    est: list[float] = []
+    true: list[float] = []
+    rel: list[float] = []
+    for row in rows:
+        i = int(row["index"])
         if i not in by_index:
             fail(f"sample {i} not in the simulator's log of recorded samples")
         t = by_index[i]
-        e_rpm = float(r["speed_est_rpm"])
+        e_rpm = float(row["speed_est_rpm"])
         # lossless: the recorded value is the core's speed_est of that very period
         if abs(e_rpm - float(t["speed_est_rpm"])) > 0.01:
             fail(f"sample {i}: recorded {e_rpm} rpm, the core had {t['speed_est_rpm']} rpm")
-        if int(r["state_raw"]) != 4 or int(t["state"]) != 4:
+        if int(row["state_raw"]) != 4 or int(t["state"]) != 4:
             fail(f"sample {i}: not in closed loop")
         est.append(e_rpm)
         true.append(float(t["speed_true_rpm"]))

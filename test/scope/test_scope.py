@@ -7,7 +7,6 @@ usage: test_scope.py   (CTest: test_scope, with the project's .venv python)
 """
 
 import contextlib
-import importlib.util
 import io
 import os
 import struct
@@ -18,19 +17,15 @@ import time
 import unittest
 from collections.abc import Callable
 
+from scope import cli as scope
+from scope import monproto as mp
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCOPE_DIR = os.path.join(HERE, "..", "..", "tools", "scope")
-sys.path.insert(0, SCOPE_DIR)
-import monproto as mp  # noqa: E402
-
-_spec = importlib.util.spec_from_file_location("scope_main", os.path.join(SCOPE_DIR, "__main__.py"))
-assert _spec is not None and _spec.loader is not None
-scope = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(scope)
 
 F_PWM = 20000
 VARS = [("speed_est", "rpm", 8_000_000), ("speed_ref", "rpm", 8_000_000), ("iq", "A", 4_400), ("id", "A", 4_400)]
-RPM_Q15 = int(round(2000 * 32768 / 8000))  # 2000 rpm on the 8000 rpm scale
+RPM_Q15 = round(2000 * 32768 / 8000)  # 2000 rpm on the 8000 rpm scale
 
 # A reply mutator: (request cmd, the reply frame the device would send) -> the bytes it sends.
 Mutator = Callable[[int, bytes], bytes]
@@ -192,7 +187,7 @@ class ScopeFailsInOneLine(unittest.TestCase):
     def test_a_clean_headless_session_should_write_the_csv_and_png(self) -> None:
         dev = FakeDevice()
         csv_path, png_path = self.path("run.csv"), self.path("run.png")
-        code, out, err, _ = run(["--port", "fake", "--headless", "--channels", "speed_est,iq", "--decim", "100",
+        code, _out, err, _ = run(["--port", "fake", "--headless", "--channels", "speed_est,iq", "--decim", "100",
                                  "--duration", "0.1", "--start-rpm", "2000", "--settle", "0", "--stop",
                                  "--csv", csv_path, "--png", png_path], FakePort(dev))
         self.assertEqual((code, err), (0, ""))
@@ -255,7 +250,7 @@ class ScopeFailsInOneLine(unittest.TestCase):
         self.assertIn("speed_est", out)
 
     def test_a_bad_checksum_once_should_be_resent_and_then_work(self) -> None:
-        hit = []
+        hit: list[int] = []
 
         def once(cmd: int, frame: bytes) -> bytes:
             if cmd == mp.CMD_VAR_INFO and not hit:
@@ -288,7 +283,7 @@ class ScopeFailsInOneLine(unittest.TestCase):
         self.assertEqual(sum(1 for c, _ in dev.seen if c == mp.CMD_MOTOR), 1, "START could run twice")
 
     def test_a_crc_error_reply_should_resend_even_a_motor_start(self) -> None:
-        hit = []
+        hit: list[int] = []
 
         def crc_error(cmd: int, frame: bytes) -> bytes:
             if cmd == mp.CMD_MOTOR and not hit:

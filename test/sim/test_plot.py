@@ -3,11 +3,16 @@
 written but the .png asked for; a trace cut short by a diverged plant still plots."""
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 import sys
 import tempfile
 import unittest
+
+if importlib.util.find_spec("matplotlib") is None:  # CTest: SKIP_RETURN_CODE 77
+    print("SKIPPED: matplotlib is not installed (tools/requirements.txt: run tools/bootstrap)")
+    sys.exit(77)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PLOT = os.path.join(HERE, "..", "..", "tools", "sim", "plot.py")

@@ -7,6 +7,8 @@ The simulator programs sim_tune_<name> are built by test/tune/CMakeLists.txt (th
 compiled with MC_MOTOR_HEADER="motors/motor_<name>.h"); TUNE_SIM_DIR says where.
 """
 
+from __future__ import annotations
+
 import csv
 import os
 import re
@@ -20,7 +22,7 @@ SCEN = os.path.join(REPO, "tools", "sim", "scenarios")
 SIM_DIR = os.environ.get("TUNE_SIM_DIR", "")
 
 # profile -> (simulated plant, board, [(scenario, speed to hold in rpm, hold window s)])
-CASES = {
+CASES: dict[str, tuple[str, str, list[tuple[str, float, float]]]] = {
     "hurst075": ("hurst", "mclv", [("run_1000", 1000.0, 0.5), ("run_2000", 2000.0, 0.5)]),
     "hurst_long": ("hurst300", "mclv", [("run_1000", 1000.0, 0.5), ("run_2000", 2000.0, 0.5)]),
     "hs2p": ("hispeed", "mchv", [("high_speed", 17000.0, 0.4)]),
@@ -28,7 +30,8 @@ CASES = {
 TOL = 0.02  # speed held within 2 % of the request, mean over the hold window
 
 
-def run_sim(profile, plant, board, scenario):
+def run_sim(profile: str, plant: str, board: str, scenario: str) -> tuple[subprocess.CompletedProcess[str],
+                                                                           list[dict[str, str]]]:
     exe = os.path.join(SIM_DIR, f"sim_tune_{profile}")
     with tempfile.TemporaryDirectory(prefix="tune_cl_") as d:
         trace = os.path.join(d, "trace.csv")
@@ -40,11 +43,11 @@ def run_sim(profile, plant, board, scenario):
 
 
 class GeneratedProfilesInClosedLoop(unittest.TestCase):
-    def setUp(self):
+    def setUp(self) -> None:
         if not SIM_DIR or not os.path.isdir(SIM_DIR):
             self.skipTest("TUNE_SIM_DIR not set: run through CTest (the sim_tune_* programs are built there)")
 
-    def check(self, profile):
+    def check(self, profile: str) -> None:
         plant, board, runs = CASES[profile]
         exe = os.path.join(SIM_DIR, f"sim_tune_{profile}")
         if not os.path.exists(exe):
@@ -55,9 +58,12 @@ class GeneratedProfilesInClosedLoop(unittest.TestCase):
                 self.assertEqual(p.returncode, 0, p.stderr)
                 m = re.search(r"faults\s+(\d+)", p.stdout)
                 self.assertTrue(m and m.group(1) == "0", p.stdout)
-                states = re.search(r"states\s+(.*)", p.stdout).group(1).split()
+                sm = re.search(r"states\s+(.*)", p.stdout)
+                tm = re.search(r"time to closed loop\s+([\d.]+) s", p.stdout)
+                assert sm is not None and tm is not None, p.stdout
+                states = sm.group(1).split()
                 self.assertTrue(states[-1].endswith(":CLOSED_LOOP"), f"ends in {states[-1]}\n{p.stdout}")
-                t_cl = float(re.search(r"time to closed loop\s+([\d.]+) s", p.stdout).group(1))
+                t_cl = float(tm.group(1))
                 t_end = float(rows[-1]["t_s"])
                 hold = [r for r in rows if float(r["t_s"]) >= t_end - window]
                 speed = sum(float(r["speed_rpm"]) for r in hold) / len(hold)
@@ -71,13 +77,13 @@ class GeneratedProfilesInClosedLoop(unittest.TestCase):
                 self.assertLessEqual(abs(speed - rpm), TOL * rpm)
                 self.assertLessEqual(worst, 2 * TOL * rpm)
 
-    def test_generated_hurst075_profile_should_start_and_hold_1000_and_2000_rpm(self):
+    def test_generated_hurst075_profile_should_start_and_hold_1000_and_2000_rpm(self) -> None:
         self.check("hurst075")
 
-    def test_generated_hurst300_profile_should_start_and_hold_1000_and_2000_rpm(self):
+    def test_generated_hurst300_profile_should_start_and_hold_1000_and_2000_rpm(self) -> None:
         self.check("hurst_long")
 
-    def test_generated_hispeed_profile_should_start_and_hold_17000_rpm_on_the_mchv(self):
+    def test_generated_hispeed_profile_should_start_and_hold_17000_rpm_on_the_mchv(self) -> None:
         self.check("hs2p")
 
 

@@ -2,6 +2,7 @@
 reproduces each, the distributions of angle and speed error, and plots.
 
 Usage: report.py <runs.csv> <out dir> [expected runs]
+       (also: an1078-robust-report, python -m robust.report)
 Reads the rows tools/sim/robust wrote (tools/robust/run merges them), prints
 the summary and writes <out dir>/robust.png (when matplotlib is there).
 Exit status 1 if a run failed inside the envelope or rows are missing.
@@ -34,7 +35,7 @@ DIST = [
 def pct(values: list[float], p: float) -> float:
     """The p-th percentile (nearest rank) of a non-empty list."""
     s = sorted(values)
-    k = max(0, min(len(s) - 1, int(math.ceil(p / 100.0 * len(s))) - 1))
+    k = max(0, min(len(s) - 1, math.ceil(p / 100.0 * len(s)) - 1))
     return s[k]
 
 
@@ -42,7 +43,9 @@ def fnum(r: Row, key: str) -> float:
     return float(r[key])
 
 
-def main(argv: list[str]) -> int:
+def main(argv: list[str] | None = None) -> int:
+    """argv as sys.argv (the program's name first)."""
+    argv = sys.argv if argv is None else argv
     if len(argv) < 3:
         print("usage: report.py <runs.csv> <out dir> [expected runs]", file=sys.stderr)
         return 2
@@ -158,4 +161,4 @@ def plot(rows: list[Row], by: OrderedDict[str, list[Row]], out: str) -> None:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

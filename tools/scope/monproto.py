@@ -15,11 +15,11 @@ protocol says that is safe (docs/monitor.md, "Host side").
 """
 
 import math
-import os
-import re
 import struct
 import time
 from typing import Protocol, TypedDict
+
+from scope import mc_names
 
 SOF = 0xA5
 MAX_PAYLOAD = 40
@@ -48,17 +48,7 @@ TRIG_NOW, TRIG_CMD, TRIG_STATE = 0, 1, 2
 MOTOR_STOP, MOTOR_START, MOTOR_POT = 0, 1, 2
 DATA_LAST, DATA_OVERFLOW = 0x01, 0x02
 
-
-
-def _mc_states() -> list[str]:
-    """The core's states in order, from their one list in firmware/mc.h (MC_STATE_LIST)."""
-    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "firmware", "mc.h")
-    with open(header) as f:
-        block = f.read().split("#define MC_STATE_LIST(X)")[1].split("\n\n")[0]
-    return re.findall(r"^\s*X\((\w+)\)", block, re.M)
-
-
-STATES = _mc_states()
+STATES = mc_names.read().states
 STATE_CLOSED_LOOP, STATE_FAULT = STATES.index("CLOSED_LOOP"), STATES.index("FAULT")
 KIND_Q15, KIND_INT = 0, 1
 
@@ -198,7 +188,7 @@ def max_rate(nch: int, baud: int) -> float:
 
 
 def state_name(state: int) -> str:
-    return STATES[state] if 0 <= state < len(STATES) else f"unknown state {state}"
+    return mc_names.read().state(state)
 
 
 def _text(raw: bytes, what: str) -> str:
@@ -290,8 +280,8 @@ class Monitor:
         if not 1 <= maxch <= 16 or not 1 <= fpwm <= 1_000_000 or not 1 <= nvars <= 128 or nparams > 128:
             raise MonitorError(f"corrupt INFO reply: {nvars} variables, {nparams} parameters, {maxch} channels, "
                                f"PWM {fpwm} Hz")
-        self.info = dict(version=ver, nvars=nvars, nparams=nparams, max_ch=maxch, buf_words=bufw,
-                         f_pwm=fpwm, max_payload=maxpl)
+        self.info = {"version": ver, "nvars": nvars, "nparams": nparams, "max_ch": maxch, "buf_words": bufw,
+                         "f_pwm": fpwm, "max_payload": maxpl}
         self.vars = []
         for i in range(nvars):
             q = self.request(CMD_VAR_INFO, bytes([i]))
@@ -358,7 +348,7 @@ class Monitor:
     def set_speed(self, rpm: float) -> None:
         if not math.isfinite(rpm) or not -32768 <= round(rpm) <= 32767:
             raise MonitorError(f"speed {rpm} rpm is outside the protocol's -32768..32767")
-        self.request(CMD_SET_SPEED, struct.pack("<h", int(round(rpm))))
+        self.request(CMD_SET_SPEED, struct.pack("<h", round(rpm)))
 
     def run_motor(self, rpm: float) -> None:
         """Remote speed reference rpm, then START."""

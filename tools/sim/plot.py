@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """plot.py - the plots of one simulator run: build/sim/<scenario>.csv -> <scenario>.png.
 
-Usage: plot.py <trace.csv> <out.png> [title]
+Usage: plot.py <trace.csv> <out.png> [title]   (also: an1078-plot, python -m sim.plot)
 
 Left column, the whole run: speed (reference, estimated, true), d-q currents
 with their references, estimated-minus-true electrical angle, phase currents,
@@ -9,36 +9,32 @@ duties, state with load torque and bus voltage. Right column, a close-up of
 the first `zoom` window of the scenario (every PWM period): estimated versus
 true electrical angle, phase currents, duties.
 """
+from __future__ import annotations
+
 import contextlib
 import os
-import re
 import sys
+from typing import Any, NoReturn
 
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-def mc_names(header=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "firmware", "mc.h")):
-    """The states and fault codes in order, from their one list in firmware/mc.h
-    (MC_STATE_LIST, MC_FAULT_LIST); fault 0 reads "none" as the core's tools print it."""
-    with open(header) as f:
-        text = f.read()
-    states = re.findall(r"^\s*X\((\w+)\)", text.split("#define MC_STATE_LIST(X)")[1].split("\n\n")[0], re.M)
-    faults = re.findall(r"^\s*X\((\w+), \d+\)", text.split("#define MC_FAULT_LIST(X)")[1].split("\n\n")[0], re.M)
-    return states, ["none"] + faults[1:]
+from scope import mc_names
+
+Trace = Any  # a numpy structured array, one field per CSV column
 
 
-STATES, FAULTS = mc_names()
-
-
-def fail(msg):
+def fail(msg: str) -> NoReturn:
     """One line on stderr, exit status 1: never a traceback."""
     sys.exit("plot.py: " + msg.replace("\n", " "))
 
 
-def load(path):
+def load(path: str) -> Trace:
     try:
         d = np.genfromtxt(path, delimiter=",", names=True)
     except (OSError, ValueError) as e:
@@ -56,7 +52,7 @@ def load(path):
     return d
 
 
-def save(fig, out):
+def save(fig: Figure, out: str) -> None:
     """Written beside out under a temporary name and renamed over it: a
     failure leaves an earlier plot as it was."""
     tmp = os.path.join(os.path.dirname(out) or ".", ".%s.tmp.png" % os.path.basename(out))
@@ -69,7 +65,7 @@ def save(fig, out):
         fail("%r: cannot write the plot (%s)" % (out, e))
 
 
-def zoom_window(d):
+def zoom_window(d: Trace) -> tuple[Any, bool]:
     """Rows of the first zoom window, or the last 20 ms of the run."""
     z = d["zoom"] > 0.5
     if np.any(z):
@@ -81,7 +77,7 @@ def zoom_window(d):
     return np.flatnonzero(t >= t[-1] - 0.02), False
 
 
-def shade_states(ax, t, state):
+def shade_states(ax: Axes, t: Any, state: Any) -> None:
     """Light background per start-up / closed-loop / fault interval."""
     colours = {2: "#fff2cc", 3: "#fde0c5", 4: "#e2f0d9", 5: "#f8cbcb"}
     if t.size < 2:
@@ -89,20 +85,22 @@ def shade_states(ax, t, state):
     change = np.flatnonzero(np.diff(state) != 0) + 1
     starts = np.concatenate(([0], change))
     ends = np.concatenate((change, [t.size - 1]))
-    for a, b in zip(starts, ends):
+    for a, b in zip(starts, ends, strict=False):
         c = colours.get(int(state[a]))
         if c:
             ax.axvspan(t[a], t[b], color=c, lw=0, zorder=0)
 
 
-def main():
-    if len(sys.argv) < 3:
+def main(argv: list[str] | None = None) -> int:
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) < 2:
         fail("usage: plot.py <trace.csv> <out.png> [title]")
-    if not sys.argv[2].lower().endswith(".png"):
+    if not args[1].lower().endswith(".png"):
         # matplotlib would pick the format from the name: a file not asked for
-        fail("%r: the output name must end in .png" % sys.argv[2])
-    d = load(sys.argv[1])
-    title = sys.argv[3] if len(sys.argv) > 3 else sys.argv[1]
+        fail("%r: the output name must end in .png" % args[1])
+    names = mc_names.read()
+    d = load(args[0])
+    title = args[2] if len(args) > 2 else args[0]
     t = d["t_s"]
     st = d["state"].astype(int)
 
@@ -172,7 +170,7 @@ def main():
     ax.grid(alpha=0.3)
 
     ax = axs[4]
-    for k, n in enumerate(("a", "b", "c")):
+    for _k, n in enumerate(("a", "b", "c")):
         ax.plot(t, 100.0 * d["duty_" + n], lw=0.5, label="duty " + n)
     ax.set_ylabel("duty [%]")
     ax.set_ylim(-5, 105)
@@ -182,14 +180,14 @@ def main():
 
     ax = axs[5]
     ax.step(t, st, where="post", color="k", lw=1.2, label="state")
-    ax.set_yticks(range(len(STATES)))
-    ax.set_yticklabels(STATES, fontsize=7)
-    ax.set_ylim(-0.5, len(STATES) - 0.5)
+    ax.set_yticks(range(len(names.states)))
+    ax.set_yticklabels(names.states, fontsize=7)
+    ax.set_ylim(-0.5, len(names.states) - 0.5)
     ax.set_xlabel("time [s]")
     faults = np.flatnonzero(np.diff(d["fault"]) > 0) + 1
     for i in faults:
         code = int(d["fault"][i])
-        ax.annotate(FAULTS[code] if code < len(FAULTS) else str(code), (t[i], st[i]),
+        ax.annotate(names.fault(code), (t[i], st[i]),
                     xytext=(4, -12), textcoords="offset points", color="red", fontsize=8)
     ax2 = ax.twinx()
     ax2.plot(t, d["load_Nm"] * 1000.0, color="tab:brown", lw=1.0, label="load torque [mN m]")
@@ -201,7 +199,7 @@ def main():
     ax3.plot(t, d["vbus_V"], color="tab:cyan", lw=0.8, label="bus [V]")
     ax3.set_ylabel("bus [V]", color="tab:cyan")
     lines = ax.get_lines()[:1] + ax2.get_lines() + ax3.get_lines()
-    ax.legend(lines, [ln.get_label() for ln in lines], loc="upper left", fontsize=8, ncol=4)
+    ax.legend(lines, [str(ln.get_label()) for ln in lines], loc="upper left", fontsize=8, ncol=4)
     ax.set_title("core state, torques and DC bus", fontsize=9)
     ax.grid(alpha=0.3)
 
@@ -222,7 +220,7 @@ def main():
     m = max(5.0, 1.5 * np.max(np.abs(e))) if e.size else 5.0
     zr.set_ylim(-m, m)
     lines = zax.get_lines() + zr.get_lines()
-    zax.legend(lines, [ln.get_label() for ln in lines], loc="lower left", fontsize=8)
+    zax.legend(lines, [str(ln.get_label()) for ln in lines], loc="lower left", fontsize=8)
     zax.set_title(label + ": estimated vs true angle", fontsize=9)
     zax.grid(alpha=0.3)
 
@@ -243,8 +241,9 @@ def main():
     zax.legend(loc="upper right", fontsize=8)
     zax.grid(alpha=0.3)
 
-    save(fig, sys.argv[2])
+    save(fig, args[1])
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

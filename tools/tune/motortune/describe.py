@@ -3,7 +3,7 @@
     name = "hurst075"            # profile name: firmware/motors/motor_<name>.h
     description = "..."          # optional, becomes MOTOR_NAME
     board = "mclv"               # boards/board_<board>.h
-    pwm_frequency = "20 kHz"     # optional (UserParms.h default otherwise)
+    pwm_frequency = "20 kHz"     # optional (boards/board.h default otherwise)
 
     [motor]
     pole_pairs = 5
@@ -35,9 +35,10 @@ with characters that do not belong in a C string or comment.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import tomllib
-from typing import Any, Optional
+from typing import Any
 
 from . import safeio, units
 from .units import NAME_RE, RPM, SQRT2, SQRT3, InputError
@@ -102,26 +103,30 @@ ACCEL_TIME_S = (20e-6, 100.0)
 _INERTIA_UNITS = (("kg m^2", 1.0), ("kg cm^2", 1e-4), ("kg mm^2", 1e-6), ("g cm^2", 1e-7))
 
 
+@dataclasses.dataclass
 class Description:
     """Validated motor description, SI units (speeds in rpm, Ke in V/krpm peak line-to-line,
     currents A peak, R and L per phase)."""
 
-    def __init__(self) -> None:
-        self.source = ""
-        self.name: str = ""
-        self.desc: str = ""
-        self.board: str = ""
-        self.pwm_hz: Optional[float] = None
-        self.pole_pairs = 0
-        self.r_ph = self.l_ph = self.ke_ll = self.i_rated = self.n_rated = 0.0
-        self.i_peak: Optional[float] = None
-        self.j: Optional[float] = None
-        self.n_max: Optional[float] = None
-        self.n_min: Optional[float] = None
-        self.wc: Optional[float] = None
-        self.i_fw_load: Optional[float] = None
-        self.t_start: Optional[float] = None
-        self.raw: dict[tuple[str, str], Any] = {}
+    name: str = ""
+    desc: str = ""
+    board: str = ""
+    source: str = ""
+    pwm_hz: float | None = None
+    pole_pairs: int = 0
+    r_ph: float = 0.0
+    l_ph: float = 0.0
+    ke_ll: float = 0.0
+    i_rated: float = 0.0
+    n_rated: float = 0.0
+    i_peak: float | None = None
+    j: float | None = None
+    n_max: float | None = None
+    n_min: float | None = None
+    wc: float | None = None
+    i_fw_load: float | None = None
+    t_start: float | None = None
+    raw: dict[tuple[str, str], Any] = dataclasses.field(default_factory=dict)
 
 
 def check_name(name: Any, field: str = "name") -> str:
@@ -304,7 +309,7 @@ def parse(data: dict[str, Any]) -> Description:
     # physical sanity, each naming its field
     if not 1 <= d.pole_pairs <= 32:
         raise InputError("motor.pole_pairs", f"{d.pole_pairs}: must be 1..32")
-    positive: list[tuple[str, Optional[float]]] = [
+    positive: list[tuple[str, float | None]] = [
         ("motor.resistance", d.r_ph), ("motor.inductance", d.l_ph), ("motor.back_emf", d.ke_ll),
         ("motor.rated_current", d.i_rated), ("motor.rated_speed", d.n_rated),
         ("motor.peak_current", d.i_peak), ("motor.inertia", d.j),

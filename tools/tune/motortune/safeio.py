@@ -24,7 +24,6 @@ import os
 import re
 import secrets
 import stat
-from typing import Optional
 
 from .units import InputError
 
@@ -94,7 +93,7 @@ def is_generated(path: str) -> bool:
     return GENERATED_MARK in words
 
 
-def _symlink_on_path(path: str, root: Optional[str] = None) -> Optional[str]:
+def _symlink_on_path(path: str, root: str | None = None) -> str | None:
     """The first directory of `path`, as written, that is a symbolic link (or None).
     A relative path is looked at from the working directory (which getcwd gives real);
     with `root`, only the directories below it (path must start with it)."""
@@ -124,7 +123,7 @@ class Output:
     (a path the user names), the folder is resolved once and used from then on.
     `path` stays the user's spelling, for messages; `real` is where the file goes."""
 
-    def __init__(self, path: str, label: str, root: Optional[str] = None):
+    def __init__(self, path: str, label: str, root: str | None = None) -> None:
         self.root = root
         if not path or path.endswith(os.sep) or os.path.basename(path) in ("", ".", ".."):
             raise InputError(label, f"{path!r}: not a file name")
@@ -212,7 +211,7 @@ class Output:
             pass
 
     @staticmethod
-    def discard(tmp: Optional[str]) -> None:
+    def discard(tmp: str | None) -> None:
         if tmp is None:
             return
         try:

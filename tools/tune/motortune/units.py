@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import re
 import unicodedata
-from typing import Any, Optional
+from typing import Any
 
 # A profile or board name: it becomes a file name (motor_<name>.h), a C include guard
 # (MOTOR_<NAME>_H), a -D option (MC_MOTOR_<NAME>) and a make variable, so only what is
@@ -45,7 +45,7 @@ def one_line(text: str, limit: int = MAX_MESSAGE) -> str:
 class InputError(Exception):
     """A problem with the input: the message (one line) starts with the field name."""
 
-    def __init__(self, field: str, message: str):
+    def __init__(self, field: str, message: str) -> None:
         super().__init__(one_line(f"{field}: {message}"))
         self.field = field
 
@@ -86,7 +86,7 @@ _SPELLINGS: dict[str, dict[str, float]] = {
 class _Spelling:
     """One spelling: its characters, which of them must match in case, its SI factor."""
 
-    def __init__(self, written: str, factor: float):
+    def __init__(self, written: str, factor: float) -> None:
         self.strict: set[int] = set()
         chars: list[str] = []
         i = 0
@@ -103,7 +103,7 @@ class _Spelling:
     def matches(self, unit: str, strict: bool = True) -> bool:
         return len(unit) == len(self.text) and all(
             a == b if strict and k in self.strict else a.casefold() == b.casefold()
-            for k, (a, b) in enumerate(zip(unit, self.text)))
+            for k, (a, b) in enumerate(zip(unit, self.text, strict=False)))
 
 
 _UNITS = {q: [_Spelling(w, f) for w, f in table.items()] for q, table in _SPELLINGS.items()}
@@ -185,7 +185,7 @@ def _unit_factor(field: str, written: str, quantity: str) -> float:
     raise InputError(field, f"unknown unit {written!r} for {what} (use one of: {_known(quantity)})")
 
 
-def parse(field: str, value: Any, quantity: str, key: Optional[str] = None) -> float:
+def parse(field: str, value: Any, quantity: str, key: str | None = None) -> float:
     """Value of `field` (a number or a "number unit" string) in SI units
     (back-EMF: V per 1000 rpm; speed: rpm; angular rate: rad/s). The unit is in the
     string, or in the key's suffix (resistance_ohm = 5.34, or "5.34"); both at once must

@@ -1,0 +1,1 @@
+"""tools/tune: the motor profile calculator (motortune) and its examples (docs/tune.md)."""

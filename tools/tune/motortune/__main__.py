@@ -1,0 +1,10 @@
+"""python -m tune.motortune: the tools/tune/tune command."""
+
+import sys
+
+if sys.version_info < (3, 11):  # noqa: UP036 - the one line an older python3 must print
+    sys.exit("tune: needs Python 3.11 or newer (tomllib)")
+
+from tune.motortune.cli import main
+
+sys.exit(main())
