@@ -202,17 +202,6 @@ test_adc_isr_should_clear_the_flag_read_four_buffers_step_the_core_and_write_thr
     assert_int_equal(P1OVDCON, 0x3F00);
 }
 
-static void test_adc_isr_should_override_the_outputs_off_when_the_core_says_off(void **state)
-{
-    (void)state;
-    P1OVDCON = 0x3F00u;
-    /* Buffers at 0 = mid-scale: zero current, half of vbus and pot. */
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
-    _ADC1Interrupt();
-    assert_int_equal(P1OVDCON, 0x0000);
-    assert_int_equal(P1DC1, 1000);
-}
-
 /* A fault the core's finishing part raises (mc_step_finish turns out off)
  * switches the outputs off in the same interrupt, after the duties. */
 static void test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults(void **state)
@@ -233,29 +222,6 @@ static void test_adc_isr_should_switch_off_at_once_when_the_finishing_part_fault
     _ADC1Interrupt();
     assert_int_equal(P1OVDCON, 0x0000);
     assert_int_equal(P1DC1, 900); /* the PWM already had them; the override wins */
-}
-
-/* The bootstrap precharge after motor_start(): the low switches on
- * while the core keeps the outputs off, for HAL_PRECHARGE_PERIODS; the core
- * turning the outputs on ends it at once, for good. */
-static void
-test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on(void **state)
-{
-    (void)state;
-    expect_function_call(mc_init);
-    motor_start();
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
-    _ADC1Interrupt();
-    assert_int_equal(P1OVDCON, 0x0015);
-    assert_int_equal(P1DC1, 1000);
-    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu; /* the mock checks the duties are written after it */
-    expect_step(0, 0, 16384, 16384, 900u, 1000u, 1100u, true);
-    _ADC1Interrupt();
-    assert_int_equal(P1OVDCON, 0x3F00);
-    P1DC1 = P1DC2 = P1DC3 = 0xAAAAu;
-    expect_step(0, 0, 16384, 16384, 1000u, 1000u, 1000u, false);
-    _ADC1Interrupt();
-    assert_int_equal(P1OVDCON, 0x0000); /* not again before the next motor_start() */
 }
 
 static void test_motor_start_should_init_the_core_then_enable_the_adc_interrupt(void **state)
@@ -368,12 +334,8 @@ int main(void)
             setup),
         cmocka_unit_test_setup(
             test_adc_isr_should_switch_off_at_once_when_the_finishing_part_faults, setup),
-        cmocka_unit_test_setup(test_adc_isr_should_override_the_outputs_off_when_the_core_says_off,
-                               setup),
         cmocka_unit_test_setup(test_adc_isr_should_call_the_observer_after_the_duties_until_removed,
                                setup),
-        cmocka_unit_test_setup(
-            test_adc_isr_should_precharge_after_start_until_the_core_turns_the_outputs_on, setup),
         cmocka_unit_test_setup(test_motor_start_should_init_the_core_then_enable_the_adc_interrupt,
                                setup),
         cmocka_unit_test_setup(
