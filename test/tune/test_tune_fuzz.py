@@ -254,7 +254,7 @@ class FuzzDescriptions(unittest.TestCase):
 
 # ---- headers ------------------------------------------------------------------------------
 
-with open(os.path.join(REPO, "firmware", "motors", "motor_hurst075.h"), encoding="utf-8") as _f:
+with open(os.path.join(REPO, "firmware", "motors", "motor_hurst.h"), encoding="utf-8") as _f:
     BASE_HEADER = _f.read()
 MACROS = re.findall(r"^#define (\w+) ", BASE_HEADER, flags=re.M)
 
@@ -295,7 +295,7 @@ directives = st.one_of(
 
 @st.composite
 def headers(draw: st.DrawFn) -> str:
-    """motor_hurst075.h with macro bodies replaced by random expressions and random
+    """motor_hurst.h with macro bodies replaced by random expressions and random
     directive lines inserted."""
     text = BASE_HEADER
     for _ in range(draw(st.integers(0, 3))):

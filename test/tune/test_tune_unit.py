@@ -28,9 +28,10 @@ TUNE = str(REPO / "tools" / "tune" / "tune")
 EXAMPLES = REPO / "tools" / "tune" / "examples"
 MOTORS = REPO / "firmware" / "motors"
 
-# name of the example -> (profile name, board)
-EXAMPLE_PROFILES = {"hurst075": ("hurst075", "mclv"), "hurst300": ("hurst_long", "mclv"),
+# name of the example -> (the profile tools/tune gives on its own, without [tuning]; board)
+EXAMPLE_PROFILES = {"hurst": ("hurst075", "mclv"), "hurst300": ("hurst_long", "mclv"),
                     "hispeed": ("hs2p", "mchv"), "lowl": ("lowl", "mclv")}
+# the committed profile of each example (with its [tuning]): firmware/motors/motor_<example>.h
 
 HURST_TOML = """\
 name = "hurst_t"
@@ -64,6 +65,19 @@ def scratch() -> str:
 
 def run_tune(*args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([TUNE, *args], capture_output=True, text=True)
+
+
+def own_profile(name: str) -> Path:
+    """The profile tools/tune gives on its own for an example (EXAMPLE_PROFILES' names): the
+    build tree's (TUNE_PROFILES, test/tune/CMakeLists.txt), else written here."""
+    built = Path(os.environ.get("TUNE_PROFILES", "/nonexistent")) / f"motor_{name}.h"
+    if built.exists():
+        return built
+    ex = next(e for e, (n, _) in EXAMPLE_PROFILES.items() if n == name)
+    out = Path(scratch()) / f"motor_{name}.h"
+    r = run_tune("--no-tuning", "--no-compile", "--name", name, "-o", str(out), str(EXAMPLES / f"{ex}.toml"))
+    assert r.returncode == 0, r.stderr
+    return out
 
 
 def desc_from(text: str) -> Description:
@@ -611,12 +625,76 @@ class BadInput(unittest.TestCase):
         self.expect_error('"" = 1\n' + HURST_TOML, '""', "empty key")
         self.expect_error(HURST_TOML.replace("[motor]\n", '[motor]\n"" = 1\n'), 'motor.""', "empty key")
 
-    def test_hand_tuned_names_are_refused(self) -> None:
+    def test_no_tuning_without_a_name_is_refused(self) -> None:
+        # it would replace firmware/motors/motor_hurst.h, the profile with the [tuning]
+        r = run_tune("--no-tuning", str(EXAMPLES / "hurst.toml"))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("tune: ", r.stderr)
+        self.assertIn("--no-tuning: give --name or -o", r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+
+
+TUNED = HURST_TOML + """
+[tuning]
+# the reason
+MOTOR_SPEED_NOMINAL_RPM = 2500
+# a table
+MOTOR_FW_ID_TABLE_A = [0, -0.1, -0.2, -0.3, -0.4, -0.5, -0.6, -0.7, -0.8, -0.9, -1, -1.1, -1.2, -1.3, -1.4, -1.5]
+"""
+
+
+class Tuning_(unittest.TestCase):
+    """[tuning]: the hand-tuned overrides, written as given with their reason, judged by the
+    core through the probe, every problem one line naming tuning.<macro>."""
+
+    def setUp(self) -> None:
+        self.dir = scratch()
+
+    def tearDown(self) -> None:
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def expect(self, text: str, field: str, fragment: str, code: int = 2) -> None:
         p = os.path.join(self.dir, "m.toml")
-        Path(p).write_text(HURST_TOML.replace('name = "hurst_t"', 'name = "hurst"'), encoding="utf-8")
-        r = run_tune(p)
-        self.assertNotEqual(r.returncode, 0)
-        self.assertIn("name: ", r.stderr)
+        Path(p).write_text(text, encoding="utf-8")
+        out = os.path.join(self.dir, "o.h")
+        r = run_tune("--no-compile", "-o", out, p)
+        self.assertEqual(r.returncode, code, r.stderr)
+        lines = r.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, r.stderr)
+        self.assertIn(f": {field}: ", lines[0])
+        self.assertIn(fragment, lines[0])
+        self.assertFalse(os.path.exists(out))
+        measured("tuning: %s", lines[0])
+
+    def test_overrides_should_be_written_as_given_with_their_reason(self) -> None:
+        p = os.path.join(self.dir, "m.toml")
+        Path(p).write_text(TUNED, encoding="utf-8")
+        out = os.path.join(self.dir, "o.h")
+        r = run_tune("--no-compile", "-o", out, p)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        h = read(out)
+        self.assertIn("#define MOTOR_SPEED_NOMINAL_RPM 2500.0\n", h)
+        self.assertIn("HAND-TUNED (the description's [tuning]): the reason (tools/tune alone: 2560.0)", h)
+        self.assertIn("X(0.0) X(-0.1) X(-0.2) X(-0.3)", h)
+        r = run_tune("--no-tuning", "--no-compile", "-o", out, p)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("#define MOTOR_SPEED_NOMINAL_RPM 2560.0\n", read(out))
+
+    def test_bad_overrides_should_be_one_line_naming_the_macro(self) -> None:
+        self.expect(HURST_TOML + "[tuning]\n# r\nMOTOR_SPEED_NOMINAL = 1.0\n", "tuning.MOTOR_SPEED_NOMINAL",
+                    "did you mean MOTOR_SPEED_NOMINAL_RPM")
+        self.expect(HURST_TOML + "[tuning]\n# r\nMOTOR_RS_OHM = 1.0\n", "tuning.MOTOR_RS_OHM",
+                    "one home, motor.resistance")
+        self.expect(HURST_TOML + "[tuning]\nMOTOR_CURRENT_MAX_A = 1.0\n", "tuning.MOTOR_CURRENT_MAX_A", "say why")
+        self.expect(HURST_TOML + '[tuning]\n# r\nMOTOR_CURRENT_MAX_A = "1 A"\n', "tuning.MOTOR_CURRENT_MAX_A",
+                    "expected a number")
+        self.expect(HURST_TOML + "[tuning]\n# r\nMOTOR_CURRENT_MAX_A = inf\n", "tuning.MOTOR_CURRENT_MAX_A",
+                    "not a finite number")
+        self.expect(HURST_TOML + "[tuning]\n# r\nMOTOR_FW_ID_TABLE_A = [0.0]\n", "tuning.MOTOR_FW_ID_TABLE_A",
+                    "16 numbers")
+        # judged by the core's own check, through the probe
+        self.expect(HURST_TOML + "[tuning]\n# r\nMOTOR_OVERCURRENT_A = 40.0\n", "tuning.MOTOR_OVERCURRENT_A",
+                    "the core rejects it", code=1)
 
 
 class TheProbe(unittest.TestCase):
@@ -626,7 +704,7 @@ class TheProbe(unittest.TestCase):
 
     def setUp(self) -> None:
         self.dir = scratch()
-        self.base = read(MOTORS / "motor_hurst075.h")
+        self.base = read(own_profile("hurst075"))
 
     def tearDown(self) -> None:
         shutil.rmtree(self.dir, ignore_errors=True)
@@ -645,7 +723,7 @@ class TheProbe(unittest.TestCase):
     def test_userparms_defaults_should_be_computed_by_the_compiler(self) -> None:
         # UserParms.h: MC_DEADTIME_BAND_A = Vbus / (12 L fpwm), MC_ESTIMATOR_MIN_RPM = 0.8 x ramp
         # end: the Hurst075 on the MCLV, 24 V, 1.92 mH, 20 kHz, 600 rpm
-        prof = core_of(MOTORS / "motor_hurst075.h", "mclv")
+        prof = core_of(own_profile("hurst075"), "mclv")
         self.assertAlmostEqual(prof.out.fact("MC_DEADTIME_BAND_A"), 24.0 / (12.0 * 1.92e-3 * 20000.0), places=12)
         self.assertEqual(prof.out.fact("MC_ESTIMATOR_MIN_RPM"), 0.8 * 600.0)
 
@@ -751,16 +829,22 @@ class UnitsAndKinds(unittest.TestCase):
 class GeneratedHeaders(unittest.TestCase):
     dir: str
     out: dict[str, tuple[str, str]]
+    committed: dict[str, str]
 
     @classmethod
     def setUpClass(cls) -> None:
         cls.dir = scratch()
         cls.out = {}
+        cls.committed = {}
         for ex, (name, board) in EXAMPLE_PROFILES.items():
             h = os.path.join(cls.dir, f"motor_{name}.h")
-            r = run_tune("-o", h, str(EXAMPLES / f"{ex}.toml"))
+            r = run_tune("--no-tuning", "--name", name, "-o", h, str(EXAMPLES / f"{ex}.toml"))
             assert r.returncode == 0, r.stderr
             cls.out[ex] = (h, board)
+            c = os.path.join(cls.dir, f"committed_{ex}.h")
+            r = run_tune("--no-compile", "-o", c, str(EXAMPLES / f"{ex}.toml"))
+            assert r.returncode == 0, r.stderr
+            cls.committed[ex] = c
 
     @classmethod
     def tearDownClass(cls) -> None:
@@ -861,13 +945,29 @@ int main(void)
                 measured("%s: %d integers of --check equal the C compiler's", ex, n)
 
     def test_committed_profiles_should_be_what_the_tool_writes(self) -> None:
-        for ex, (h, _) in self.out.items():
-            name = EXAMPLE_PROFILES[ex][0]
-            committed = MOTORS / f"motor_{name}.h"
+        # one committed profile per example, with its [tuning]; the tool's own (without) is
+        # built, never committed
+        for ex, h in self.committed.items():
+            committed = MOTORS / f"motor_{ex}.h"
             with self.subTest(ex):
                 self.assertTrue(committed.exists(), committed)
-                self.assertEqual(read(h), read(committed), f"firmware/motors/motor_{name}.h is stale: run "
+                self.assertEqual(read(h), read(committed), f"firmware/motors/motor_{ex}.h is stale: run "
                                  f"tools/tune/tune tools/tune/examples/{ex}.toml")
+        for ex, (name, _) in EXAMPLE_PROFILES.items():
+            if name != ex:
+                self.assertFalse((MOTORS / f"motor_{name}.h").exists(), f"motor_{name}.h is built, not committed")
+
+    def test_the_build_trees_own_profiles_should_be_what_the_tool_writes(self) -> None:
+        built = os.environ.get("TUNE_PROFILES")
+        if not built:
+            self.skipTest("TUNE_PROFILES not set: run through CTest")
+        for ex, (h, _) in self.out.items():
+            name = EXAMPLE_PROFILES[ex][0]
+            p = Path(built) / f"motor_{name}.h"
+            if name == ex:
+                continue
+            with self.subTest(ex):
+                self.assertEqual(read(h), read(p), f"{p} is stale")
 
     def test_check_should_decode_the_hand_tuned_profiles(self) -> None:
         for name, board in (("hurst", "mclv"), ("hurst300", "mclv"), ("hispeed", "mchv")):
@@ -877,7 +977,7 @@ int main(void)
                 self.assertIn("MOTOR_SMC_GAIN_V", r.stdout)
 
     def test_check_should_report_a_value_the_core_would_reject(self) -> None:
-        h, _ = self.out["hurst075"]
+        h, _ = self.out["hurst"]
         bad = os.path.join(self.dir, "motor_bad.h")
         Path(bad).write_text(read(h).replace("#define MOTOR_CURRENT_MAX_A 1.64", "#define MOTOR_CURRENT_MAX_A 4.0"),
                              encoding="utf-8")
@@ -890,7 +990,7 @@ int main(void)
     def test_check_should_give_the_cores_own_refusal_with_or_without_compiling_mc_c(self) -> None:
         # A value only the core judges (the loop bandwidth documents the gains below it):
         # --check answers with the core's check, its parameter and its reason.
-        h, _ = self.out["hurst075"]
+        h, _ = self.out["hurst"]
         bad = os.path.join(self.dir, "motor_bw.h")
         text = read(h)
         self.assertIn("#define MOTOR_CURRENT_LOOP_BW_RAD_S 3000.0", text)

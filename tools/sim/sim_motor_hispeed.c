@@ -4,7 +4,7 @@
 /* Defined by us (the motor behind AN1078's "500 to 17,000 rpm" is not
  * documented): its description for tools/tune
  * (tools/tune/examples/hispeed.toml), as the generated profile holds it. */
-#include "../../firmware/motors/motor_hs2p.h"
+#include "../../firmware/motors/motor_hispeed.h"
 
 /* Not in the profile: friction (assumed) and the rated speed (the
  * description's rated_speed, its top speed). */

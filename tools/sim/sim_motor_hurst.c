@@ -1,10 +1,10 @@
 /* sim_motor_hurst.c - the simulated Hurst DMB0224C10002 ("hurst", "hurst075"). */
 #include "sim_profiles.h"
 
-/* Its description for tools/tune (tools/tune/examples/hurst075.toml), as
+/* Its description for tools/tune (tools/tune/examples/hurst.toml), as
  * the generated profile holds it: R, L, Ke, pole pairs, inertia, rated
  * current. */
-#include "../../firmware/motors/motor_hurst075.h"
+#include "../../firmware/motors/motor_hurst.h"
 
 /*
  * Not in the profile: friction and the rated speed. Neither friction nor the

@@ -3,7 +3,7 @@
 
 /* Its description for tools/tune (tools/tune/examples/hurst300.toml, from
  * Microchip's hurst300.h), as the generated profile holds it. */
-#include "../../firmware/motors/motor_hurst_long.h"
+#include "../../firmware/motors/motor_hurst300.h"
 
 /* Not in the profile: friction (assumed: the Hurst075's scaled to about
  * twice its rotor) and the rated speed (the description's rated_speed). */

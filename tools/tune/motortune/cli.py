@@ -21,9 +21,9 @@ from .units import InputError, one_line
 
 USAGE = """\
 tools/tune/tune [options] <motor.toml>      write firmware/motors/motor_<name>.h
+tools/tune/tune --no-tuning --name N <motor.toml>   the profile without the description's [tuning]
 tools/tune/tune --check <profile.h> [--board B]   print a profile back in engineering units"""
 
-HAND_TUNED = ("motor_hurst.h", "motor_hurst300.h", "motor_hispeed.h")
 MAX_HEADER_BYTES = 1 << 20  # a profile --check reads; the shipped ones are 3..25 kB
 EXIT_INPUT, EXIT_REFUSED, EXIT_TOOL = 2, 1, 3
 
@@ -39,22 +39,26 @@ def _target(name: str, out: str | None) -> safeio.Output:
     if out is not None:
         return safeio.Output(out, "-o")
     target = os.path.join(probe.FIRMWARE, "motors", f"motor_{name}.h")
-    if os.path.basename(target) in HAND_TUNED:
-        raise InputError("name", f"motor_{name}.h is a hand-tuned profile; choose another name")
     return safeio.Output(target, "name", root=str(probe.REPO))
 
 
 def generate(path: str, out: str | None = None, name: str | None = None, compile_: bool = True,
-             quiet: bool = False) -> tuple[int, str | None]:
-    """Returns (exit code, header path or None)."""
+             quiet: bool = False, tuning: bool = True) -> tuple[int, str | None]:
+    """Returns (exit code, header path or None). tuning=False (--no-tuning): without the
+    description's [tuning], the profile the tool derives on its own."""
     try:
         d = describe.load(path)
+        if not tuning and d.tuning and name is None and out is None:
+            raise InputError("--no-tuning", f"give --name or -o: motor_{d.name}.h is the profile with the "
+                                            f"description's [tuning]")
+        cmd = ["tools/tune/tune"] + ([] if tuning else ["--no-tuning"])
         if name is not None:
             d.name = describe.check_name(name, "--name")
+            cmd += ["--name", d.name]
         rel_src = os.path.relpath(os.path.abspath(path), probe.REPO)
         d.source = rel_src if not rel_src.startswith("..") else path
         shown = f"motor_{d.name}.h (generated)"
-        g = build(d, f"tools/tune/tune {d.source}", shown)
+        g = build(d, " ".join(cmd + [d.source]), shown, tuning)
         dest = _target(d.name, out)
         if compile_:
             err = probe.compile_core(g.text, g.profile.build, shown)
@@ -144,6 +148,9 @@ def _main(argv: list[str] | None) -> int:
     ap.add_argument("--board", help="with --check: the board (default: the one the profile names, else mclv)")
     ap.add_argument("-o", "--output", help="header to write (default firmware/motors/motor_<name>.h)")
     ap.add_argument("--name", help="profile name (overrides the description's)")
+    ap.add_argument("--no-tuning", action="store_true",
+                    help="leave the description's [tuning] out: the profile the tool derives on its own "
+                         "(with --name or -o when the description has a [tuning])")
     ap.add_argument("--no-compile", action="store_true",
                     help="skip the compile of firmware/mc.c with the profile (the core's checks in "
                          "mc_derived.h still judge it, through the probe)")
@@ -151,7 +158,8 @@ def _main(argv: list[str] | None) -> int:
     if a.check is not None:
         # --check reads a profile and writes nothing: a description, -o or --name would be
         # ignored, so the user would not get what they asked for
-        for given, what in ((a.description, "a description"), (a.output, "-o"), (a.name, "--name")):
+        for given, what in ((a.description, "a description"), (a.output, "-o"), (a.name, "--name"),
+                            (a.no_tuning or None, "--no-tuning")):
             if given is not None:
                 return _fail("", f"--check: {what} does not go with --check (it reads a profile and writes "
                                  f"nothing; usage: tools/tune/tune --help)", EXIT_INPUT)
@@ -161,7 +169,7 @@ def _main(argv: list[str] | None) -> int:
                          "tools/tune/tune --help)", EXIT_INPUT)
     if not a.description:
         return _fail("", "no description given (usage: tools/tune/tune --help)", EXIT_INPUT)
-    code, _ = generate(a.description, out=a.output, name=a.name, compile_=not a.no_compile)
+    code, _ = generate(a.description, out=a.output, name=a.name, compile_=not a.no_compile, tuning=not a.no_tuning)
     return code
 
 

@@ -54,6 +54,7 @@ class Value:
     unit: str
     reason: str
     fmt: str = "{:.4g}"
+    text: str | None = None  # the C text as given ([tuning]), instead of fmt
 
 
 def fmt_num(x: float, fmt: str = "{:.4g}") -> str:
@@ -117,6 +118,7 @@ class Tuning:
     gains: dict[str, GainBlame] = field(default_factory=dict)  # each PI gain: whom its trouble names
     fw_table: list[float] = field(default_factory=list)
     fw_speeds: list[float] = field(default_factory=list)
+    tuned: dict[str, str] = field(default_factory=dict)  # [tuning]: macro -> the header comment (generate.py)
     # the motor and the choices the steps share (SI units; speeds rpm)
     psi: float = 0.0  # V s/rad electrical (Wb)
     kt: float = 0.0  # N m per A peak

@@ -24,6 +24,19 @@
     start_load = "0.02 N m"      # torque the load needs at start (breakaway, and at the
                                  # ramp end): the start-up current is sized for it
 
+    [tuning]                     # optional: hand-tuned choices, each replacing one derived value
+    # the reason, in the comment line(s) right above the key: written into the header
+    MOTOR_SPEED_NOMINAL_RPM = 2500.0        # a macro the profile defines = a number in its unit
+    MOTOR_FW_ID_TABLE_A = [0.0, -0.4, ...]  # the field-weakening table: 16 numbers, A
+    MOTOR_NAME = "..."                      # the profile's MOTOR_NAME (else `description`)
+
+[tuning] keys are the header's macro names (TUNABLE), bare keys on their own line,
+each with its reason in a comment above it; the motor's data (R, L, Ke, pole pairs,
+rated current, inertia) are not among them: their one home is [motor]. A value is
+written into the header as given (the shortest text of the same double) and judged
+by the core's checks through the probe; it is not fed back into the derivation
+(tools/tune --no-tuning writes the profile without them).
+
 A bare number is accepted when the key carries the unit ("resistance_ohm =
 2.67"). Every problem raises InputError naming the field: an unknown or
 missing field, a unit that is not one of the quantity's, a number that is not
@@ -37,6 +50,8 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import math
+import re
 import tomllib
 from typing import Any
 
@@ -65,6 +80,37 @@ APP = {
     "start_load": ("torque", False),
 }
 SECTIONS = {"": TOP, "motor": MOTOR, "application": APP}
+TUNING_SECTION = "tuning"
+
+# [tuning]: the macros a description may set by hand (emit.SECTIONS' order), and the
+# unit each is in; MOTOR_FW_ID_TABLE_A is 16 numbers, MOTOR_NAME a text.
+TUNABLE: dict[str, str] = {
+    "MOTOR_SPEED_NOMINAL_RPM": "rpm", "MOTOR_SPEED_FW_MAX_RPM": "rpm", "MOTOR_SPEED_MIN_RPM": "rpm",
+    "MOTOR_SPEED_FULLSCALE_RPM": "rpm", "MOTOR_CURRENT_MAX_A": "A", "MOTOR_OVERCURRENT_A": "A",
+    "MOTOR_LOCK_TIME_S": "s", "MOTOR_LOCK_CURRENT_A": "A", "MOTOR_RAMP_TIME_S": "s", "MOTOR_RAMP_END_RPM": "rpm",
+    "MOTOR_RAMP_CURRENT_A": "A", "MOTOR_OL_DAMP_S": "s", "MOTOR_SMC_GAIN_V": "V", "MOTOR_SMC_LINEAR_BAND_A": "A",
+    "MC_SPEED_FILTER_HZ": "Hz", "MC_DEADTIME_BAND_A": "A", "MOTOR_CURRENT_LOOP_BW_RAD_S": "rad/s",
+    "MOTOR_CURRENT_KP_V_PER_A": "V/A", "MOTOR_CURRENT_KI_V_PER_AS": "V/(A s)", "MOTOR_SPEED_KP_FULL_RPM": "rpm",
+    "MOTOR_SPEED_KP_A_PER_RPM": "A/rpm", "MOTOR_SPEED_KI_A_PER_RPM_S": "A/(rpm s)", "MOTOR_START_LOAD_NM": "N m",
+    "MOTOR_FW_ID_TABLE_A": "A", "MOTOR_NAME": "",
+}
+# macros whose value is the motor's data: one home, [motor] (or [application])
+DATA_HOME = {"MOTOR_POLE_PAIRS": "motor.pole_pairs", "MOTOR_RS_OHM": "motor.resistance",
+             "MOTOR_LS_H": "motor.inductance", "MOTOR_KE_VPK_LL_PER_KRPM": "motor.back_emf",
+             "MOTOR_RATED_CURRENT_A": "motor.rated_current", "MOTOR_INERTIA_KGM2": "motor.inertia",
+             "MOTOR_TUNE_BOARD": "board"}
+FW_TABLE_ENTRIES = 16
+TUNING_MAX_ABS = 1e15  # any value of any of these macros is far below; a larger one is a slip
+
+
+@dataclasses.dataclass(frozen=True)
+class Override:
+    """One [tuning] entry: the text written into the header, its number(s), the reason."""
+
+    macro: str
+    text: str  # the C text of the value (the shortest text of the same double)
+    numbers: tuple[float, ...]  # the value (one number; 16 for the table)
+    reason: str  # the comment above the key in the description
 
 KINDS = {
     "kind_ll": {"line-to-line": 0.5, "per-phase": 1.0},
@@ -126,6 +172,7 @@ class Description:
     wc: float | None = None
     i_fw_load: float | None = None
     t_start: float | None = None
+    tuning: dict[str, Override] = dataclasses.field(default_factory=dict)
     raw: dict[tuple[str, str], Any] = dataclasses.field(default_factory=dict)
 
 
@@ -191,9 +238,100 @@ def load(path: str) -> Description:
     """The description in the TOML file at path: a regular file of at most MAX_TOML_BYTES."""
     if not path:
         raise InputError("file", "no description file given")
-    d = parse(loads(safeio.read_utf8(path, "file", MAX_TOML_BYTES)))
+    text = safeio.read_utf8(path, "file", MAX_TOML_BYTES)
+    d = parse(loads(text), tuning_comments(text))
     d.source = path
     return d
+
+
+_TABLE_RE = re.compile(r"^\s*\[([^\[\]]*)\]\s*(#.*)?$")
+_KEY_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*=")
+
+
+def tuning_comments(text: str) -> dict[str, str]:
+    """The reason of each [tuning] key: the comment lines right above it (a blank line
+    or another key ends a reason). tomllib drops comments, so they are read here from the
+    lines; what this reads is only ever written inside a comment (emit.comment_text)."""
+    out: dict[str, str] = {}
+    section: str | None = None
+    pending: list[str] = []
+    for line in text.splitlines():
+        m = _TABLE_RE.match(line)
+        if m:
+            section = m.group(1).strip()
+            pending = []
+            continue
+        if section != TUNING_SECTION:
+            continue
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            pending.append(stripped.lstrip("#").strip())
+            continue
+        k = _KEY_RE.match(line)
+        if k:
+            reason = " ".join(p for p in pending if p)
+            if reason:
+                out.setdefault(k.group(1), reason)
+            pending = []
+        elif not stripped:
+            pending = []
+    return out
+
+
+def _tuning_number(where: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise InputError(where, f"expected a number in the macro's unit, got {str(value)[:40]!r}")
+    try:
+        x = float(value)
+    except OverflowError:
+        x = math.inf
+    if not math.isfinite(x) or abs(x) > TUNING_MAX_ABS:
+        raise InputError(where, f"{str(value)[:40]}: not a finite number of plausible size")
+    return x
+
+
+def _c_number(x: float) -> str:
+    """x as a C double literal of the same value (repr is the shortest text that reads back
+    as x); always with a point or an exponent, so C never computes it as an integer."""
+    s = repr(x)
+    return s if ("." in s or "e" in s) else s + ".0"
+
+
+def parse_tuning(table: Any, reasons: dict[str, str]) -> dict[str, Override]:
+    """[tuning]: macro name = value, each with its reason (InputError naming tuning.<key>)."""
+    if not isinstance(table, dict):
+        raise InputError(TUNING_SECTION, "must be a [tuning] section")
+    out: dict[str, Override] = {}
+    for key, value in table.items():
+        shown = key if len(key) <= 40 else key[:40] + "..."
+        where = f"{TUNING_SECTION}.{shown}"
+        if key in DATA_HOME:
+            raise InputError(where, f"the motor's data has one home, {DATA_HOME[key]}: set it there")
+        if key not in TUNABLE:
+            close = difflib.get_close_matches(key, list(TUNABLE), n=1, cutoff=0.6) if len(key) <= 64 else []
+            hint = f" (did you mean {close[0]}?)" if close else " (a macro the profile defines: docs/tune.md)"
+            raise InputError(where, f"unknown field{hint}")
+        reason = reasons.get(key, "")
+        if not reason:
+            raise InputError(where, "say why: a comment on the line(s) right above it (it is written into the "
+                                    "header as the reason)")
+        if key == "MOTOR_NAME":
+            if not isinstance(value, str) or not value.strip():
+                raise InputError(where, "expected a non-empty string")
+            name = check_description(value.strip(), where)
+            out[key] = Override(key, name, (), reason)
+            continue
+        if key == "MOTOR_FW_ID_TABLE_A":
+            if not isinstance(value, list) or len(value) != FW_TABLE_ENTRIES:
+                raise InputError(where, f"expected a list of {FW_TABLE_ENTRIES} numbers (Id in A, from the "
+                                        f"nominal to the top speed)")
+            nums = tuple(_tuning_number(f"{where}[{k}]", v) for k, v in enumerate(value))
+            text = " ".join(f"X({_c_number(x)})" for x in nums)
+            out[key] = Override(key, text, nums, reason)
+            continue
+        x = _tuning_number(where, value)
+        out[key] = Override(key, _c_number(x), (x,), reason)
+    return out
 
 
 def loads(text: str) -> dict[str, Any]:
@@ -236,7 +374,9 @@ def _inertia_check(d: Description, given: Any) -> None:
                      f"{lo:g} .. {hi:g} s{hint}")
 
 
-def parse(data: dict[str, Any]) -> Description:
+def parse(data: dict[str, Any], reasons: dict[str, str] | None = None) -> Description:
+    """The description in data (a TOML document); reasons: the [tuning] keys' comments
+    (tuning_comments), without which a [tuning] entry is refused."""
     if not isinstance(data, dict):
         raise InputError("file", "not a TOML table")
     vals: dict[tuple[str, str], Any] = {}
@@ -246,6 +386,8 @@ def parse(data: dict[str, Any]) -> Description:
         if sec and not isinstance(table, dict):
             raise InputError(sec, "must be a [section]")
         for key, value in table.items():
+            if sec == "" and key == TUNING_SECTION:
+                continue
             if sec == "" and key and key in SECTIONS:
                 if isinstance(value, dict):
                     continue
@@ -329,6 +471,8 @@ def parse(data: dict[str, Any]) -> Description:
         raise InputError("motor.peak_current", f"{d.i_peak:g} A is below the rated current {d.i_rated:g} A")
     if d.n_min is not None and d.n_min >= d.n_rated and (d.n_max is None or d.n_min >= d.n_max):
         raise InputError("application.min_speed", "must be below the top speed")
+    if TUNING_SECTION in data:
+        d.tuning = parse_tuning(data[TUNING_SECTION], reasons or {})
     d.raw = vals
     _inertia_check(d, given.get(("motor", "inertia")))
     return d

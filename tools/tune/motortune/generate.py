@@ -15,8 +15,8 @@ import subprocess
 from dataclasses import dataclass
 
 from . import derive, emit, probe
-from .derive import MIN_GAIN_COUNTS, Infeasible, Tuning
-from .describe import Description
+from .derive import MIN_GAIN_COUNTS, GainBlame, Infeasible, Tuning, Value, fmt_num
+from .describe import TUNABLE, Description
 from .units import InputError
 
 # Each PI gain and the integer the core stores for it (probe_facts.h)
@@ -45,10 +45,38 @@ def clang_format(text: str) -> str:
     return text
 
 
+def apply_tuning(d: Description, t: Tuning) -> None:
+    """The description's [tuning] entries replace the values derived for their macros, each
+    with its reason and what the tool alone gives (nothing is derived again from them)."""
+    for macro, o in d.tuning.items():
+        if macro == "MOTOR_NAME":
+            t.tuned[macro] = f"HAND-TUNED (the description's [tuning]): {o.reason}"
+            continue
+        if macro == "MOTOR_FW_ID_TABLE_A":
+            t.fw_table = list(o.numbers)
+            t.tuned[macro] = f"HAND-TUNED (the description's [tuning]): {o.reason}"
+            continue
+        old = t.by.get(macro)
+        alone = (f"tools/tune alone: {fmt_num(old.number, old.fmt)}" if old is not None
+                 else "tools/tune alone: UserParms.h's default")
+        reason = f"HAND-TUNED (the description's [tuning]): {o.reason} ({alone})"
+        v = Value(macro, o.numbers[0], TUNABLE[macro], reason, text=o.text)
+        if old is not None:
+            t.values[t.values.index(old)] = v
+        else:
+            t.values.append(v)
+        t.by[macro] = v
+        t.tuned[macro] = reason
+        if macro in t.gains:
+            t.gains[macro] = GainBlame(f"tuning.{macro}", f"the value is in {TUNABLE[macro]}: check it")
+
+
 def judge(t: Tuning, prof: probe.Profile) -> None:
     """The core's verdict on the generated values, as the description's terms."""
     if prof.refused:
         r = prof.refused[0]
+        if r.param in t.tuned:
+            raise Infeasible(f"tuning.{r.param}", f"the core rejects it: {r.why} ({r.where})")
         blame = t.gains.get(r.param)
         if blame is not None:
             raise Infeasible(blame.field, f"gives {r.param} = {t[r.param]:g}, outside the core's range: "
@@ -61,10 +89,13 @@ def judge(t: Tuning, prof: probe.Profile) -> None:
                                           f"(at least {MIN_GAIN_COUNTS}): {blame.hint}")
 
 
-def build(d: Description, tool_cmd: str, shown: str) -> Generated:
+def build(d: Description, tool_cmd: str, shown: str, tuning: bool = True) -> Generated:
     """The header for d, judged by the core (InputError, Infeasible otherwise); `shown`
-    names it in messages."""
+    names it in messages. tuning=False leaves the description's [tuning] out: the profile
+    the tool derives on its own."""
     t = derive.derive(d)
+    if tuning:
+        apply_tuning(d, t)
     text = clang_format(emit.render(d, t, tool_cmd))
     prof = probe.profile(text, t.board.id, shown, t.fpwm)
     judge(t, prof)
