@@ -37,12 +37,6 @@
 #define MOTOR_TUNE_BOARD "mclv" /* the board these values were derived for */
 #endif
 
-/* PWM frequency of the description: the board's (boards/board.h) must match. */
-#if defined(PWM_FREQUENCY_HZ) && PWM_FREQUENCY_HZ != 20000L
-#error                                                                                             \
-    "PWM_FREQUENCY_HZ: this profile was derived for 20000 Hz (build with -DPWM_FREQUENCY_HZ=20000L)"
-#endif
-
 /* ---- electrical data ------------------------------------------------------------------------- */
 #ifndef MOTOR_POLE_PAIRS
 #define MOTOR_POLE_PAIRS 5
