@@ -13,6 +13,11 @@
  * time is one short core call (a copy of mc_status_t at most), far below
  * the slack the interrupt leaves (docs/board.md "Timing"); a conversion
  * that completes meanwhile is serviced on unmasking.
+ *
+ * firmware/motor.c implements it on the dsPIC. On the PC, where the caller
+ * steps its own mc_t in the same thread, tools/sim/sim_mailbox.c
+ * implements the mailbox calls (not motor_start, motor_observe) on that
+ * motor, so the monitor and the main loop run there unchanged.
  */
 
 #include <stdbool.h>

@@ -84,6 +84,18 @@ def desc_from(text: str) -> Description:
     return describe.parse(tomllib.loads(text))
 
 
+def tool_only(text: str, extra: str = "") -> str:
+    """A description without its [tuning] table (what the tool derives on its own), with
+    the top-level line extra (e.g. a pwm_frequency) added after its board line."""
+    if "\n[tuning]" in text:
+        head, _, rest = text.partition("\n[tuning]")
+        nxt = rest.find("\n[")
+        text = head + ("\n" + rest[nxt + 1:] if nxt >= 0 else "\n")
+    if extra:
+        text = text.replace("\nboard = ", f"\n{extra}\nboard = ", 1)
+    return text
+
+
 def measured(fmt: str, *a: object) -> None:
     print("measured: " + fmt % a)
 
@@ -423,7 +435,7 @@ class CoreLimits(unittest.TestCase):
                .replace('rated_current = "3.0 A"', 'rated_current = "1.5 A"').replace('start_load = "0.05 N m"', ""))
     # hs2p on the MCHV at 40 kHz under a 1e-3 kg m^2 flywheel: 8 swings of the lock take 2 s
     # (80000 periods, the core counts 65000), 2 zeta / w of open-loop damping 44 ms (1780 periods)
-    HEAVY_40K = (read(EXAMPLES / "hispeed.toml").replace('"20 kHz"', '"40 kHz"')
+    HEAVY_40K = (tool_only(read(EXAMPLES / "hispeed.toml"), 'pwm_frequency = "40 kHz"')
                  .replace('"2.0e-5 kg m^2"', '"1e-3 kg m^2"'))
     # the Hurst with 0.17 mH per phase: the dead-beat band Kslide G / F is 6 A, the MCLV reads 4.4 A
     LOW_L = HURST_TOML.replace('"3.84 mH"', '"0.34 mH"').replace('"5300 rpm"', '"2500 rpm"')
@@ -638,8 +650,9 @@ TUNED = HURST_TOML + """
 [tuning]
 # the reason
 MOTOR_SPEED_NOMINAL_RPM = 2500
-# a table
-MOTOR_FW_ID_TABLE_A = [0, -0.1, -0.2, -0.3, -0.4, -0.5, -0.6, -0.7, -0.8, -0.9, -1, -1.1, -1.2, -1.3, -1.4, -1.5]
+# a table (the hand-tuned profile's, which the core takes with that nominal speed)
+MOTOR_FW_ID_TABLE_A = [0, -0.399, -0.71, -1.004, -1.28, -1.541, -1.79, -2.029,
+                       -2.263, -2.501, -2.769, -2.984, -2.984, -2.984, -2.984, -2.985]
 """
 
 
@@ -675,7 +688,7 @@ class Tuning_(unittest.TestCase):
         h = read(out)
         self.assertIn("#define MOTOR_SPEED_NOMINAL_RPM 2500.0\n", h)
         self.assertIn("HAND-TUNED (the description's [tuning]): the reason (tools/tune alone: 2560.0)", h)
-        self.assertIn("X(0.0) X(-0.1) X(-0.2) X(-0.3)", h)
+        self.assertIn("X(0.0) X(-0.399) X(-0.71) X(-1.004)", h)
         r = run_tune("--no-tuning", "--no-compile", "-o", out, p)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("#define MOTOR_SPEED_NOMINAL_RPM 2560.0\n", read(out))
@@ -756,10 +769,12 @@ class TheProbe(unittest.TestCase):
                 self.assertTrue(str(cm.exception).startswith("p.h:"), str(cm.exception))
 
     def test_a_profile_for_another_pwm_frequency_should_be_read_at_that_frequency(self) -> None:
-        # emit.py's guard names the frequency the profile was derived for; --check reads it back
-        text = self.base.replace("PWM_FREQUENCY_HZ != 20000L", "PWM_FREQUENCY_HZ != 10000L").replace(
-            "derived for 20000 Hz (build with -DPWM_FREQUENCY_HZ=20000L)",
-            "derived for 10000 Hz (build with -DPWM_FREQUENCY_HZ=10000L)")
+        # emit.py's guard (written when the description names a pwm_frequency) names the
+        # frequency the profile was derived for; --check reads it back
+        guard = ("#if defined(PWM_FREQUENCY_HZ) && PWM_FREQUENCY_HZ != 10000L\n"
+                 '#error "PWM_FREQUENCY_HZ: this profile was derived for 10000 Hz '
+                 '(build with -DPWM_FREQUENCY_HZ=10000L)"\n#endif\n\n')
+        text = self.base.replace("/* ---- electrical data", guard + "/* ---- electrical data", 1)
         self.assertNotEqual(text, self.base)
         prof = probe.profile(text, "mclv", "p.h")
         self.assertEqual(prof.build.pwm_hz, 10000)
