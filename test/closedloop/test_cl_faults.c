@@ -81,7 +81,8 @@ static void check_bus_fault(simcore_t *s, double vbus_v, unsigned fault, const c
     t_f = run_until_fault(s, 0.2);
     printf("measured: bus 24 -> %.0f V at 2000 rpm: FAULT %s after %.2f ms\n", vbus_v,
            mc_fault_name(s->now.fault), (t_f >= 0.0) ? 1000.0 * (t_f - t_ev) : -1.0);
-    assert_true(t_f >= 0.0 && t_f - t_ev <= 0.005);
+    assert_cmp(t_f, >=, 0.0);
+    assert_cmp(t_f - t_ev, <=, 0.005);
     assert_int_equal(s->now.fault, fault);
     cl_run(s, 0.1);
     cl_event(s, SIM_EV_VBUS, 24.0, 0.0);

@@ -265,7 +265,7 @@ static void test_open_loop_should_advance_the_angle_at_constant_acceleration(voi
         step_with(nominal());
     }
     err_stats_print("open-loop forced angle vs INC n(n+1)/2", &e, "counts");
-    assert_true(e.max_abs == 0.0);
+    assert_cmp(e.max_abs, ==, 0.0);
 }
 
 static void test_open_loop_should_retry_a_failed_start_then_fault(void **state)
@@ -681,7 +681,8 @@ static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_ba
                 ref = (double)dt * i / MC_DT_BAND_Q15;
             }
             int16_t got = mc_deadtime_counts((q15_t)i, dt, slope);
-            assert_true(got >= -dt && got <= dt);
+            assert_cmp(got, >=, -dt);
+            assert_cmp(got, <=, dt);
             err_stats_add(&e, got - ref, (double)i);
         }
         err_stats_print("dead-time correction vs sign with linear band", &e, "counts");

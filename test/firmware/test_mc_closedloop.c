@@ -234,7 +234,8 @@ static void test_ripple_compensation_should_follow_equation_8_on_a_rippling_bus(
         }
     }
     err_stats_print("Vd, Vq after ripple compensation vs Equation 8 (double)", &e, "LSB");
-    assert_true(n_up > 1000 && n_down > 1000);
+    assert_cmp(n_up, >, 1000);
+    assert_cmp(n_down, >, 1000);
     assert_cmp(e.max_abs, <=, 1.0); /* ripple.h: one gain per period, then one product */
 }
 
@@ -304,7 +305,8 @@ static void test_at_the_voltage_circle_the_q_limit_should_be_exact_without_a_red
            "%.2f); %ld redone at the circle\n",
            clamped, periods, lo, hi, sum / (double)clamped, redos);
     assert_cmp(clamped, >, periods / 4);
-    assert_true(lo >= -0.5 && hi <= 0.5); /* AN1078's rounded limit */
+    assert_cmp(lo, >=, -0.5);
+    assert_cmp(hi, <=, 0.5); /* AN1078's rounded limit */
     assert_cmp(redos * 1000L, <=, periods);
 }
 
@@ -407,7 +409,8 @@ static void test_the_measured_phases_should_keep_their_shunt_window_in_every_sta
            w.on, w.states[MC_STATE_LOCK], w.states[MC_STATE_OPEN_LOOP],
            w.states[MC_STATE_CLOSED_LOOP], w.at_window, MC_DUTY_SAMPLE_MAX, w.min_on_us,
            (double)BOARD_SHUNT_MIN_ON_NS * 1e-3, b.rig.samples_short, b.rig.t_cond_min_s * 1e6);
-    assert_true(w.states[MC_STATE_LOCK] > 0 && w.states[MC_STATE_OPEN_LOOP] > 0);
+    assert_cmp(w.states[MC_STATE_LOCK], >, 0);
+    assert_cmp(w.states[MC_STATE_OPEN_LOOP], >, 0);
     assert_cmp(w.at_window, >, 1000); /* the limit was active, not merely never reached */
     assert_cmp(w.min_on_us, >=, (double)BOARD_SHUNT_MIN_ON_NS * 1e-3 - 1e-9);
     assert_int_equal(b.rig.samples_short, 0);

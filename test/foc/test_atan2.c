@@ -207,7 +207,7 @@ static void test_atan2_q15_should_give_exact_diagonals(void **state)
     }
     err_stats_add(&e, (double)angle_sub(atan2_q15(-32768, -32768), -24576), -32768.0);
     err_stats_print("atan2_q15 diagonals vs the exact binary angle", &e, "LSB");
-    assert_true(e.max_abs == 0.0);
+    assert_cmp(e.max_abs, ==, 0.0);
 }
 
 static void test_atan2_q15_should_define_the_unit_y_vectors(void **state)

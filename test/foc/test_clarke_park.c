@@ -41,7 +41,7 @@ static void check_clarke(q15_t ia, q15_t ib, err_stats_t *e, long *n_sat)
     assert_int_equal(ab.alpha, ia);
     if (exact >= 32767.5 || exact < -32768.5) {
         /* Outside full scale: saturated to the right side, never wrapped. */
-        assert_true((double)ab.beta == clamp_q15(exact));
+        assert_cmp((double)ab.beta, ==, clamp_q15(exact));
         (*n_sat)++;
     } else {
         err_stats_add(e, (double)ab.beta - exact, (double)ia * 65536.0 + (double)ib);
@@ -170,7 +170,7 @@ static void park_record(park_errs_t *e, q15_t got, double exact, double exact_an
                         double at)
 {
     if (exact >= 32767.5 || exact < -32768.5) {
-        assert_true((double)got == round_sat_q15(exact)); /* saturated, correct side */
+        assert_cmp((double)got, ==, round_sat_q15(exact)); /* saturated, correct side */
         e->n_sat++;
     } else {
         err_stats_add(&e->arith, (double)got - exact, at);
@@ -239,7 +239,9 @@ static void test_park_should_stay_within_bound_over_angles_and_vectors(void **st
     err_stats_print("park_inverse vs double with the true angle (|v| <= 1)", &ei.angle, "LSB");
     printf("measured: park saturated outputs checked exact: forward %ld, inverse %ld\n", ef.n_sat,
            ei.n_sat);
-    assert_true(ef.arith.n > 8000000L && ef.n_sat > 100000L && ei.n_sat > 100000L);
+    assert_cmp(ef.arith.n, >, 8000000L);
+    assert_cmp(ef.n_sat, >, 100000L);
+    assert_cmp(ei.n_sat, >, 100000L);
     assert_cmp(ef.arith.max_abs, <=, PARK_ARITH_MAX_ERR_LSB);
     assert_cmp(ei.arith.max_abs, <=, PARK_ARITH_MAX_ERR_LSB);
     assert_cmp(ef.angle.max_abs, <=, angle_bound);
@@ -298,7 +300,8 @@ static void test_park_should_saturate_cleanly_outside_the_unit_circle(void **sta
     ab.beta = 32767;
     dq = park_forward(ab, sc);
     assert_int_equal(dq.d, 32767);
-    assert_true(dq.q >= -1 && dq.q <= 1);
+    assert_cmp(dq.q, >=, -1);
+    assert_cmp(dq.q, <=, 1);
     ab.alpha = -32768;
     ab.beta = -32768;
     dq = park_forward(ab, sc);
@@ -307,7 +310,8 @@ static void test_park_should_saturate_cleanly_outside_the_unit_circle(void **sta
     dq.d = -32768;
     dq.q = -32768;
     ab = park_inverse(dq, sc);
-    assert_true(ab.alpha >= -1 && ab.alpha <= 1);
+    assert_cmp(ab.alpha, >=, -1);
+    assert_cmp(ab.alpha, <=, 1);
     assert_int_equal(ab.beta, -32768);
     /* -32768 in sin/cos (not from sincos_compute, but a caller may pass it):
      * the -1 x -1 products saturate in the accumulator, no wrap. */

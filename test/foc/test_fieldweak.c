@@ -65,7 +65,7 @@ static void sweep(const fieldweak_params_t *p, err_stats_t *e, double *worst_exc
         double err = (double)id - ref_id(p, (q15_t)sp);
         double b = bound_at(p, (q15_t)sp);
         if (b == 0.0) {
-            assert_true(err == 0.0); /* zero or the last entry: exact */
+            assert_cmp(err, ==, 0.0); /* zero or the last entry: exact */
         } else if (fabs(err) - b > *worst_excess) {
             *worst_excess = fabs(err) - b;
         }

@@ -215,7 +215,7 @@ static void test_lpf_update_should_hold_the_state_when_k_is_zero(void **state)
         /* A negative gain is outside the contract and is treated as 0. */
         assert_int_equal(lpf_update(&f, 32767, -5), y0s[j]);
         assert_int_equal(lpf_update(&f, -32768, Q15_MIN), y0s[j]);
-        assert_true(f.state == s0);
+        assert_cmp(f.state, ==, s0);
     }
 }
 
@@ -260,7 +260,7 @@ static void test_lpf_reset_should_set_the_output_exactly(void **state)
     for (v = -32768; v <= 32767; v++) {
         lpf_reset(&f, (q15_t)v);
         assert_int_equal(lpf_output(&f), v);
-        assert_true(f.state == (q31_t)v * 65536L);
+        assert_cmp(f.state, ==, (q31_t)v * 65536L);
     }
 }
 

@@ -230,7 +230,8 @@ static void test_pi_update_should_leave_the_limit_quickly_after_windup_only_with
            "= Ki (predicted %.1f), %d with Kc = 0\n",
            with_kc, predicted, without_kc);
     assert_cmp(fabs(q31_to_double(sum_kc) - 0.55), <, 2.0 / 32768.0);
-    assert_true(with_kc > 0 && fabs((double)with_kc - predicted) <= 1.0);
+    assert_cmp(with_kc, >, 0);
+    assert_cmp(fabs((double)with_kc - predicted), <=, 1.0);
     assert_cmp(q31_to_double(sum_nokc), >, 0.999); /* wound up to the accumulator limit */
     assert_cmp(without_kc, >, 5 * with_kc);
 }
@@ -248,7 +249,8 @@ static void test_pi_update_should_stop_at_both_limits_and_follow_new_limits(void
      * the output never leaves [out_min, out_max] on the way. */
     for (int n = 0; n < 1000; n++) {
         q15_t out = pi_update(&pi, -32768, 32767);
-        assert_true(out >= Q15(-0.4) && out <= Q15(0.6));
+        assert_cmp(out, >=, Q15(-0.4));
+        assert_cmp(out, <=, Q15(0.6));
     }
     assert_int_equal(pi.out, Q15(-0.4));
     pi_set_limits(&pi, Q15(-0.1), Q15(0.1));

@@ -334,12 +334,12 @@ static void test_q31_add_sub_sat_should_saturate_at_both_ends(void **state)
         check_eq(&c, q31_sub_sat(a, b), test_sat32((int64_t)a - b), a, b);
     }
     check_done("q31_add_sat / q31_sub_sat, edges x edges + 5e6 random", &c);
-    assert_true(q31_add_sat(Q31_MAX, 1) == Q31_MAX);
-    assert_true(q31_add_sat(Q31_MIN, -1) == Q31_MIN);
-    assert_true(q31_sub_sat(Q31_MIN, 1) == Q31_MIN);
-    assert_true(q31_sub_sat(0, Q31_MIN) == Q31_MAX);
-    assert_true(q31_sub_sat(-1, Q31_MIN) == Q31_MAX);
-    assert_true(q31_add_sat(Q31_MIN, Q31_MAX) == -1);
+    assert_cmp(q31_add_sat(Q31_MAX, 1), ==, Q31_MAX);
+    assert_cmp(q31_add_sat(Q31_MIN, -1), ==, Q31_MIN);
+    assert_cmp(q31_sub_sat(Q31_MIN, 1), ==, Q31_MIN);
+    assert_cmp(q31_sub_sat(0, Q31_MIN), ==, Q31_MAX);
+    assert_cmp(q31_sub_sat(-1, Q31_MIN), ==, Q31_MAX);
+    assert_cmp(q31_add_sat(Q31_MIN, Q31_MAX), ==, -1);
 }
 
 static void pair_q31_mul(check_t *c, int32_t a, int32_t b)
@@ -359,10 +359,10 @@ static void test_q31_mul_q15_should_be_exact_except_minus_one_squared(void **sta
         check_eq(&c, q31_from_q15((q15_t)a), (int64_t)a * 65536, a, 0);
     }
     check_done("q31_mul_q15 dense grid + edges, q31_from_q15 all values", &c);
-    assert_true(q31_mul_q15(-32768, -32768) == Q31_MAX);
-    assert_true(q31_mul_q15(-32768, 32767) == -2147418112L);
-    assert_true(q31_mul_q15(32767, 32767) == 2147352578L);
-    assert_true(q31_from_q15(-32768) == Q31_MIN);
+    assert_cmp(q31_mul_q15(-32768, -32768), ==, Q31_MAX);
+    assert_cmp(q31_mul_q15(-32768, 32767), ==, -2147418112L);
+    assert_cmp(q31_mul_q15(32767, 32767), ==, 2147352578L);
+    assert_cmp(q31_from_q15(-32768), ==, Q31_MIN);
 }
 
 static void test_q31_mac_sat_should_saturate_the_accumulator(void **state)
@@ -396,10 +396,10 @@ static void test_q31_mac_sat_should_saturate_the_accumulator(void **state)
                  (int64_t)a * 65536 + b);
     }
     check_done("q31_mac_sat, edges^3 + 5e6 random", &c);
-    assert_true(q31_mac_sat(Q31_MAX, 1, 1) == Q31_MAX);
-    assert_true(q31_mac_sat(Q31_MIN, -1, 1) == Q31_MIN);
-    assert_true(q31_mac_sat(Q31_MAX, -32768, -32768) == Q31_MAX);
-    assert_true(q31_mac_sat(Q31_MIN, -32768, -32768) == -1);
+    assert_cmp(q31_mac_sat(Q31_MAX, 1, 1), ==, Q31_MAX);
+    assert_cmp(q31_mac_sat(Q31_MIN, -1, 1), ==, Q31_MIN);
+    assert_cmp(q31_mac_sat(Q31_MAX, -32768, -32768), ==, Q31_MAX);
+    assert_cmp(q31_mac_sat(Q31_MIN, -32768, -32768), ==, -1);
 }
 
 static void test_q15_from_q31_should_round_ties_up_and_saturate(void **state)
@@ -637,7 +637,8 @@ static void test_shift7_and_mant7_should_split_a_gain_into_mantissa_and_shift(vo
         if (MANT7_RUNTIME(x) == Q15_MAX) {
             /* just below a power of two the mantissa rounds to 1.0, which
              * saturates to 0x7FFF (q15.h): under one LSB short */
-            assert_true(x - val < lsb && x >= val);
+            assert_cmp(x - val, <, lsb);
+            assert_cmp(x, >=, val);
             continue;
         }
         err_stats_add(&e, (val - x) / lsb, x);

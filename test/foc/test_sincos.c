@@ -38,7 +38,8 @@ static void test_sincos_compute_should_stay_within_bound_for_all_65536_angles(vo
     err_stats_print("sincos cos, all 65536 angles", &ec, "LSB");
     printf("measured: sincos max |err| as a share of full scale: sin %.5f %%, cos %.5f %%\n",
            100.0 * es.max_abs / 32768.0, 100.0 * ec.max_abs / 32768.0);
-    assert_true(es.n == 65536L && ec.n == 65536L);
+    assert_cmp(es.n, ==, 65536L);
+    assert_cmp(ec.n, ==, 65536L);
     assert_cmp(es.max_abs, <=, SINCOS_MAX_ERR_LSB);
     assert_cmp(ec.max_abs, <=, SINCOS_MAX_ERR_LSB);
     /* No bias: the mean error is a small fraction of an LSB. */
@@ -94,7 +95,8 @@ static void test_sincos_compute_should_be_exact_at_the_four_axes(void **state)
     assert_int_equal(sc.sin, 0);
     assert_int_equal(sc.cos, -32767);
     sc = sincos_compute((angle_q15_t)Q15_MAX); /* one LSB below +pi */
-    assert_true(sc.sin > 0 && sc.sin <= 4);
+    assert_cmp(sc.sin, >, 0);
+    assert_cmp(sc.sin, <=, 4);
     assert_int_equal(sc.cos, -32767);
 }
 

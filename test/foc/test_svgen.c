@@ -73,7 +73,8 @@ static void check_range_and_centre(const svgen_out_t *o, uint16_t p, bool linear
             mn = o->duty[k];
         }
     }
-    assert_true(o->sector >= 1 && o->sector <= 6);
+    assert_cmp(o->sector, >=, 1);
+    assert_cmp(o->sector, <=, 6);
     if (linear) {
         /* Centred: (max + min) / 2 = period / 2 within half a count. */
         int s = (int)mx + (int)mn;

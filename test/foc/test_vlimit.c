@@ -95,7 +95,8 @@ static void test_vlimit_vq_max_should_follow_the_voltage_circle_over_a_grid(void
         for (int32_t vd = -32768; vd <= 32767; vd += 3) {
             q15_t vq = vlimit_vq_max((q15_t)vd, vmax);
             err_stats_add(&e, (double)vq - vq_ref((q15_t)vd, vmax), (double)vd);
-            assert_true(vq >= 0 && vq <= vmax);
+            assert_cmp(vq, >=, 0);
+            assert_cmp(vq, <=, vmax);
         }
         assert_int_equal(vlimit_vq_max(0, vmax), vmax);
         assert_int_equal(vlimit_vq_max(vmax, vmax), 0);

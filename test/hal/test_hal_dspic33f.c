@@ -40,8 +40,9 @@ static void test_hal_init_should_program_the_pll_for_40_mips_from_the_8mhz_cryst
     assert_int_equal(CLKDIVbits.PLLPRE, 0);
     assert_int_equal(CLKDIVbits.PLLPOST, 0);
     printf("measured: Fosc = %.0f Hz, Fcy = %.0f Hz, VCO = %.0f Hz\n", fosc, fosc / 2, vco);
-    assert_true(fosc / 2.0 == FCY_HZ);
-    assert_true(vco >= 100e6 && vco <= 200e6);
+    assert_cmp(fosc / 2.0, ==, FCY_HZ);
+    assert_cmp(vco, >=, 100e6);
+    assert_cmp(vco, <=, 200e6);
 }
 
 static void test_hal_init_should_switch_to_primary_pll_after_setting_the_dividers(void **state)
@@ -58,7 +59,8 @@ static void test_hal_init_should_switch_to_primary_pll_after_setting_the_divider
             l_at = (int)i;
         }
     }
-    assert_true(h_at >= 0 && l_at > h_at);
+    assert_cmp(h_at, >=, 0);
+    assert_cmp(l_at, >, h_at);
     assert_int_equal(sfr_osccon_log[h_at].value, 3); /* NOSC = primary + PLL */
     /* The dividers were in place before the switch was requested. */
     assert_int_equal(sfr_osccon_log[l_at].pllfbd, 38);
@@ -93,7 +95,7 @@ static void test_hal_init_should_run_mcpwm1_center_aligned_at_20khz(void **state
     assert_int_equal(P1TCONbits.PTCKPS, 0);
     assert_int_equal(P1TPER, 999);
     printf("measured: PWM frequency %.3f Hz (PTPER = %u)\n", 1.0 / period_s, (unsigned)P1TPER);
-    assert_true(fabs(1.0 / period_s - 20000.0) < 1e-6);
+    assert_cmp(fabs(1.0 / period_s - 20000.0), <, 1e-6);
 }
 
 static void test_duty_scaling_should_put_100_percent_at_pwm_duty_max(void **state)
@@ -128,7 +130,7 @@ static void test_hal_init_should_set_2us_dead_time(void **state)
     assert_int_equal(P1DTCON1bits.DTAPS, 1);
     assert_int_equal(P1DTCON2, 0x0000);
     printf("measured: dead time %.3f us\n", dt * 1e6);
-    assert_true(fabs(dt - 2e-6) < 1e-12);
+    assert_cmp(fabs(dt - 2e-6), <, 1e-12);
 }
 
 static void
@@ -169,7 +171,8 @@ static void test_hal_init_should_unlock_pps_and_lock_it_again(void **state)
             lock_at = (int)i;
         }
     }
-    assert_true(unlock_at >= 0 && lock_at > unlock_at);
+    assert_cmp(unlock_at, >=, 0);
+    assert_cmp(lock_at, >, unlock_at);
     assert_int_equal(OSCCONbits.IOLOCK, 1);
 }
 
@@ -207,7 +210,7 @@ test_hal_init_should_convert_four_channels_simultaneously_on_the_pwm_trigger(voi
     assert_int_equal(AD1CON3bits.ADCS, 3);
     assert_int_equal(AD1CSSL, 0);
     printf("measured: TAD = %.0f ns, 4 x 12 TAD = %.1f us\n", tad * 1e9, 48.0 * tad * 1e6);
-    assert_true(tad >= 76e-9);
+    assert_cmp(tad, >=, 76e-9);
 }
 
 static void test_hal_init_should_select_pot_ia_ib_vbus_per_the_mclv_map(void **state)
@@ -232,7 +235,8 @@ static void test_hal_init_should_leave_the_adc_interrupt_for_motor_start(void **
     assert_int_equal(IEC0bits.T2IE, 0);
     assert_int_equal(IFS0bits.T2IF, 0);
     assert_int_equal(IPC1bits.T2IP, 2);
-    assert_true(IPC1bits.T2IP < IPC3bits.AD1IP && IPC1bits.T2IP > 0);
+    assert_cmp(IPC1bits.T2IP, <, IPC3bits.AD1IP);
+    assert_cmp(IPC1bits.T2IP, >, 0);
 }
 
 /* Raw signed-fractional word of 10-bit code n (0..1023): (n - 512) << 6. */
@@ -274,8 +278,8 @@ static void test_adc_read_should_scale_every_code_of_every_channel_exactly(void 
     }
     err_stats_print("adc ia/ib vs (code-512)/512 full scale", &e_i, "LSB");
     err_stats_print("adc vbus/pot vs code/1024 full scale", &e_u, "LSB");
-    assert_true(e_i.max_abs == 0.0);
-    assert_true(e_u.max_abs == 0.0);
+    assert_cmp(e_i.max_abs, ==, 0.0);
+    assert_cmp(e_u.max_abs, ==, 0.0);
 }
 
 static void test_adc_read_should_map_the_rails_to_the_core_range(void **state)
@@ -444,7 +448,7 @@ static void test_hal_init_should_run_uart1_at_38400_baud_8n1(void **state)
     assert_int_equal(U1MODEbits.UARTEN, 1);
     assert_int_equal(U1STAbits.UTXEN, 1);
     printf("measured: UART %.1f Bd, error %+.3f %%\n", baud, (baud / 38400.0 - 1.0) * 100.0);
-    assert_true(fabs(baud / 38400.0 - 1.0) < 0.005);
+    assert_cmp(fabs(baud / 38400.0 - 1.0), <, 0.005);
 }
 
 #if HAL_UART_TX_RP != HAL_RP_NONE
@@ -509,7 +513,7 @@ static void test_tick_should_report_each_timer1_period_once(void **state)
     assert_int_equal(T1CONbits.TCKPS, 1);
     assert_int_equal(T1CONbits.TON, 1);
     assert_int_equal(T1CONbits.TCS, 0);
-    assert_true(fabs(period - 1e-3) < 1e-12);
+    assert_cmp(fabs(period - 1e-3), <, 1e-12);
     assert_false(hal_tick_1ms());
     IFS0bits.T1IF = 1;
     assert_true(hal_tick_1ms());
@@ -530,7 +534,7 @@ static void test_critical_section_should_raise_ipl_to_7_and_restore_it_nested(vo
     assert_int_equal(SRbits.IPL, 7);
     hal_critical_exit(outer);
     assert_int_equal(SRbits.IPL, 2);
-    assert_true(HAL_ADC_IRQ_PRIORITY <= 7u);
+    assert_cmp(HAL_ADC_IRQ_PRIORITY, <=, 7u);
     /* through the device header's SET_AND_SAVE_CPU_IPL / RESTORE_CPU_IPL */
     assert_int_equal(sfr_ipl_macro_uses, 4);
 }

@@ -76,7 +76,9 @@ static void test_trampoline_should_write_what_the_core_reports_every_period(void
             mismatches++;
         }
         on_periods += st.outputs_on ? 1u : 0u;
-        assert_true(P1DC1 <= PWM_DUTY_MAX && P1DC2 <= PWM_DUTY_MAX && P1DC3 <= PWM_DUTY_MAX);
+        assert_cmp(P1DC1, <=, PWM_DUTY_MAX);
+        assert_cmp(P1DC2, <=, PWM_DUTY_MAX);
+        assert_cmp(P1DC3, <=, PWM_DUTY_MAX);
     }
     printf("measured: 20000 periods after START: %u with outputs on, %u register/status "
            "mismatches, final state %d\n",

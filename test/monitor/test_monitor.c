@@ -369,7 +369,8 @@ test_param_info_and_set_param_should_accept_the_range_ends_and_refuse_beyond(voi
         assert_int_equal(mon_i16(&f->payload[3]), q->min);
         assert_int_equal(mon_i16(&f->payload[5]), q->max);
         assert_memory_equal(&f->payload[7], q->name, strlen(q->name));
-        assert_true(q->min <= before && before <= q->max);
+        assert_cmp(q->min, <=, before);
+        assert_cmp(before, <=, q->max);
         assert_cmp(q->min, >=, 1);
 
         p[0] = i;
@@ -770,7 +771,8 @@ static void test_a_snapshot_armed_for_the_command_trigger_should_wait_for_it(voi
     run_snapshot_until_sent(vals, (int)MONITOR_BUF_WORDS, &got, &flags);
     assert_int_equal(got, MONITOR_BUF_WORDS);
     /* the first sample is the first decimated period after the trigger */
-    assert_true(vals[0] >= 1000 && vals[0] <= 1001);
+    assert_cmp(vals[0], >=, 1000);
+    assert_cmp(vals[0], <=, 1001);
     for (t = 1; t < (int)MONITOR_BUF_WORDS / 2; t++) {
         assert_int_equal(vals[2 * t], vals[0] + 2 * t);
     }

@@ -174,7 +174,8 @@ static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **
     int k;
     (void)state;
     sim_pins_to_ab(v, &va, &vb);
-    assert_true(fabs(va) < 1e-12 && fabs(vb) < 1e-12);
+    assert_cmp(fabs(va), <, 1e-12);
+    assert_cmp(fabs(vb), <, 1e-12);
     /* pins 12 + A cos(th - k 120): alpha-beta amplitude A, angle th */
     for (k = 0; k < 3; k++) {
         v[k] = 12.0 + 5.0 * cos(0.7 - (double)k * 2.0 * M_PI / 3.0);
@@ -195,7 +196,8 @@ static void test_inverter_should_float_the_star_point_and_ripple_the_bus(void **
     printf("measured: bus with 2 V ripple: mean %.4f, max %.4f, min %.4f V\n", sum / 2000.0, vmax,
            vmin);
     assert_cmp(fabs(sum / 2000.0 - 24.0), <, 1e-9);
-    assert_true(fabs(vmax - 26.0) < 1e-3 && fabs(vmin - 22.0) < 1e-3);
+    assert_cmp(fabs(vmax - 26.0), <, 1e-3);
+    assert_cmp(fabs(vmin - 22.0), <, 1e-3);
 }
 
 static sim_adc_params_t mclv_adc(double noise)
@@ -215,7 +217,7 @@ static void test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale(
     sim_adc_init(&adc, &prm);
     for (x = -4.39; x < 4.39; x += 0.0007) {
         int16_t q = sim_adc_bipolar(&adc, x / 4.4, 0.0);
-        assert_true(q % 64 == 0);
+        assert_cmp(q % 64, ==, 0);
         err_stats_add(&e, (double)q - x / 4.4 * 32768.0, x);
     }
     err_stats_print("bipolar ADC vs 32768 x / fs", &e, "Q15 LSB");
@@ -227,7 +229,8 @@ static void test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale(
     err_stats_init(&e);
     for (x = 0.0; x < 52.7; x += 0.01) {
         int16_t q = sim_adc_unipolar(&adc, x / 52.8);
-        assert_true(q % 32 == 0 && q >= 0);
+        assert_cmp(q % 32, ==, 0);
+        assert_cmp(q, >=, 0);
         err_stats_add(&e, (double)q - x / 52.8 * 32768.0, x);
     }
     err_stats_print("unipolar ADC vs 32768 v / fs", &e, "Q15 LSB");
@@ -294,7 +297,8 @@ static void test_rig_should_apply_the_duties_from_the_next_period(void **state)
     printf("measured: phase A current after one period of +9.6 V: %.4f A\n", rig.i_abc[0]);
     assert_cmp(rig.i_abc[0], >, 0.1);
     assert_cmp(rig.i_abc[1], <, -0.1);
-    assert_true(f.ia > 0 && f.ib < 0);
+    assert_cmp(f.ia, >, 0);
+    assert_cmp(f.ib, <, 0);
     assert_cmp(fabs(rig.t - 2.0 * 50e-6), <, 1e-15);
     assert_int_equal(rig.period, 2);
 }
@@ -364,7 +368,8 @@ test_rig_should_let_the_current_die_out_and_open_the_stator_when_switched_off(vo
     }
     printf("measured: 2 ms after switch-off at 1000 rpm: ia %.2e ib %.2e A\n", rig.i_abc[0],
            rig.i_abc[1]);
-    assert_true(fabs(rig.i_abc[0]) < 1e-9 && fabs(rig.i_abc[1]) < 1e-9);
+    assert_cmp(fabs(rig.i_abc[0]), <, 1e-9);
+    assert_cmp(fabs(rig.i_abc[1]), <, 1e-9);
     assert_true(rig.floating[0] && rig.floating[1] && rig.floating[2]);
     /* Above the bus (7.3 V/krpm: 24 V at 3288 rpm) the rectifier brakes the motor. */
     prm.omega0_m = 5000.0 * 2.0 * M_PI / 60.0;
@@ -399,7 +404,7 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     (void)state;
     sim_rig_init(&rig, &prm);
     assert_true(sim_rig_apply(&rig, &ev));
-    assert_true(rig.plant.load.passive_nm == 0.05);
+    assert_cmp(rig.plant.load.passive_nm, ==, 0.05);
     ev.kind = SIM_EV_LOAD_FAN;
     ev.v1 = 0.1;
     assert_true(sim_rig_apply(&rig, &ev));
@@ -424,7 +429,7 @@ static void test_rig_should_apply_plant_events_and_leave_controller_events(void 
     for (n = 0; n < 150; n++) {
         sim_rig_advance(&rig, d, false);
     }
-    assert_true(rig.pot == 1.0);
+    assert_cmp(rig.pot, ==, 1.0);
     ev.kind = SIM_EV_START;
     assert_false(sim_rig_apply(&rig, &ev));
     ev.kind = SIM_EV_HW_FAULT;

@@ -143,7 +143,8 @@ static void test_ideal_foc_should_settle_at_the_steady_state_voltage_without_dea
         printf("measured: ideal FOC, no dead time, %.0f rpm, iq 1 A: vd %.4f V (analytic %.4f), "
                "vq %.4f V (analytic %.4f), id %.4f A, iq %.4f A\n",
                rpms[k], r.vd, vd_ref, r.vq, vq_ref, r.id, r.iq);
-        assert_true(fabs(r.iq - 1.0) < 0.005 && fabs(r.id) < 0.005);
+        assert_cmp(fabs(r.iq - 1.0), <, 0.005);
+        assert_cmp(fabs(r.id), <, 0.005);
         assert_cmp(fabs(r.vd - vd_ref), <, 0.005 * fabs(vq_ref));
         assert_cmp(fabs(r.vq - vq_ref), <, 0.005 * fabs(vq_ref));
     }

@@ -23,7 +23,7 @@ static void test_number_should_take_plain_decimals_in_range(void **state)
         if (sim_parse_number(ok[k], &R_0_10, &v, why, sizeof(why)) != 0) {
             fail_msg("'%s' refused: %s", ok[k], why);
         }
-        assert_true(v == want[k]);
+        assert_cmp(v, ==, want[k]);
     }
 }
 
@@ -42,7 +42,7 @@ static void test_number_should_refuse_non_decimals_non_finite_and_out_of_range(v
         if (sim_parse_number(bad[k], &R_0_10, &v, why, sizeof(why)) == 0) {
             fail_msg("'%s' taken as %g", bad[k], v);
         }
-        assert_true(v == 42.0); /* untouched */
+        assert_cmp(v, ==, 42.0); /* untouched */
         assert_null(strchr(why, '\n'));
     }
     assert_int_equal(sim_parse_number("1e300", &R_0_10, &v0, why, sizeof(why)), -1);
@@ -60,7 +60,7 @@ static void test_number_should_honour_whole_and_open_ranges(void **state)
     double v = 0.0;
     (void)state;
     assert_int_equal(sim_parse_number("64", &whole, &v, why, sizeof(why)), 0);
-    assert_true(v == 64.0);
+    assert_cmp(v, ==, 64.0);
     assert_int_equal(sim_parse_number("65", &whole, &v, why, sizeof(why)), -1);
     assert_int_equal(sim_parse_number("1000000", &whole, &v, why, sizeof(why)), -1);
     assert_int_equal(sim_parse_number("4.0", &whole, &v, why, sizeof(why)), -1);
@@ -70,10 +70,10 @@ static void test_number_should_honour_whole_and_open_ranges(void **state)
     assert_non_null(strstr(why, "lower end excluded"));
     assert_int_equal(sim_parse_number("1e-9", &open, &v, why, sizeof(why)), 0);
     assert_int_equal(sim_parse_number("4294967295", &seed, &v, why, sizeof(why)), 0);
-    assert_true(v == 4294967295.0);
+    assert_cmp(v, ==, 4294967295.0);
     assert_int_equal(sim_parse_number("4294967296", &seed, &v, why, sizeof(why)), -1);
     assert_int_equal(sim_parse_number("010", &seed, &v, why, sizeof(why)), 0);
-    assert_true(v == 10.0); /* decimal, never octal */
+    assert_cmp(v, ==, 10.0); /* decimal, never octal */
 }
 
 static void test_quote_should_keep_a_message_on_one_printable_line(void **state)
@@ -185,8 +185,8 @@ static void test_scenario_should_take_every_range_end(void **state)
         fail_msg("%s", err);
     }
     assert_int_equal(sc.n, 19);
-    assert_true(sc.end_s == 3600.0);
-    assert_true(sc.ev[11].v2 == 20000.0);
+    assert_cmp(sc.end_s, ==, 3600.0);
+    assert_cmp(sc.ev[11].v2, ==, 20000.0);
 }
 
 static void test_every_event_value_should_have_a_range(void **state)

@@ -56,7 +56,7 @@ static void test_plant_should_follow_the_rl_step_response_with_the_rotor_locked(
     }
     err_stats_print("locked-rotor RL step id vs V/R(1-exp(-t/tau))", &e, "A");
     assert_cmp(e.max_abs, <, 1e-7);
-    assert_true(p.s.omega_m == 0.0);
+    assert_cmp(p.s.omega_m, ==, 0.0);
 }
 
 static void
@@ -113,7 +113,7 @@ static void test_plant_should_hold_the_rotor_while_the_passive_load_exceeds_the_
     for (n = 0; n < 8000; n++) {
         sim_plant_step(&p, 0.0, 0.0, h, true);
     }
-    assert_true(p.s.omega_m == 0.0);
+    assert_cmp(p.s.omega_m, ==, 0.0);
     assert_cmp(fabs(p.s.theta_e - 0.3), <, 1e-12);
     p.load.active_nm = -0.07; /* now 0.019 N m net forward */
     for (n = 0; n < 8000; n++) {
@@ -131,7 +131,7 @@ static void test_plant_should_hold_the_rotor_while_the_passive_load_exceeds_the_
         assert_true(p.s.omega_m <= w_prev || n == 0);
         w_prev = p.s.omega_m;
     }
-    assert_true(p.s.omega_m == 0.0);
+    assert_cmp(p.s.omega_m, ==, 0.0);
     assert_true(p.s.stuck);
 }
 
@@ -213,7 +213,7 @@ static void test_plant_should_report_phase_currents_and_back_emf_of_the_catalogu
     err_stats_print("phase currents vs |i| cos(theta + phi - k 120 deg)", &e, "A");
     assert_cmp(e.max_abs, <, 1e-12);
     assert_cmp(fabs(sim_wrap_pi(3.5 * M_PI) + 0.5 * M_PI), <, 1e-12);
-    assert_true(sim_wrap_pi(M_PI) == -M_PI);
+    assert_cmp(sim_wrap_pi(M_PI), ==, -M_PI);
 }
 
 int main(void)

@@ -24,15 +24,17 @@ static void test_parser_should_read_events_values_and_comments(void **state)
     assert_int_equal(sim_scenario_parse(text, &sc, err, sizeof(err)), 0);
     assert_int_equal(sc.n, 7);
     assert_int_equal(sc.ev[0].kind, SIM_EV_SPEED);
-    assert_true(sc.ev[0].v1 == 2000.0);
+    assert_cmp(sc.ev[0].v1, ==, 2000.0);
     assert_int_equal(sc.ev[1].kind, SIM_EV_START);
-    assert_true(sc.ev[1].t_s == 0.1);
+    assert_cmp(sc.ev[1].t_s, ==, 0.1);
     assert_int_equal(sc.ev[2].kind, SIM_EV_SPEED_RAMP);
-    assert_true(sc.ev[2].v1 == SIM_SPEED_MAX && sc.ev[2].v2 == 2.5);
-    assert_true(sc.ev[3].v1 == 3.0 && sc.ev[3].v2 == 100.0);
+    assert_cmp(sc.ev[2].v1, ==, SIM_SPEED_MAX);
+    assert_cmp(sc.ev[2].v2, ==, 2.5);
+    assert_cmp(sc.ev[3].v1, ==, 3.0);
+    assert_cmp(sc.ev[3].v2, ==, 100.0);
     assert_int_equal(sc.ev[4].kind, SIM_EV_CURRENT_SPIKE);
     assert_int_equal(sc.ev[5].kind, SIM_EV_ZOOM);
-    assert_true(sc.end_s == 4.0);
+    assert_cmp(sc.end_s, ==, 4.0);
     assert_string_equal(sim_event_name(SIM_EV_LOAD_FAN), "load_fan");
 }
 

@@ -159,7 +159,7 @@ test_a_full_rate_snapshot_through_a_slow_uart_should_arrive_whole_and_in_order(v
     host_send(MONITOR_CMD_START, st, 2);
     run_ms(1000);
     k = mon_decode_all(tx_q, tx_n, fr, 2048);
-    assert_true(k > 2);
+    assert_cmp(k, >, 2);
     assert_int_equal(fr[0].cmd, MONITOR_CMD_SELECT | MONITOR_REPLY);
     assert_int_equal(fr[1].cmd, MONITOR_CMD_START | MONITOR_REPLY);
     for (i = 2; i < k; i++) {
@@ -177,7 +177,7 @@ static void test_the_text_protocol_should_return_when_the_client_is_removed(void
     (void)state;
     app_set_uart_client(&app, NULL);
     run_ms(250);
-    assert_true(tx_n > 10);
+    assert_cmp(tx_n, >, 10);
     assert_int_equal(tx_q[0], 'S');
 }
 
