@@ -14,7 +14,7 @@
  * docs/monitor.md, host side tools/scope): its recorder observes the motor
  * from the ADC interrupt, after the duties are written. Build with
  * -DAPP_NO_MONITOR for the plain text status line of app.h instead (and
- * 725 bytes less RAM).
+ * without the monitor's RAM, docs/board.md).
  *
  * Built only by `make firmware` / MPLAB X; the host tests cover app.c, and
  * test/hal's hostcc test links this file into the whole image.
