@@ -1,0 +1,302 @@
+/* test_lnet.c - the LNet frame layer: known frames, every escape, resync, errors, round trips. */
+#include "test_support.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "lnet.h"
+
+/* The whole frame the sender gives for data, into out; its length. */
+static size_t encode(uint8_t node, const uint8_t *data, uint8_t size, uint8_t *out)
+{
+    lnet_tx_t tx;
+    size_t n = 0;
+    uint8_t b;
+    lnet_tx_start(&tx, node, data, size);
+    while (lnet_tx_next(&tx, &b)) {
+        out[n++] = b;
+    }
+    assert_false(lnet_tx_busy(&tx));
+    return n;
+}
+
+/* Feeds bytes; returns the last event that was not LNET_RX_NONE (or NONE),
+ * and how many such events there were. */
+static lnet_rx_event_t feed(lnet_rx_t *rx, const uint8_t *bytes, size_t n, unsigned *events)
+{
+    lnet_rx_event_t last = LNET_RX_NONE;
+    *events = 0U;
+    for (size_t k = 0; k < n; k++) {
+        lnet_rx_event_t e = lnet_rx_byte(rx, bytes[k]);
+        if (e != LNET_RX_NONE) {
+            last = e;
+            (*events)++;
+        }
+    }
+    return last;
+}
+
+static void test_device_info_request_should_be_the_five_bytes_the_protocol_gives(void **state)
+{
+    (void)state;
+    static const uint8_t data[] = {0x00};
+    static const uint8_t want[] = {0x55, 0x01, 0x01, 0x00, 0x57}; /* sum 0x57 */
+    uint8_t out[8];
+    assert_int_equal(encode(LNET_NODE, data, 1U, out), sizeof want);
+    assert_memory_equal(out, want, sizeof want);
+
+    lnet_rx_t rx;
+    unsigned events;
+    lnet_rx_init(&rx);
+    assert_int_equal(feed(&rx, want, sizeof want, &events), LNET_RX_FRAME);
+    assert_int_equal(events, 1U);
+    assert_int_equal(rx.size, 1U);
+    assert_int_equal(rx.data[0], 0x00);
+}
+
+/* 0x55 and 0x02 in SIZE, NODE and DATA each get a 0x00 fill, neither
+ * counted nor summed; SYN and CRC never do. */
+static void test_reserved_bytes_should_take_a_fill_in_every_field_but_syn_and_crc(void **state)
+{
+    (void)state;
+    static const uint8_t data[] = {0x55, 0x02, 0x00};
+    /* sum 0x55 + 3 + 1 + 0x55 + 0x02 + 0 = 0xB0 */
+    static const uint8_t want[] = {0x55, 0x03, 0x01, 0x55, 0x00, 0x02, 0x00, 0x00, 0xB0};
+    uint8_t out[16];
+    assert_int_equal(encode(LNET_NODE, data, 3U, out), sizeof want);
+    assert_memory_equal(out, want, sizeof want);
+
+    /* SIZE 0x55 and 0x02, NODE 0x02 */
+    uint8_t big[0x55];
+    memset(big, 0x11, sizeof big);
+    uint8_t frame[2 * 256 + 8];
+    size_t n = encode(LNET_NODE, big, 0x55U, frame);
+    assert_int_equal(frame[1], 0x55);
+    assert_int_equal(frame[2], 0x00); /* SIZE's fill */
+    assert_int_equal(n, 1U + 2U + 1U + 0x55U + 1U);
+    n = encode(0x02U, big, 0x02U, frame);
+    static const uint8_t two[] = {0x55, 0x02, 0x00, 0x02,
+                                  0x00, 0x11, 0x11, (uint8_t)(0x55 + 2 + 2 + 0x22)};
+    assert_int_equal(n, sizeof two);
+    assert_memory_equal(frame, two, sizeof two);
+}
+
+/* A sum that reads as a reserved byte is sent inverted. */
+static void test_a_checksum_of_0x55_or_0x02_should_be_sent_inverted(void **state)
+{
+    (void)state;
+    static const uint8_t d55[] = {0xFE}; /* 0x57 + 0xFE = 0x155 */
+    static const uint8_t d02[] = {0xAB}; /* 0x57 + 0xAB = 0x102 */
+    uint8_t out[8];
+    lnet_rx_t rx;
+    unsigned events;
+    assert_int_equal(encode(LNET_NODE, d55, 1U, out), 5U);
+    assert_int_equal(out[4], 0xAA);
+    lnet_rx_init(&rx);
+    assert_int_equal(feed(&rx, out, 5U, &events), LNET_RX_FRAME);
+    assert_int_equal(encode(LNET_NODE, d02, 1U, out), 5U);
+    assert_int_equal(out[4], 0xFD);
+    assert_int_equal(feed(&rx, out, 5U, &events), LNET_RX_FRAME);
+    assert_int_equal(lnet_crc_byte(0x55), 0xAA);
+    assert_int_equal(lnet_crc_byte(0x02), 0xFD);
+    assert_int_equal(lnet_crc_byte(0x57), 0x57);
+}
+
+static void test_a_bad_checksum_should_drop_the_frame_and_keep_the_next(void **state)
+{
+    (void)state;
+    static const uint8_t bad[] = {0x55, 0x01, 0x01, 0x00, 0x58};
+    static const uint8_t good[] = {0x55, 0x01, 0x01, 0x09, 0x60};
+    lnet_rx_t rx;
+    unsigned events;
+    lnet_rx_init(&rx);
+    assert_int_equal(feed(&rx, bad, sizeof bad, &events), LNET_RX_BAD_CRC);
+    assert_int_equal(feed(&rx, good, sizeof good, &events), LNET_RX_FRAME);
+    assert_int_equal(rx.data[0], 0x09);
+    /* a SYN where the checksum belongs: the checksum is bad, and a new frame starts */
+    static const uint8_t cut[] = {0x55, 0x01, 0x01, 0x00, 0x55, 0x01, 0x01, 0x09, 0x60};
+    assert_int_equal(feed(&rx, cut, sizeof cut, &events), LNET_RX_FRAME);
+    assert_int_equal(events, 2U);
+    assert_int_equal(rx.data[0], 0x09);
+}
+
+static void test_a_0x02_without_its_fill_should_be_a_format_error(void **state)
+{
+    (void)state;
+    static const uint8_t bad[] = {0x55, 0x01, 0x01, 0x02, 0x05, 0x55, 0x01, 0x01, 0x09, 0x60};
+    lnet_rx_t rx;
+    lnet_rx_init(&rx);
+    for (size_t k = 0; k < 4U; k++) {
+        assert_int_equal(lnet_rx_byte(&rx, bad[k]), LNET_RX_NONE);
+    }
+    assert_int_equal(lnet_rx_byte(&rx, bad[4]), LNET_RX_BAD_FORMAT);
+    unsigned events;
+    assert_int_equal(feed(&rx, &bad[5], 5U, &events), LNET_RX_FRAME);
+    assert_int_equal(rx.data[0], 0x09);
+}
+
+/* A 0x55 followed by anything but the fill is a new SYN: a frame cut off
+ * anywhere is dropped and the next one is received. */
+static void test_a_frame_cut_anywhere_should_not_cost_the_next_one(void **state)
+{
+    (void)state;
+    uint8_t data[40];
+    uint8_t frame[2 * 256 + 8];
+    uint8_t next[2 * 256 + 8];
+    for (unsigned k = 0; k < sizeof data; k++) {
+        data[k] = (uint8_t)((k % 3U == 0U) ? 0x55U : (k % 3U == 1U) ? 0x02U : k);
+    }
+    size_t n = encode(LNET_NODE, data, (uint8_t)sizeof data, frame);
+    static const uint8_t nd[] = {0x12, 0x55, 0x34};
+    size_t m = encode(LNET_NODE, nd, 3U, next);
+    unsigned cuts = 0U;
+    for (size_t cut = 1; cut < n; cut++) {
+        lnet_rx_t rx;
+        unsigned events;
+        lnet_rx_init(&rx);
+        (void)feed(&rx, frame, cut, &events);
+        assert_int_equal(feed(&rx, next, m, &events), LNET_RX_FRAME);
+        assert_int_equal(rx.size, 3U);
+        assert_memory_equal(rx.data, nd, 3U);
+        cuts++;
+    }
+    printf("measured: a frame cut after each of its %u bytes: the next frame received every time\n",
+           cuts);
+}
+
+static void test_a_frame_for_another_node_should_be_dropped_silently(void **state)
+{
+    (void)state;
+    static const uint8_t data[] = {0x09};
+    uint8_t out[8];
+    size_t n = encode(2U, data, 1U, out);
+    lnet_rx_t rx;
+    unsigned events;
+    lnet_rx_init(&rx);
+    assert_int_equal(feed(&rx, out, n, &events), LNET_RX_NONE);
+    assert_int_equal(events, 0U);
+}
+
+/* xorshift32, a fixed seed: the same bytes on every machine. */
+static uint32_t rnd(uint32_t *s)
+{
+    uint32_t x = *s;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *s = x;
+    return x;
+}
+
+/* Bytes that favour the reserved values, so every escape is met often. */
+static uint8_t rnd_byte(uint32_t *s)
+{
+    uint32_t r = rnd(s);
+    switch (r & 7U) {
+        case 0:
+            return 0x55U;
+        case 1:
+            return 0x02U;
+        case 2:
+            return 0x00U;
+        default:
+            return (uint8_t)(r >> 8);
+    }
+}
+
+/* Every size 0..255, 40 payloads each: sent and received, the same bytes. */
+static void test_every_size_should_round_trip(void **state)
+{
+    (void)state;
+    uint32_t seed = 0x1234567U;
+    static uint8_t data[LNET_MAX_DATA];
+    static uint8_t frame[2 * 256 + 8];
+    size_t longest = 0;
+    unsigned frames = 0U;
+    lnet_rx_t rx;
+    lnet_rx_init(&rx);
+    for (unsigned size = 0; size <= LNET_MAX_DATA; size++) {
+        for (unsigned k = 0; k < 40U; k++) {
+            for (unsigned i = 0; i < size; i++) {
+                data[i] = rnd_byte(&seed);
+            }
+            size_t n = encode(LNET_NODE, data, (uint8_t)size, frame);
+            longest = n > longest ? n : longest;
+            unsigned events;
+            assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_FRAME);
+            assert_int_equal(events, 1U);
+            assert_int_equal(rx.size, size);
+            assert_memory_equal(rx.data, data, size);
+            frames++;
+        }
+    }
+    /* 255 reserved bytes: SYN, SIZE, NODE, 2 x 255, CRC */
+    memset(data, 0x55, sizeof data);
+    longest = encode(LNET_NODE, data, 255U, frame);
+    assert_int_equal(longest, 514U);
+    printf("measured: %u frames of 0..255 bytes round-tripped; the longest frame, 255 reserved "
+           "bytes, is %zu bytes on the wire\n",
+           frames, longest);
+}
+
+/* A million random bytes (the receiver never writes outside its buffer:
+ * ASan), then frames after random noise: every one arrives. Whatever state
+ * the noise left, the frame's SYN either starts a frame or is taken as a
+ * reserved byte whose fill does not follow (a frame's SIZE is never 0: every
+ * request holds its service byte), which is a new SYN. */
+static void test_random_noise_should_be_survived_and_frames_after_it_should_arrive(void **state)
+{
+    (void)state;
+    uint32_t seed = 0xBEEF01U;
+    lnet_rx_t rx;
+    lnet_rx_init(&rx);
+    unsigned long noise_frames = 0, bytes = 0;
+    for (unsigned long k = 0; k < 1000000UL; k++) {
+        if (lnet_rx_byte(&rx, rnd_byte(&seed)) == LNET_RX_FRAME) {
+            noise_frames++; /* possible: noise can hold a whole valid frame */
+        }
+        bytes++;
+    }
+    static uint8_t frame[2 * 256 + 8];
+    uint8_t data[16];
+    unsigned sent = 0U, received = 0U;
+    for (unsigned k = 0; k < 20000U; k++) {
+        unsigned noise = rnd(&seed) % 24U;
+        for (unsigned i = 0; i < noise; i++) {
+            (void)lnet_rx_byte(&rx, rnd_byte(&seed));
+        }
+        uint8_t size = (uint8_t)(1U + rnd(&seed) % sizeof data);
+        for (unsigned i = 0; i < size; i++) {
+            data[i] = rnd_byte(&seed);
+        }
+        size_t n = encode(LNET_NODE, data, size, frame);
+        bool got = false;
+        for (size_t i = 0; i < n; i++) {
+            if (lnet_rx_byte(&rx, frame[i]) == LNET_RX_FRAME && i == n - 1U) {
+                got = rx.size == size && memcmp(rx.data, data, size) == 0;
+            }
+        }
+        sent++;
+        received += got ? 1U : 0U;
+    }
+    printf("measured: %lu random bytes (3/8 reserved or fill): %lu complete frames in them "
+           "(checksum 1 in 256); %u of %u frames sent after random noise received\n",
+           bytes, noise_frames, received, sent);
+    assert_int_equal(received, sent);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_device_info_request_should_be_the_five_bytes_the_protocol_gives),
+        cmocka_unit_test(test_reserved_bytes_should_take_a_fill_in_every_field_but_syn_and_crc),
+        cmocka_unit_test(test_a_checksum_of_0x55_or_0x02_should_be_sent_inverted),
+        cmocka_unit_test(test_a_bad_checksum_should_drop_the_frame_and_keep_the_next),
+        cmocka_unit_test(test_a_0x02_without_its_fill_should_be_a_format_error),
+        cmocka_unit_test(test_a_frame_cut_anywhere_should_not_cost_the_next_one),
+        cmocka_unit_test(test_a_frame_for_another_node_should_be_dropped_silently),
+        cmocka_unit_test(test_every_size_should_round_trip),
+        cmocka_unit_test(test_random_noise_should_be_survived_and_frames_after_it_should_arrive),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
