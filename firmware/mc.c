@@ -188,12 +188,14 @@ void mc_request(mc_t *mc, mc_request_t r)
     }
 }
 
-void mc_set_reference(mc_t *mc, int16_t ref)
+uint8_t mc_set_reference(mc_t *mc, int16_t ref)
 {
+    uint8_t seq = (uint8_t)(mc->ref_remote_seq + 1U);
     mc->ref_remote = ref;
     mc->ref_to_pot = false;
-    mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
+    mc->ref_remote_seq = seq;
     mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
+    return seq;
 }
 
 bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)

@@ -407,8 +407,10 @@ q15_t mc_pot_to_torque(int16_t pot);
 /* Remote reference, replacing the pot until MC_REQUEST_REF_POT:
  * speed mode: mechanical speed, Q15 of MC_SPEED_FULLSCALE_RPM, clamped to
  * [SPEED_REF_MIN_RPM, SPEED_REF_MAX_RPM]; TORQUEMODE: Iq reference, Q15 of
- * BOARD_I_FULLSCALE_A, clamped to +-MOTOR_CURRENT_MAX_A. */
-void mc_set_reference(mc_t *mc, int16_t ref);
+ * BOARD_I_FULLSCALE_A, clamped to +-MOTOR_CURRENT_MAX_A. Returns the number
+ * of this choice of reference (what mc_status_t.ref_seq reports from now
+ * on): the caller's claim, for mc_reference_held(). */
+uint8_t mc_set_reference(mc_t *mc, int16_t ref);
 
 /* The reference's owner rule, for every side that sets it: the reference
  * has one owner at a time, the last explicit choice (mc_set_reference or

@@ -57,12 +57,10 @@ void motor_request(mc_request_t request)
 
 uint8_t motor_set_reference(int16_t ref)
 {
-    mc_status_t st;
     hal_irq_state_t s = hal_critical_enter();
-    mc_set_reference(&motor, ref);
-    mc_status(&motor, &st);
+    uint8_t seq = mc_set_reference(&motor, ref);
     hal_critical_exit(s);
-    return st.ref_seq;
+    return seq;
 }
 
 void motor_status(mc_status_t *status)

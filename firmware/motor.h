@@ -33,9 +33,8 @@ void motor_start(void);
 void motor_request(mc_request_t request);
 void motor_status(mc_status_t *status);
 
-/* mc_set_reference() on the motor; returns the number of this choice of
- * reference (mc_status_t.ref_seq right after it), the caller's claim: see
- * mc_reference_held() (mc.h). */
+/* mc_set_reference() on the motor, masked; returns the number of this
+ * choice of reference, the caller's claim (mc_reference_held, mc.h). */
 uint8_t motor_set_reference(int16_t ref);
 
 /* The live gains (mc.h note 3): mc_get_gain() / mc_set_gain() on the

@@ -635,14 +635,18 @@ static void test_the_later_choice_of_reference_should_win_and_show_at_once(void 
     const long two = 2L * MC_SLOW_STEP_PERIODS;
     mc_status_t s0;
     mc_status(&mc, &s0);
-    mc_set_reference(&mc, MC_Q15_RPM(1000.0));
+    uint8_t mine = mc_set_reference(&mc, MC_Q15_RPM(1000.0));
     mc_status(&mc, &st);
     assert_true(st.ref_remote);
     assert_int_equal(st.ref_seq, (uint8_t)(s0.ref_seq + 1U));
+    assert_int_equal(mine, st.ref_seq); /* the claim it hands back */
+    assert_true(mc_reference_held(&st, mine));
+    assert_false(mc_reference_held(&st, (uint8_t)(mine - 1U)));
     mc_request(&mc, MC_REQUEST_REF_POT); /* after it, in the same period */
     mc_status(&mc, &st);
     assert_false(st.ref_remote);
     assert_int_equal(st.ref_seq, (uint8_t)(s0.ref_seq + 2U));
+    assert_false(mc_reference_held(&st, mine)); /* the pot took it back */
     steps(two, frame(0, 0, MC_VBUS_NOMINAL_Q15, 16384));
     assert_false(st.ref_remote);
     assert_int_equal(st.speed_target, mc_pot_to_speed(16384));

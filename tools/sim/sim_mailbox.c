@@ -36,10 +36,7 @@ void motor_status(mc_status_t *status)
 
 uint8_t motor_set_reference(int16_t ref)
 {
-    mc_status_t st;
-    mc_set_reference(the_motor(), ref);
-    mc_status(the_motor(), &st);
-    return st.ref_seq;
+    return mc_set_reference(the_motor(), ref);
 }
 
 int16_t motor_get_gain(mc_gain_t gain)
