@@ -95,3 +95,19 @@ void motor_observe(motor_observer_t fn, void *ctx)
     observer_ctx = ctx;
     hal_critical_exit(s);
 }
+
+const mc_t *motor_view(void)
+{
+    return &motor;
+}
+
+void motor_copy(void *dst, const volatile void *src, uint8_t n)
+{
+    uint8_t *d = (uint8_t *)dst;
+    const volatile uint8_t *p = (const volatile uint8_t *)src;
+    hal_irq_state_t s = hal_critical_enter();
+    while (n-- != 0U) {
+        *d++ = *p++;
+    }
+    hal_critical_exit(s);
+}

@@ -42,6 +42,16 @@ uint8_t motor_set_reference(int16_t ref);
 int16_t motor_get_gain(mc_gain_t gain);
 bool motor_set_gain(mc_gain_t gain, int16_t value);
 
+/* The running motor, to read (never to write): the X2Cscope target
+ * resolves the addresses a client names against it. Its fields change
+ * under the interrupt: copy them with motor_copy(). */
+const mc_t *motor_view(void);
+
+/* n bytes at src (a field of the running motor, or anything else the
+ * control interrupts write) into dst, masked, so the copy is of one period.
+ * For a few bytes: the interrupt waits for it. */
+void motor_copy(void *dst, const volatile void *src, uint8_t n);
+
 /* An observer of the running motor (e.g. the data monitor's recorder):
  * called by the ADC interrupt once per period, after the duties are
  * written and the core's step is complete, so it never delays them. It

@@ -93,8 +93,9 @@ void hal_led_set(hal_led_t led, bool on);
 /* Queue one byte; false (and nothing sent) when the transmitter is full. */
 bool hal_uart_put(uint8_t byte);
 
-/* One received byte, if any; false when nothing is waiting. A receive
- * overrun is cleared here (the lost bytes are gone). */
+/* One received byte, if any; false when nothing is waiting. The UART's
+ * receive interrupt keeps the bytes in a ring until they are taken; what a
+ * full ring cannot take is lost. */
 bool hal_uart_get(uint8_t *byte);
 
 /* ---- time --------------------------------------------------------------------- */

@@ -108,6 +108,12 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
     return LNET_RX_NONE;
 }
 
+void lnet_tx_init(lnet_tx_t *tx)
+{
+    lnet_tx_start(tx, LNET_NODE, NULL, 0U);
+    tx->state = TX_IDLE;
+}
+
 void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t size)
 {
     tx->data = data;

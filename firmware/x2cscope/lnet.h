@@ -67,6 +67,9 @@ typedef struct {
     bool fill; /* the byte just sent was reserved: its fill is next */
 } lnet_tx_t;
 
+/* Nothing to send. */
+void lnet_tx_init(lnet_tx_t *tx);
+
 /* Start sending one frame of size bytes of data from node. */
 void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t size);
 

@@ -170,11 +170,18 @@ static void adc_init(void)
 
 static void uart_init(void)
 {
-    U1MODE = 0x0000u; /* 8N1, BRGH = 0, UEN = 00 (RX/TX only) */
-    U1STA = 0x0000u;
+    U1MODE = 0x0000u; /* 8N1, UEN = 00 (RX/TX only) */
+    U1MODEbits.BRGH = 1;
+    U1STA = 0x0000u; /* URXISEL = 00: an interrupt for every byte received */
     U1BRG = HAL_U1BRG;
-    IEC0bits.U1RXIE = 0;
     IEC0bits.U1TXIE = 0;
+    IPC2bits.U1RXIP = HAL_U1RX_IRQ_PRIORITY;
+    IFS0bits.U1RXIF = 0;
+#if HAL_UART_RX_RP != HAL_RP_NONE
+    IEC0bits.U1RXIE = 1;
+#else
+    IEC0bits.U1RXIE = 0; /* nothing to receive (hal_uart_get) */
+#endif
     U1MODEbits.UARTEN = 1;
     U1STAbits.UTXEN = 1; /* after UARTEN, as the module requires */
 }
@@ -298,23 +305,41 @@ bool hal_uart_put(uint8_t byte)
     return true;
 }
 
-bool hal_uart_get(uint8_t *byte)
+/* The receive ring: head written by the U1RX interrupt only, tail by
+ * hal_uart_get only (main loop); each one byte, so atomic. */
+static volatile uint8_t rx_ring[HAL_UART_RX_RING];
+static volatile uint8_t rx_head;
+static volatile uint8_t rx_tail;
+Q15_STATIC_ASSERT((HAL_UART_RX_RING & (HAL_UART_RX_RING - 1u)) == 0u && HAL_UART_RX_RING <= 256u,
+                  "the ring's indices wrap by mask in one byte");
+
+/* Every received byte into the ring; a byte the full ring cannot take is
+ * dropped (the LNet receiver resynchronises on the next frame). */
+void HAL_ISR _U1RXInterrupt(void)
 {
-#if HAL_UART_RX_RP == HAL_RP_NONE
-    /* No RX pin mapped: U1RX keeps its reset selection, tied to Vss, and the
-     * receiver reads a break as a stream of 0x00 bytes. Nothing is received. */
-    (void)byte;
-    return false;
-#else
+    while (U1STAbits.URXDA) {
+        uint8_t b = (uint8_t)(U1RXREG & 0xFFu);
+        uint8_t next = (uint8_t)((rx_head + 1u) & (HAL_UART_RX_RING - 1u));
+        if (next != rx_tail) {
+            rx_ring[rx_head] = b;
+            rx_head = next;
+        }
+    }
     if (U1STAbits.OERR) {
         U1STAbits.OERR = 0; /* the receiver stops until this is cleared */
     }
-    if (!U1STAbits.URXDA) {
+    IFS0bits.U1RXIF = 0;
+}
+
+bool hal_uart_get(uint8_t *byte)
+{
+    uint8_t t = rx_tail;
+    if (t == rx_head) {
         return false;
     }
-    *byte = (uint8_t)(U1RXREG & 0xFFu);
+    *byte = rx_ring[t];
+    rx_tail = (uint8_t)((t + 1u) & (HAL_UART_RX_RING - 1u));
     return true;
-#endif
 }
 
 /* ---- tick, critical section --------------------------------------------------- */

@@ -188,11 +188,20 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
 /* PPS output function number of U1TX [MEM: dsPIC33F FRM/DS70283 table]. */
 #define HAL_PPS_FN_U1TX 3u
 
-/* ---- UART1: 8N1, BRGH = 0, BRG = Fcy / (16 baud) - 1, rounded [SRC: AN1078 RTDM] */
+/* ---- UART1: 8N1, BRGH = 1, BRG = Fcy / (4 baud) - 1, rounded [MEM: FRM section 17] ----
+ * 115200 Bd, X2Cscope's default: BRG 86, 114,943 Bd at 40 MIPS (-0.22 %); with
+ * BRGH = 0 the nearest rate is 5.6 % off, more than a receiver forgives. */
 #ifndef HAL_UART_BAUD
-#define HAL_UART_BAUD 38400L
+#define HAL_UART_BAUD 115200L
 #endif
-#define HAL_U1BRG ((uint16_t)((BOARD_FCY_HZ + 8L * HAL_UART_BAUD) / (16L * HAL_UART_BAUD) - 1L))
+#define HAL_U1BRG ((uint16_t)((BOARD_FCY_HZ + 2L * HAL_UART_BAUD) / (4L * HAL_UART_BAUD) - 1L))
+/* The receive ring the U1RX interrupt fills, bytes (a power of two, <= 256):
+ * a request waits here while the main loop is busy; the longest a client
+ * sends before it waits for a reply is 80 bytes (a scope configuration). */
+#define HAL_UART_RX_RING 128u
+/* U1RX's priority: above the slow step (2), below the ADC interrupt (5),
+ * which pre-empts it; the handler is a few cycles a byte. */
+#define HAL_U1RX_IRQ_PRIORITY 3u
 
 /* ---- 1 ms tick: Timer1, Fcy / 8, period 1 ms --------------------------------- */
 #define HAL_T1_TCKPS_8 1u /* TCKPS = 01: 1:8 [MEM] */
@@ -221,5 +230,6 @@ Q15_STATIC_ASSERT(BOARD_FCY_HZ / 8L / 1000L - 1L <= 0xFFFFL, "PR1 is 16 bits");
  * them as functions. */
 void HAL_ISR_FAST _ADC1Interrupt(void);
 void HAL_ISR _T2Interrupt(void);
+void HAL_ISR _U1RXInterrupt(void);
 
 #endif /* HAL_DSPIC33F_H */

@@ -436,19 +436,25 @@ static void test_leds_should_drive_their_assigned_pins(void **state)
 
 /* ---- UART ---------------------------------------------------------------------------- */
 
-static void test_hal_init_should_run_uart1_at_38400_baud_8n1(void **state)
+static void test_hal_init_should_run_uart1_at_115200_baud_8n1_receiving_by_interrupt(void **state)
 {
     (void)state;
-    double baud = FCY_HZ / (16.0 * (U1BRG + 1.0)); /* BRGH = 0 */
+    double baud = FCY_HZ / (4.0 * (U1BRG + 1.0)); /* BRGH = 1 */
 
-    assert_int_equal(U1BRG, 64);
-    assert_int_equal(U1MODEbits.BRGH, 0);
+    assert_int_equal(U1BRG, 86);
+    assert_int_equal(U1MODEbits.BRGH, 1);
     assert_int_equal(U1MODEbits.PDSEL, 0);
     assert_int_equal(U1MODEbits.STSEL, 0);
     assert_int_equal(U1MODEbits.UARTEN, 1);
     assert_int_equal(U1STAbits.UTXEN, 1);
-    printf("measured: UART %.1f Bd, error %+.3f %%\n", baud, (baud / 38400.0 - 1.0) * 100.0);
-    assert_cmp(fabs(baud / 38400.0 - 1.0), <, 0.005);
+    assert_int_equal(U1STAbits.URXISEL, 0); /* an interrupt for every byte */
+    assert_int_equal(IPC2bits.U1RXIP, HAL_U1RX_IRQ_PRIORITY);
+    assert_cmp(IPC2bits.U1RXIP, <, IPC3bits.AD1IP); /* the ADC interrupt pre-empts it */
+#if HAL_UART_RX_RP != HAL_RP_NONE
+    assert_int_equal(IEC0bits.U1RXIE, 1);
+#endif
+    printf("measured: UART %.1f Bd, error %+.3f %%\n", baud, (baud / 115200.0 - 1.0) * 100.0);
+    assert_cmp(fabs(baud / 115200.0 - 1.0), <, 0.005);
 }
 
 #if HAL_UART_TX_RP != HAL_RP_NONE
@@ -580,7 +586,7 @@ int main(void)
 #else
       cmocka_unit_test_setup(test_leds_should_drive_their_assigned_pins, setup),
 #endif
-      cmocka_unit_test_setup(test_hal_init_should_run_uart1_at_38400_baud_8n1, setup),
+      cmocka_unit_test_setup(test_hal_init_should_run_uart1_at_115200_baud_8n1_receiving_by_interrupt, setup),
 #if HAL_UART_TX_RP != HAL_RP_NONE
       cmocka_unit_test_setup(test_hal_init_should_map_uart1_to_its_assigned_pins, setup),
 #else

@@ -48,3 +48,17 @@ bool motor_set_gain(mc_gain_t gain, int16_t value)
 {
     return mc_set_gain(the_motor(), gain, value);
 }
+
+const mc_t *motor_view(void)
+{
+    return the_motor();
+}
+
+void motor_copy(void *dst, const volatile void *src, uint8_t n)
+{
+    uint8_t *d = (uint8_t *)dst;
+    const volatile uint8_t *p = (const volatile uint8_t *)src;
+    while (n-- != 0U) {
+        *d++ = *p++; /* one thread steps the motor and serves the mailbox: nothing to mask */
+    }
+}

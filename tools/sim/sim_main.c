@@ -56,6 +56,7 @@ enum {
     OPT_V_DIODE,
     OPT_PTY,
     OPT_REALTIME,
+    OPT_TCP,
     OPT_BAUD,
     OPT_DURATION,
     OPT_TRUTH
@@ -132,18 +133,21 @@ static const sim_opt_t OPTS[] = {
      .help = "no progress line on stderr"},
 #ifdef SIM_HAVE_PTY
     {.id = OPT_PTY, .name = "--pty", .type = SIM_OPT_FLAG,
-     .help = "no scenario: serve the monitor protocol on a pty (docs/monitor.md)"},
+     .help = "no scenario: serve X2Cscope on a pty (docs/x2cscope.md)"},
+    {.id = OPT_TCP, .name = "--tcp", .type = SIM_OPT_NUMBER, .value = "PORT",
+     .range = {"", "", 1024.0, 65535.0, SIM_RANGE_INTEGER},
+     .help = "with --pty: also serve X2Cscope on 127.0.0.1:PORT (X2Cscope's is 12666)"},
     {.id = OPT_REALTIME, .name = "--realtime", .type = SIM_OPT_NUMBER, .value = "X",
      .range = {"", "x real time", 0.0, 1000.0, 0u}, /* and 0 or at least REALTIME_MIN */
      .help = "with --pty: X times real time (default 1; 0: free-running)"},
     {.id = OPT_BAUD, .name = "--baud", .type = SIM_OPT_NUMBER, .value = "N",
      .range = {"", "Bd", 1200.0, 1000000.0, SIM_RANGE_INTEGER},
-     .help = "with --pty: emulated UART rate (default 38400)"},
+     .help = "with --pty: emulated UART rate (default 115200)"},
     {.id = OPT_DURATION, .name = "--duration", .type = SIM_OPT_NUMBER, .value = "S",
      .range = {"", "s", 0.0, 3600.0, 0u},
      .help = "with --pty: stop after S simulated seconds (0: until SIGINT or SIGTERM)"},
     {.id = OPT_TRUTH, .name = "--truth", .type = SIM_OPT_TEXT, .value = "FILE",
-     .help = "with --pty: the true speed at every recorded sample (CSV)"},
+     .help = "with --pty: the true speed at every dataset the scope stores (CSV)"},
 #endif
 };
 /* clang-format on */
@@ -153,8 +157,8 @@ static const sim_opt_t OPTS[] = {
 static void usage(FILE *f)
 {
     fprintf(f, "usage: sim [options] <scenario.txt>\n"
-               "       sim --pty [options]   the live data monitor on a pseudo-terminal "
-               "(docs/monitor.md)\n");
+               "       sim --pty [options]   the X2Cscope target on a pseudo-terminal "
+               "(docs/x2cscope.md)\n");
     sim_opt_usage(f, OPTS, N_OPTS);
     fprintf(f, "profiles: %s\n", sim_profiles_list());
 }
@@ -376,6 +380,10 @@ int main(int argc, char **argv)
                     return sim_refuse(PROG, a, why);
                 }
                 pty.speed = x;
+                pty_only = a;
+                break;
+            case OPT_TCP:
+                pty.tcp_port = (int)x;
                 pty_only = a;
                 break;
             case OPT_BAUD:

@@ -1,13 +1,17 @@
-/* sim_pty.c - the live data monitor on a pseudo-terminal (see sim_pty.h). */
-/* posix_openpt, grantpt, unlockpt, ptsname, nanosleep, clock_gettime, sigaction: POSIX/XSI, not
- * C99. */
+/* sim_pty.c - the X2Cscope target on a pseudo-terminal and, optionally, TCP (see sim_pty.h). */
+/* posix_openpt, grantpt, unlockpt, ptsname, nanosleep, clock_gettime, sigaction, sockets:
+ * POSIX/XSI, not C99. */
 #define _XOPEN_SOURCE 600
 #include "sim_pty.h"
 
 #include "sim_parse.h"
 
+#include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,8 +20,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "monitor.h"
 #include "sim_mailbox.h"
+#include "x2c.h"
 
 static volatile sig_atomic_t stop_requested;
 
@@ -30,7 +34,8 @@ static void on_signal(int sig)
 void sim_pty_cfg_default(sim_pty_cfg_t *cfg)
 {
     cfg->speed = 1.0;
-    cfg->baud = 38400L; /* HAL_UART_BAUD of the dsPIC build */
+    cfg->baud = 115200L; /* HAL_UART_BAUD of the dsPIC build, X2Cscope's default */
+    cfg->tcp_port = 0;
     cfg->duration_s = 0.0;
     cfg->truth_path = NULL;
 }
@@ -70,20 +75,44 @@ static void make_raw(int fd)
     tcsetattr(fd, TCSANOW, &t);
 }
 
+/* A TCP listener on 127.0.0.1:port, non-blocking; -1 when it cannot be opened. */
+static int tcp_listen(int port)
+{
+    struct sockaddr_in a;
+    int one = 1;
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0) {
+        return -1;
+    }
+    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((uint16_t)port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (bind(fd, (struct sockaddr *)&a, sizeof a) != 0 || listen(fd, 1) != 0) {
+        close(fd);
+        return -1;
+    }
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+    return fd;
+}
+
 int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
 {
-    static monitor_t mon;
+    static x2c_t x2c;
     const long periods_per_ms = PWM_FREQUENCY_HZ / 1000L;
     const double bytes_per_ms = (double)cfg->baud / 10.0 / 1000.0;
     /* what the line may bank: 64 bytes, or two milliseconds' worth at a
      * rate that sends more than 32 a millisecond (up to --baud's 1 MBd) */
     const double tx_cap = (2.0 * bytes_per_ms > 64.0) ? 2.0 * bytes_per_ms : 64.0;
     double tx_credit = 0.0, t0_wall, ms = 0.0;
-    int master, slave;
+    int master, slave, listener = -1, peer = -1;
+    int out_fd; /* where replies go: the transport the last request came on */
     const char *name;
     FILE *truth = NULL;
     long rec_no = -1, k;
-    int pending = -1; /* a byte taken from the monitor that the pty did not take yet */
+    uint8_t scope_was = X2C_SCOPE_IDLE;
+    int pending = -1; /* a byte taken from the target that the transport did not take yet */
     struct sigaction sa;
 
     if (cfg->truth_path != NULL) {
@@ -94,7 +123,7 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
                           sim_parse_quote(cfg->truth_path, pq, sizeof(pq)));
             return sim_refuse("sim", "--truth", why);
         }
-        fprintf(truth, "rec,index,t_s,speed_true_rpm,speed_est_rpm,state\n");
+        fprintf(truth, "rec,at,t_s,speed_true_rpm,speed_est_rpm,state\n");
     }
 
     master = posix_openpt(O_RDWR | O_NOCTTY);
@@ -112,16 +141,29 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     }
     make_raw(slave);
     fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
+    out_fd = master;
+    if (cfg->tcp_port > 0) {
+        listener = tcp_listen(cfg->tcp_port);
+        if (listener < 0) {
+            fprintf(stderr, "sim: cannot listen on 127.0.0.1:%d: %s\n", cfg->tcp_port,
+                    strerror(errno));
+            return 2;
+        }
+    }
 
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN); /* a TCP client that leaves mid-reply */
 
-    sim_mailbox_attach(&s->mc); /* the monitor's commands act on this motor */
-    monitor_init(&mon);
+    sim_mailbox_attach(&s->mc); /* the target's writes act on this motor */
+    x2c_init(&x2c);
     printf("pty: %s\n", name);
-    printf("   monitor: UART %ld Bd emulated, %.3g x real time%s, PWM %ld Hz\n", cfg->baud,
+    if (listener >= 0) {
+        printf("tcp: 127.0.0.1:%d\n", cfg->tcp_port);
+    }
+    printf("   x2cscope: UART %ld Bd emulated, %.3g x real time%s, PWM %ld Hz\n", cfg->baud,
            cfg->speed, cfg->speed <= 0.0 ? " (free-running)" : "", (long)PWM_FREQUENCY_HZ);
     fflush(stdout);
 
@@ -132,29 +174,48 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
 
         /* the ISR, once per PWM period */
         for (k = 0; k < periods_per_ms; k++) {
+            uint16_t at;
             simcore_step(s);
-            if (monitor_sample(&mon, &s->mc)) {
-                uint16_t idx = (uint16_t)(mon.wr - 1U);
-                if (idx == 0U) {
-                    rec_no++;
-                }
-                if (truth != NULL) {
-                    fprintf(truth, "%ld,%u,%.6f,%.4f,%.4f,%d\n", rec_no, (unsigned)idx, s->now.t_s,
-                            s->now.speed_rpm, s->now.speed_est_rpm, s->now.state);
-                }
+            if (x2c.scope.run.state != X2C_SCOPE_IDLE && scope_was == X2C_SCOPE_IDLE) {
+                rec_no++; /* a capture started */
             }
+            if (x2c_sample(&x2c, &at) && truth != NULL) {
+                fprintf(truth, "%ld,%u,%.6f,%.4f,%.4f,%d\n", rec_no, (unsigned)at, s->now.t_s,
+                        s->now.speed_rpm, s->now.speed_est_rpm, s->now.state);
+            }
+            scope_was = x2c.scope.run.state;
         }
         ms += 1.0;
 
-        /* the main loop, once per millisecond */
-        while (monitor_rx_ready(&mon)) {
-            if (read(master, in, 1) != 1) {
+        /* the main loop, once per millisecond: a TCP client may connect */
+        if (listener >= 0 && peer < 0) {
+            peer = accept(listener, NULL, NULL);
+            if (peer >= 0) {
+                int one = 1;
+                fcntl(peer, F_SETFL, fcntl(peer, F_GETFL) | O_NONBLOCK);
+                setsockopt(peer, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+            }
+        }
+        while (x2c_rx_ready(&x2c)) {
+            if (read(master, in, 1) == 1) {
+                out_fd = master;
+            } else if (peer >= 0) {
+                ssize_t r = read(peer, in, 1);
+                if (r == 0 || (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
+                    close(peer); /* the client left */
+                    peer = -1;
+                    out_fd = master;
+                    break;
+                }
+                if (r != 1) {
+                    break;
+                }
+                out_fd = peer;
+            } else {
                 break;
             }
-            monitor_rx_byte(&mon, in[0]);
+            x2c_rx_byte(&x2c, in[0]);
         }
-        monitor_tick_1ms(&mon);
-        monitor_poll(&mon);
         tx_credit += bytes_per_ms;
         if (tx_credit > tx_cap) {
             tx_credit = tx_cap; /* an idle line does not bank a burst */
@@ -162,13 +223,13 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
         while (tx_credit >= 1.0) {
             uint8_t b;
             if (pending < 0) {
-                if (!monitor_tx_byte(&mon, &b)) {
+                if (!x2c_tx_byte(&x2c, &b)) {
                     break;
                 }
                 pending = b;
             }
             in[0] = (uint8_t)pending;
-            if (write(master, in, 1) != 1) {
+            if (write(out_fd, in, 1) != 1) {
                 break; /* nobody reading: the byte waits */
             }
             pending = -1;
@@ -185,10 +246,16 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     if (truth != NULL) {
         fclose(truth);
     }
+    if (peer >= 0) {
+        close(peer);
+    }
+    if (listener >= 0) {
+        close(listener);
+    }
     close(slave);
     close(master);
-    printf("   monitor: stopped at %.3f s simulated, %u error replies, %u frames dropped\n",
-           s->rig.t, (unsigned)mon.rx_errors, (unsigned)mon.rx_dropped);
+    printf("   x2cscope: stopped at %.3f s simulated, %u replies, %u refusals\n", s->rig.t,
+           (unsigned)x2c.answered, (unsigned)x2c.refused);
     if (s->diverged) {
         char why[320];
         simcore_diverged_msg(s, why, sizeof(why));

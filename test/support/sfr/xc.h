@@ -215,6 +215,15 @@ SFR_DECLARE(IPC1, IPC1BITS);
 #define IPC1     sfr_IPC1.w
 #define IPC1bits sfr_IPC1.bits
 
+typedef struct { /* IPC2: U1RXIP at bits 12-14 [MEM] */
+    uint16_t : 12;
+    uint16_t U1RXIP : 3;
+    uint16_t : 1;
+} IPC2BITS;
+SFR_DECLARE(IPC2, IPC2BITS);
+#define IPC2     sfr_IPC2.w
+#define IPC2bits sfr_IPC2.bits
+
 typedef struct { /* IPC3: AD1IP at bits 4-6 [MEM] */
     uint16_t : 4;
     uint16_t AD1IP : 3;

@@ -1,0 +1,116 @@
+/* x2c.h - the X2Cscope target: the LNet services MPLAB X's X2CScope, Data Visualizer and pyx2cscope use. */
+#ifndef X2C_H
+#define X2C_H
+
+/*
+ * What a client can do (docs/x2cscope.md, "Our target"):
+ *   0x00 device info       a generic dsPIC (processor id 0x8210): 16-bit addresses;
+ *   0x01 get target state  the DSP state byte of device info;
+ *   0x09 read RAM          inside one whitelisted variable (x2c_vars.h) or the scope buffer;
+ *   0x0A write RAM         one whole tunable, in its range, applied through the mailbox;
+ *   0x11 load parameter 1  the scope's state (29 bytes);
+ *   0x12 save parameter 1  configure and start the scope (channels and trigger whitelisted).
+ * Everything else (reboot, flash, blocks, set target state, other
+ * parameters) is refused. Each refusal is an error reply with the
+ * protocol's code and changes nothing.
+ *
+ * Two contexts, as on the dsPIC:
+ *   ISR        x2c_sample() once per PWM period, after the duties are
+ *              written: the scope (x2c_scope.h), constant time;
+ *   main loop  x2c_rx_byte() for each received byte while x2c_rx_ready(),
+ *              x2c_tx_byte() for the bytes of the reply. The reply is sent
+ *              from the request's own buffer, so no byte is taken while one
+ *              is being sent (the client waits for it anyway: LNet is
+ *              strictly request / response).
+ * The motor is reached only through its mailbox (motor.h), masked; a read
+ * of a motor variable is a masked copy of at most 4 bytes.
+ */
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "lnet.h"
+#include "x2c_scope.h"
+#include "x2c_vars.h"
+
+/* Error ids (the response's second byte). */
+#define X2C_ERR_OK       0x00U
+#define X2C_ERR_CHECKSUM 0x13U /* the frame's checksum did not match */
+#define X2C_ERR_FORMAT   0x14U /* malformed, misaligned, or outside the whitelist */
+#define X2C_ERR_SIZE     0x15U /* the reply would not fit a frame */
+#define X2C_ERR_SERVICE  0x21U /* no such service here */
+#define X2C_ERR_STATE    0x22U /* valid, but not now (the start guard, torque mode) */
+#define X2C_ERR_PARAM    0x40U /* no such parameter id */
+#define X2C_ERR_LIMIT    0x42U /* a value outside its range */
+
+/* Services. */
+#define X2C_SVC_DEVICE_INFO 0x00U
+#define X2C_SVC_GET_STATE   0x01U
+#define X2C_SVC_GET_RAM     0x09U
+#define X2C_SVC_PUT_RAM     0x0AU
+#define X2C_SVC_LOAD_PARAM  0x11U
+#define X2C_SVC_SAVE_PARAM  0x12U
+
+#define X2C_PARAM_SCOPE    1U   /* the one parameter id: the scope */
+#define X2C_PROCESSOR_ID   0x8210U /* generic dsPIC: clients use 16-bit addresses */
+#define X2C_MONITOR_VER    5U
+#define X2C_APP_VER        1U
+#define X2C_READ_MAX       (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
+#define X2C_INFO_BYTES     44U
+#define X2C_SCOPE_STATE_BYTES 29U
+
+/* The dates device info reports, "MmmDDYYYY" and "HHMM": the target's
+ * release, fixed so that a build is reproducible (-D to override). */
+#ifndef X2C_BUILD_DATE
+#define X2C_BUILD_DATE "Nov252026"
+#endif
+#ifndef X2C_BUILD_TIME
+#define X2C_BUILD_TIME "0000"
+#endif
+
+/* DSP states (device info, get target state). */
+#define X2C_DSP_POWER_OFF 0x04U /* the application runs, outputs off */
+#define X2C_DSP_POWER_ON  0x05U /* the application runs, outputs switching */
+
+/* Where the objects appear on the wire. On the dsPIC (and any 16-bit
+ * target) an address is the object's own, as the ELF gives it; a PC's
+ * 64-bit addresses are presented in this 16-bit window instead. */
+#define X2C_WINDOW_TUNE  0x0800U
+#define X2C_WINDOW_SCOPE 0x0900U
+#define X2C_WINDOW_MOTOR 0x1000U
+
+typedef struct {
+    lnet_rx_t rx; /* the request, and then the reply built over it */
+    lnet_tx_t tx;
+    x2c_tune_t tune;
+    x2c_scope_t scope;
+    /* the motor's side, as the board's controls have it */
+    bool (*may_start)(void *ctx); /* run = 1's guard (the board's start rule), NULL: none */
+    void *may_start_ctx;
+    bool remote;          /* speed_ref_rpm set the reference ... */
+    uint8_t ref_seq_mine; /* ... and this was its choice (mc_reference_held) */
+    /* counters, saturating */
+    uint16_t answered; /* replies sent without an error */
+    uint16_t refused;  /* error replies */
+} x2c_t;
+
+/* Idle scope, the tunables read from the motor, no start guard. */
+void x2c_init(x2c_t *x);
+
+/* run = 1 asks may_start(ctx) first and is refused (X2C_ERR_STATE) when it
+ * says no: the application's rule for every START (app_start_allowed). */
+void x2c_set_start_guard(x2c_t *x, bool (*may_start)(void *ctx), void *ctx);
+
+/* Main loop. */
+bool x2c_rx_ready(const x2c_t *x); /* no reply being sent */
+void x2c_rx_byte(x2c_t *x, uint8_t byte);
+bool x2c_tx_byte(x2c_t *x, uint8_t *byte); /* the next byte to send, false if none */
+
+/* ISR, once per PWM period after the core's step. True when the scope
+ * stored a dataset (at byte *at of its buffer, when at is not NULL). */
+bool x2c_sample(x2c_t *x, uint16_t *at);
+
+/* The wire address of an object (x2c_obj_t). */
+uint16_t x2c_wire(const x2c_t *x, x2c_obj_t obj);
+
+#endif /* X2C_H */

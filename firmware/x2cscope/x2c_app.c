@@ -1,0 +1,33 @@
+/* x2c_app.c - the X2Cscope target as the application's UART client (see x2c_app.h). */
+#include "x2c_app.h"
+
+static bool cb_rx_ready(void *ctx)
+{
+    return x2c_rx_ready((const x2c_t *)ctx);
+}
+
+static void cb_rx_byte(void *ctx, uint8_t byte)
+{
+    x2c_rx_byte((x2c_t *)ctx, byte);
+}
+
+static bool cb_tx_byte(void *ctx, uint8_t *byte)
+{
+    return x2c_tx_byte((x2c_t *)ctx, byte);
+}
+
+/* LNet needs no timeout (a new SYN resynchronises) and nothing is queued. */
+static void cb_idle(void *ctx)
+{
+    (void)ctx;
+}
+
+void x2c_app_client(x2c_t *x, app_uart_client_t *client)
+{
+    client->ctx = x;
+    client->rx_ready = cb_rx_ready;
+    client->rx_byte = cb_rx_byte;
+    client->tx_byte = cb_tx_byte;
+    client->tick_1ms = cb_idle;
+    client->poll = cb_idle;
+}

@@ -1,0 +1,252 @@
+/* x2c_scope.c - the X2Cscope scope (see x2c_scope.h). */
+#include "x2c_scope.h"
+
+#include <stddef.h>
+
+#include "x2c.h"
+
+void x2c_scope_init(x2c_scope_t *s)
+{
+    uint16_t i;
+    s->run.state = X2C_SCOPE_IDLE;
+    s->cfg.state = X2C_SCOPE_IDLE;
+    s->cfg.nch = 0;
+    s->cfg.prescaler = 0;
+    s->cfg.trig_src = NULL;
+    s->cfg.trig_dtype = 0;
+    s->cfg.trig_level = 0;
+    s->cfg.rising = true;
+    s->cfg.delay = 0;
+    for (i = 0; i < X2C_SCOPE_CHANNELS; i++) {
+        s->cfg.src[i] = NULL;
+        s->cfg.size[i] = 0;
+    }
+    s->dataset = 1;
+    s->used = X2C_SCOPE_BYTES;
+    s->run.wr = 0;
+    s->run.trig_pos = 0;
+    s->run.left = 0;
+    s->run.wait = 0;
+    s->run.div = 0;
+    s->run.prev = 0;
+    s->run.primed = false;
+    for (i = 0; i < X2C_SCOPE_BYTES; i++) {
+        s->buf[i] = 0;
+    }
+}
+
+static uint8_t dataset_of(const x2c_scope_cfg_t *cfg)
+{
+    uint8_t i, n = 0;
+    for (i = 0; i < cfg->nch; i++) {
+        n = (uint8_t)(n + cfg->size[i]);
+    }
+    return n;
+}
+
+static bool width_ok(uint8_t n)
+{
+    return n == 1U || n == 2U || n == 4U;
+}
+
+uint8_t x2c_scope_check(const x2c_scope_cfg_t *cfg)
+{
+    uint8_t i, dataset;
+    uint16_t used;
+    if (cfg->state == X2C_SCOPE_IDLE) {
+        return X2C_ERR_OK; /* a stop */
+    }
+    if (cfg->state != X2C_SCOPE_SAMPLE && cfg->state != X2C_SCOPE_WAIT_TRIG) {
+        return X2C_ERR_FORMAT;
+    }
+    if (cfg->nch < 1U || cfg->nch > X2C_SCOPE_CHANNELS) {
+        return X2C_ERR_LIMIT;
+    }
+    for (i = 0; i < cfg->nch; i++) {
+        if (cfg->src[i] == NULL || !width_ok(cfg->size[i])) {
+            return X2C_ERR_FORMAT;
+        }
+    }
+    dataset = dataset_of(cfg);
+    used = (uint16_t)(X2C_SCOPE_BYTES - X2C_SCOPE_BYTES % dataset);
+    if (cfg->state == X2C_SCOPE_WAIT_TRIG) {
+        uint8_t n = (uint8_t)(cfg->trig_dtype & X2C_TRIG_SIZE);
+        if (!width_ok(n) || ((cfg->trig_dtype & X2C_TRIG_FLOAT) != 0U && n != 4U)) {
+            return X2C_ERR_FORMAT;
+        }
+        if (cfg->delay % (int32_t)dataset != 0) {
+            return X2C_ERR_FORMAT; /* the client sends whole datasets */
+        }
+        if (cfg->delay >= (int32_t)used) {
+            return X2C_ERR_LIMIT; /* more history than the ring holds */
+        }
+    }
+    return X2C_ERR_OK;
+}
+
+void x2c_scope_stop(x2c_scope_t *s)
+{
+    s->run.state = X2C_SCOPE_IDLE;
+}
+
+void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
+{
+    x2c_scope_stop(s);
+    s->cfg = *cfg;
+    if (cfg->state == X2C_SCOPE_IDLE) {
+        return;
+    }
+    s->dataset = dataset_of(cfg);
+    s->used = (uint16_t)(X2C_SCOPE_BYTES - X2C_SCOPE_BYTES % s->dataset);
+    s->run.wr = 0;
+    s->run.trig_pos = 0;
+    s->run.left = (cfg->state == X2C_SCOPE_WAIT_TRIG && cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
+    s->run.wait = 0;
+    s->run.div = 0;
+    s->run.prev = 0;
+    s->run.primed = false;
+    s->run.state = cfg->state; /* last: the interrupt starts from here */
+}
+
+uint32_t x2c_scope_key(uint32_t raw, uint8_t dtype)
+{
+    uint8_t n = (uint8_t)(dtype & X2C_TRIG_SIZE);
+    if ((dtype & X2C_TRIG_FLOAT) != 0U) {
+        /* sign and magnitude: negatives reversed below the positives */
+        return ((raw & 0x80000000UL) != 0UL) ? ~raw : (raw | 0x80000000UL);
+    }
+    if ((dtype & X2C_TRIG_SIGNED) != 0U) {
+        return raw ^ ((uint32_t)1 << (8U * n - 1U)); /* two's complement, sign flipped */
+    }
+    return raw;
+}
+
+/* The trigger source's raw bytes, little-endian, n = 1, 2 or 4, aligned. */
+static uint32_t read_raw(const volatile uint8_t *p, uint8_t n)
+{
+    if (n == 1U) {
+        return *p;
+    }
+    if (n == 2U) {
+        return *(const volatile uint16_t *)(const volatile void *)p;
+    }
+    return (uint32_t) * (const volatile uint16_t *)(const volatile void *)p |
+           ((uint32_t) * (const volatile uint16_t *)(const volatile void *)(p + 2) << 16);
+}
+
+/* Did the source cross the level this call? */
+static bool edge(x2c_scope_t *s)
+{
+    const x2c_scope_cfg_t *c = &s->cfg;
+    uint32_t key, prev;
+    bool was;
+    if (c->trig_src == NULL) {
+        return true; /* auto */
+    }
+    key = x2c_scope_key(read_raw(c->trig_src, (uint8_t)(c->trig_dtype & X2C_TRIG_SIZE)),
+                        c->trig_dtype);
+    prev = s->run.prev;
+    was = s->run.primed;
+    s->run.prev = key;
+    s->run.primed = true;
+    if (!was) {
+        return false;
+    }
+    return c->rising ? (prev < c->trig_level && key >= c->trig_level)
+                     : (prev > c->trig_level && key <= c->trig_level);
+}
+
+bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
+{
+    x2c_scope_run_t *r = &s->run;
+    uint8_t state = r->state;
+    uint8_t *d;
+    uint8_t i;
+
+    if (state == X2C_SCOPE_IDLE) {
+        return false;
+    }
+    if (state == X2C_SCOPE_WAIT_TRIG) {
+        /* evaluated on every call, so the previous value is always the last call's */
+        bool fired = edge(s);
+        if (fired && r->left == 0U) { /* armed: the history is in */
+            if (s->cfg.delay < 0) {
+                state = X2C_SCOPE_DELAY;
+                r->wait = (uint32_t)(-(s->cfg.delay / (int32_t)s->dataset));
+            } else {
+                state = X2C_SCOPE_POST_TRIG;
+                r->trig_pos = r->wr;
+                r->left = (uint16_t)(s->used - (uint16_t)s->cfg.delay);
+            }
+            r->state = state;
+        }
+    }
+
+    /* the prescaler: one dataset every prescaler + 1 calls */
+    if (r->div != 0U) {
+        r->div--;
+        return false;
+    }
+    r->div = s->cfg.prescaler;
+
+    if (state == X2C_SCOPE_DELAY) {
+        if (r->wait != 0UL) {
+            r->wait--; /* this slot is one of the delay's */
+            return false;
+        }
+        state = X2C_SCOPE_SAMPLE;
+        r->wr = 0;
+        r->trig_pos = 0;
+        r->state = state;
+    }
+
+    /* one dataset: each channel's bytes in order */
+    d = &s->buf[r->wr];
+    for (i = 0; i < s->cfg.nch; i++) {
+        const volatile uint8_t *p = s->cfg.src[i];
+        switch (s->cfg.size[i]) {
+            case 4:
+                d[3] = p[3];
+                d[2] = p[2];
+                /* fall through */
+            case 2:
+                d[1] = p[1];
+                /* fall through */
+            default:
+                d[0] = p[0];
+                break;
+        }
+        d += s->cfg.size[i];
+    }
+    if (at != NULL) {
+        *at = r->wr;
+    }
+    r->wr = (uint16_t)(r->wr + s->dataset);
+
+    switch (state) {
+        case X2C_SCOPE_SAMPLE:
+            if (r->wr >= s->used) {
+                r->state = X2C_SCOPE_IDLE; /* full: the pointer stays at `used` */
+            }
+            break;
+        case X2C_SCOPE_WAIT_TRIG:
+            if (r->wr >= s->used) {
+                r->wr = 0; /* the ring */
+            }
+            if (r->left != 0U) {
+                r->left = (r->left > s->dataset) ? (uint16_t)(r->left - s->dataset) : 0U;
+            }
+            break;
+        default: /* X2C_SCOPE_POST_TRIG */
+            if (r->wr >= s->used) {
+                r->wr = 0;
+            }
+            r->left = (uint16_t)(r->left - s->dataset);
+            if (r->left == 0U) {
+                r->wr = s->used; /* done: the pointer says full */
+                r->state = X2C_SCOPE_IDLE;
+            }
+            break;
+    }
+    return true;
+}

@@ -1,0 +1,140 @@
+/* x2c_vars.h - the X2Cscope target's whitelist: every variable a client may read, scope or tune. */
+#ifndef X2C_VARS_H
+#define X2C_VARS_H
+
+/*
+ * Nothing outside these rows is reachable over the UART: every service
+ * (read, write, a scope channel, the trigger source) resolves its address
+ * to one row and is refused when it does not fall inside one
+ * (docs/x2cscope.md, "Our target").
+ *
+ * The names are the C paths of the objects the clients find in the
+ * firmware's ELF (`motor` is firmware/motor.c's mc_t, `x2c` the target's
+ * instance in firmware/main.c), so a variable picked by name in the MPLAB X
+ * plugin or pyx2cscope is one of these rows; on the PC the simulator
+ * presents the same names in a 16-bit address window (x2c_map.c).
+ *
+ * X2C_MOTOR_VARS(X): the motor's variables, read-only (a client may read
+ * and scope them, never write them: the core's state is written by the
+ * core alone).
+ *   X(path, type, unit, full_scale)
+ *   path        the member of mc_t (`i_dq.d`);
+ *   type        S (signed), U (unsigned) or B (bool): how the raw bytes read;
+ *   unit        the engineering unit of full_scale, "" for a code or count;
+ *   full_scale  engineering value of 32768 raw counts (Q15), or 0 when the
+ *               raw value is the value (states, codes, flags, counts).
+ * The rows are read raw in the ADC interrupt's own units (Q15 of the full
+ * scales of firmware/UserParms.h and the board profile); nothing here
+ * converts.
+ */
+
+#include "mc.h"
+
+/* Full scales of the Q15 rows, engineering units per 32768 counts. */
+#define X2C_FS_RPM  (MC_SPEED_FULLSCALE_RPM)
+#define X2C_FS_AMP  (BOARD_I_FULLSCALE_A)
+#define X2C_FS_VOLT (MC_VOLTAGE_FULLSCALE_V)
+#define X2C_FS_VBUS (BOARD_VBUS_FULLSCALE_V)
+#define X2C_FS_EMF  (SMC_EMF_FS_RATIO * MC_VOLTAGE_FULLSCALE_V) /* smc.h: E_FS */
+#define X2C_FS_DEG  180.0 /* a Q15 binary angle: 32768 = pi */
+#define X2C_FS_CODE 0.0   /* the raw value is the value */
+
+/* clang-format off */
+#define X2C_MOTOR_VARS(X)                                        \
+    X(state,           U, "",    X2C_FS_CODE)                   \
+    X(fault,           U, "",    X2C_FS_CODE)                   \
+    X(timer,           U, "",    X2C_FS_CODE)                   \
+    X(retries,         U, "",    X2C_FS_CODE)                   \
+    X(ia,              S, "A",   X2C_FS_AMP)                    \
+    X(ib,              S, "A",   X2C_FS_AMP)                    \
+    X(vbus,            S, "V",   X2C_FS_VBUS)                   \
+    X(pot,             S, "",    X2C_FS_CODE)                   \
+    X(i_dq.d,          S, "A",   X2C_FS_AMP)                    \
+    X(i_dq.q,          S, "A",   X2C_FS_AMP)                    \
+    X(i_ref.d,         S, "A",   X2C_FS_AMP)                    \
+    X(i_ref.q,         S, "A",   X2C_FS_AMP)                    \
+    X(v_dq.d,          S, "V",   X2C_FS_VOLT)                   \
+    X(v_dq.q,          S, "V",   X2C_FS_VOLT)                   \
+    X(speed_target,    S, "rpm", X2C_FS_RPM)                    \
+    X(speed_ref,       S, "rpm", X2C_FS_RPM)                    \
+    X(torque_target,   S, "A",   X2C_FS_AMP)                    \
+    X(theta,           S, "deg", X2C_FS_DEG)                    \
+    X(ol_angle,        U, "",    X2C_FS_CODE)                   \
+    X(duty[0],         U, "",    X2C_FS_CODE)                   \
+    X(duty[1],         U, "",    X2C_FS_CODE)                   \
+    X(duty[2],         U, "",    X2C_FS_CODE)                   \
+    X(outputs_on,      B, "",    X2C_FS_CODE)                   \
+    X(smc.theta,       S, "deg", X2C_FS_DEG)                    \
+    X(smc.omega,       S, "rpm", X2C_FS_RPM)                    \
+    X(smc.emf_mag,     S, "V",   X2C_FS_EMF)                    \
+    X(smc.valid,       B, "",    X2C_FS_CODE)                   \
+    X(dt_counts,       S, "",    X2C_FS_CODE)
+/* clang-format on */
+
+/*
+ * X2C_TUNABLES(X): the only variables a client may write, fields of
+ * x2c_tune_t (x2c.h). A write is accepted only whole (the row's address,
+ * the row's size), only inside [min, max], and is then applied through the
+ * motor's mailbox (motor.h), masked, exactly as the board's own controls
+ * do; the field keeps what was applied, and reading it back reads the
+ * motor's value.
+ *   X(field, min, max, unit, full_scale)
+ * The gains are the PI mantissas (Q15, exponent fixed at build time,
+ * mc.h note 3): the build-time value / 8 .. x 8, at least 1: wide enough to
+ * tune, narrow enough that a typo cannot zero a loop. speed_ref_rpm is the
+ * pot's range (0: the pot again); run is S2 (1 start, 0 stop).
+ */
+#define X2C_GAIN_MIN(g) ((int16_t)((g) / 8 > 0 ? (g) / 8 : 1))
+#define X2C_GAIN_MAX(g) ((int16_t)((int32_t)(g)*8 > 32767 ? 32767 : (int32_t)(g)*8))
+#define X2C_RPM_MIN     ((int16_t)(SPEED_REF_MIN_RPM + 0.5))
+#define X2C_RPM_MAX     ((int16_t)(SPEED_REF_MAX_RPM + 0.5))
+
+/* clang-format off */
+#define X2C_TUNABLES(X)                                                                 \
+    X(cur_kp,        X2C_GAIN_MIN(MC_CUR_KP), X2C_GAIN_MAX(MC_CUR_KP), "", X2C_FS_CODE) \
+    X(cur_ki,        X2C_GAIN_MIN(MC_CUR_KI), X2C_GAIN_MAX(MC_CUR_KI), "", X2C_FS_CODE) \
+    X(spd_kp,        X2C_GAIN_MIN(MC_SPD_KP), X2C_GAIN_MAX(MC_SPD_KP), "", X2C_FS_CODE) \
+    X(spd_ki,        X2C_GAIN_MIN(MC_SPD_KI), X2C_GAIN_MAX(MC_SPD_KI), "", X2C_FS_CODE) \
+    X(speed_ref_rpm, 0,                       X2C_RPM_MAX,             "rpm", 1.0)      \
+    X(run,           0,                       1,                       "", X2C_FS_CODE)
+/* clang-format on */
+
+/* The tunables, one int16 each (the target's RAM; x2c.h's x2c_t.tune). */
+typedef struct {
+#define X2C_TUNE_FIELD(field, min, max, unit, fs) int16_t field;
+    X2C_TUNABLES(X2C_TUNE_FIELD)
+#undef X2C_TUNE_FIELD
+} x2c_tune_t;
+
+/* Row counts: the motor's, the tunables', and the scope buffer's one. */
+#define X2C_COUNT_ROW(a, b, c, d) +1U
+#define X2C_COUNT_TUNE(a, b, c, d, e) +1U
+#define X2C_MOTOR_ROWS (0U X2C_MOTOR_VARS(X2C_COUNT_ROW))
+#define X2C_TUNE_ROWS  (0U X2C_TUNABLES(X2C_COUNT_TUNE))
+/* X2C_TUNE_<field>: a tunable's number. */
+enum {
+#define X2C_TUNE_INDEX(field, min, max, unit, fs) X2C_TUNE_##field,
+    X2C_TUNABLES(X2C_TUNE_INDEX)
+#undef X2C_TUNE_INDEX
+        X2C_TUNE_COUNT_
+};
+#define X2C_ROWS       (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U) /* + the scope buffer */
+
+/* The objects the rows lie in, and where each appears on the wire. */
+typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_COUNT } x2c_obj_t;
+
+/* Row flags. */
+#define X2C_ROW_READ 0x01U /* readable and usable as a scope channel or trigger */
+#define X2C_ROW_TUNE 0x02U /* writable through x2c_tune_apply */
+
+typedef struct {
+    uint16_t offset; /* in its object, bytes */
+    uint16_t size;   /* bytes */
+    uint8_t obj;     /* x2c_obj_t */
+    uint8_t flags;   /* X2C_ROW_* */
+} x2c_row_t;
+
+/* The rows, in the order above (const: program memory on the dsPIC). */
+extern const x2c_row_t x2c_rows[X2C_ROWS];
+
+#endif /* X2C_VARS_H */
