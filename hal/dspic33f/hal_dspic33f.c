@@ -317,7 +317,9 @@ Q15_STATIC_ASSERT((HAL_UART_RX_RING & (HAL_UART_RX_RING - 1u)) == 0u && HAL_UART
  * dropped (the LNet receiver resynchronises on the next frame). */
 void HAL_ISR _U1RXInterrupt(void)
 {
-    while (U1STAbits.URXDA) {
+    uint8_t n;
+    /* at most the receiver's 4-deep FIFO: a bounded handler */
+    for (n = 0; n < 4u && U1STAbits.URXDA; n++) {
         uint8_t b = (uint8_t)(U1RXREG & 0xFFu);
         uint8_t next = (uint8_t)((rx_head + 1u) & (HAL_UART_RX_RING - 1u));
         if (next != rx_tail) {
