@@ -92,13 +92,22 @@ static const x2c_row_t *find_row(const x2c_t *x, uint32_t addr, uint16_t n,
     return NULL;
 }
 
+/* The alignment of a 16-bit word on this platform: 2 on the dsPIC (a word
+ * at an odd address is an address-error trap) and the PC, 1 on the AVR
+ * that runs the 16-bit check. */
+typedef struct {
+    uint8_t c;
+    uint16_t w;
+} word_align_t;
+#define X2C_WORD_ALIGN ((uint32_t)offsetof(word_align_t, w))
+
 /* An access of n bytes of width w at addr: whole elements, aligned. */
 static uint8_t access_check(uint32_t addr, uint16_t n, uint8_t w)
 {
     if ((w != 1U && w != 2U && w != 4U) || n == 0U || n % w != 0U) {
         return X2C_ERR_FORMAT;
     }
-    if (w > 1U && (addr & 1UL) != 0UL) {
+    if (w > 1U && addr % X2C_WORD_ALIGN != 0UL) {
         return X2C_ERR_FORMAT; /* a word at an odd address traps on the dsPIC */
     }
     return X2C_ERR_OK;
