@@ -34,7 +34,7 @@ endif
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
-	@echo "make sim PTY=1    the same motor behind the monitor protocol on a pty, for tools/scope"
+	@echo "make sim PTY=1    the same motor behind X2Cscope on a pty (and TCP 12666), for tools/scope"
 	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, coverage, sanitized, clang and plain tests"
 	@echo "make unit         build and run the host tests (plain build)"
 	@echo "make test-clang   build with clang in $(CLANG_DIR) and run the unit tests"
@@ -98,9 +98,9 @@ format:
 bench: build
 	@tools/bench/run $(HOST_DIR) $(BUILD)/bench
 
-# PTY=1: no scenario, the live data monitor on a pseudo-terminal for tools/scope (docs/monitor.md).
+# PTY=1: no scenario, the X2Cscope target on a pseudo-terminal and TCP 12666 (docs/x2cscope.md).
 sim: bootstrap build
-	@$(if $(PTY),$(HOST_DIR)/tools/sim/sim --pty --motor $(MOTOR) --board $(BOARD),tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD))
+	@$(if $(PTY),$(HOST_DIR)/tools/sim/sim --pty --tcp 12666 --motor $(MOTOR) --board $(BOARD),tools/sim/run $(HOST_DIR) $(SCENARIO) $(MOTOR) $(BOARD))
 
 # The randomized campaign (docs/robustness.md); its quick subset runs in make test (robust_quick).
 RUNS ?= 400

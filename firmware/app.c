@@ -120,7 +120,7 @@ static void on_s2(app_t *app)
 
 /*
  * The speed reference has one owner at a time: the pot, the board (S3's
- * doubled pot) or whoever else calls mc_set_reference (the monitor). The
+ * doubled pot) or whoever else calls mc_set_reference (X2Cscope). The
  * last explicit choice wins and the core's status shows it to every side:
  * ref_remote (a set reference, not the pot) and ref_seq (counts the set
  * references). S3 takes the reference for the board; while doubling, the

@@ -35,8 +35,8 @@
  * ia offset-corrected in Q15 of BOARD_I_FULLSCALE_A, D = double-speed mode). Commands, one byte
  * each: 'g' MC_REQUEST_START, 's' MC_REQUEST_STOP, 'p' MC_REQUEST_REF_POT (and double speed off).
  *
- * A UART client (app_set_uart_client, e.g. the live data monitor of
- * firmware/monitor, docs/monitor.md) takes the UART over: the status line and
+ * A UART client (app_set_uart_client, e.g. the X2Cscope target of
+ * firmware/x2cscope, docs/x2cscope.md) takes the UART over: the status line and
  * the one-byte commands stop; received bytes go to the client while it is
  * ready for them (a byte it is not ready for stays in the UART), bytes it
  * queues go out as the UART takes them, and it gets a tick every 1 ms.
@@ -54,7 +54,7 @@
 #define APP_RUN_BLINK_MS        125U /* start-up blink: 125 ms on, 125 ms off */
 #define APP_BLINK_MS            250U
 #define APP_FAULT_PAUSE_MS      1500U
-#define APP_TX_QUEUE_SIZE       128U /* power of two, up to 256 */
+#define APP_TX_QUEUE_SIZE       64U /* power of two, up to 256: one status line (< 48) */
 
 typedef struct {
     bool level;     /* debounced: true = held down */

@@ -10,34 +10,40 @@
  * duties back, once per PWM period. The main loop is the slow rest
  * (app.h): buttons, pot, LEDs, UART, fault latch.
  *
- * The UART speaks the live data monitor's protocol (firmware/monitor,
- * docs/monitor.md, host side tools/scope): its recorder observes the motor
- * from the ADC interrupt, after the duties are written. Build with
- * -DAPP_NO_MONITOR for the plain text status line of app.h instead (and
- * without the monitor's RAM, docs/board.md).
+ * The UART speaks X2Cscope (firmware/x2cscope, docs/x2cscope.md): MPLAB X's
+ * X2CScope plugin, MPLAB Data Visualizer, pyx2cscope and tools/scope watch
+ * and tune the firmware through it; its scope samples the motor from the
+ * ADC interrupt, after the duties are written. Build with
+ * -DAPP_NO_X2CSCOPE for the plain text status line of app.h instead (and
+ * without the target's RAM, docs/board.md).
  *
  * Built only by `make firmware` / MPLAB X; the host tests cover app.c, and
  * test/hal's hostcc test links this file into the whole image.
  */
 
-#if !defined(APP_NO_MONITOR)
-#include "monitor/monitor_app.h"
+#if !defined(APP_NO_X2CSCOPE)
+#include <stddef.h>
 
-static monitor_t monitor;
-static app_uart_client_t monitor_client;
+#include "x2cscope/x2c_app.h"
 
-/* The recorder, once per PWM period in the ADC interrupt (constant time). */
-static void monitor_observer(void *ctx, const mc_t *mc)
+/* The target. Its name is part of the interface: clients find the
+ * tunables as x2c.tune.<name> in this program's ELF (x2c_vars.h). */
+x2c_t x2c;
+static app_uart_client_t x2c_client;
+
+/* The scope, once per PWM period in the ADC interrupt (constant time). */
+static void x2c_observer(void *ctx, const mc_t *mc)
 {
-    (void)monitor_sample((monitor_t *)ctx, mc);
+    (void)mc; /* the channels were resolved to addresses when configured */
+    (void)x2c_sample((x2c_t *)ctx, NULL);
 }
 #endif
 
 static app_t app;
 
-#if !defined(APP_NO_MONITOR)
-/* The monitor's START follows the board's rule (app_start_allowed). */
-static bool monitor_may_start(void *ctx)
+#if !defined(APP_NO_X2CSCOPE)
+/* run = 1 follows the board's rule (app_start_allowed). */
+static bool x2c_may_start(void *ctx)
 {
     return app_start_allowed((app_t *)ctx);
 }
@@ -48,12 +54,12 @@ int main(void)
     hal_init();
     app_init(&app);
     motor_start();
-#if !defined(APP_NO_MONITOR)
-    monitor_init(&monitor);
-    monitor_set_start_guard(&monitor, monitor_may_start, &app);
-    monitor_app_client(&monitor, &monitor_client);
-    app_set_uart_client(&app, &monitor_client);
-    motor_observe(monitor_observer, &monitor);
+#if !defined(APP_NO_X2CSCOPE)
+    x2c_init(&x2c);
+    x2c_set_start_guard(&x2c, x2c_may_start, &app);
+    x2c_app_client(&x2c, &x2c_client);
+    app_set_uart_client(&app, &x2c_client);
+    motor_observe(x2c_observer, &x2c);
 #endif
     for (;;) {
         app_poll(&app);

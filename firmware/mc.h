@@ -174,7 +174,7 @@ typedef struct {
 
 /* ---- run-time gains -------------------------------------------------------- *
  * The PI gains a tuning interface may change while the motor runs (the live
- * monitor's whitelist). Values are the Q15 mantissas of pi_params_t; each
+ * X2Cscope target's tunables). Values are the Q15 mantissas of pi_params_t; each
  * loop's exponent (kp_shift) stays as built. */
 typedef enum {
     MC_GAIN_CUR_KP, /* d and q current PIs: Kp mantissa */

@@ -6,7 +6,7 @@
  * The dsPIC image has one mc_t. It lives here, in firmware/, and belongs to
  * the ADC interrupt, which steps it through the HAL's hooks (hal.h,
  * hal_hook_control/finish/slow, implemented in motor.c). Everything else,
- * the main loop (app.c) and the monitor alike, reaches it only through the
+ * the main loop (app.c) and the X2Cscope target alike, reaches it only through the
  * calls below, each of which runs the core's call with the interrupts that
  * step it masked (hal_critical_enter: CPU priority 7), so a request never
  * lands mid-step and a status is the snapshot of one period. The masked
@@ -17,7 +17,7 @@
  * firmware/motor.c implements it on the dsPIC. On the PC, where the caller
  * steps its own mc_t in the same thread, tools/sim/sim_mailbox.c
  * implements the mailbox calls (not motor_start, motor_observe) on that
- * motor, so the monitor and the main loop run there unchanged.
+ * motor, so the X2Cscope target and the main loop run there unchanged.
  */
 
 #include <stdbool.h>
@@ -52,7 +52,7 @@ const mc_t *motor_view(void);
  * For a few bytes: the interrupt waits for it. */
 void motor_copy(void *dst, const volatile void *src, uint8_t n);
 
-/* An observer of the running motor (e.g. the data monitor's recorder):
+/* An observer of the running motor (e.g. the X2Cscope target's scope):
  * called by the ADC interrupt once per period, after the duties are
  * written and the core's step is complete, so it never delays them. It
  * runs in the interrupt: constant time, no waiting, no UART. NULL removes

@@ -9,9 +9,9 @@
 /* ---- the whitelist ------------------------------------------------------------- */
 
 #if defined(X2C_READ_ONLY)
-#define X2C_TUNE_FLAGS X2C_ROW_READ /* the build switch: nothing is writable */
+#define X2C_TUNE_FLAGS (X2C_ROW_READ | X2C_ROW_CHANNEL) /* the build switch: nothing writable */
 #else
-#define X2C_TUNE_FLAGS (X2C_ROW_READ | X2C_ROW_TUNE)
+#define X2C_TUNE_FLAGS (X2C_ROW_READ | X2C_ROW_CHANNEL | X2C_ROW_TUNE)
 #endif
 
 #define X2C_MEMBER_SIZE(type, member) sizeof(((type *)0)->member)
@@ -21,7 +21,7 @@
 const x2c_row_t x2c_rows[] = {
 #define X2C_MOTOR_ROW(path, type, unit, fs)                                                        \
     {(uint16_t)offsetof(mc_t, path), (uint16_t)X2C_MEMBER_SIZE(mc_t, path), X2C_OBJ_MOTOR,         \
-     X2C_ROW_READ},
+     X2C_ROW_READ | X2C_ROW_CHANNEL},
     X2C_MOTOR_VARS(X2C_MOTOR_ROW)
 #undef X2C_MOTOR_ROW
 #define X2C_TUNE_ROW(field, min, max, unit, fs)                                                    \
@@ -123,8 +123,7 @@ static int16_t get_i16(const uint8_t *p)
 
 static uint32_t get_u32(const uint8_t *p)
 {
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-           ((uint32_t)p[3] << 24);
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
 
 static void put_u16(uint8_t *p, uint16_t v)
@@ -388,7 +387,7 @@ static const volatile uint8_t *resolve(const x2c_t *x, uint8_t source_type, uint
         return NULL;
     }
     row = find_row(x, addr, width, &p);
-    return (row != NULL && (row->flags & X2C_ROW_READ) != 0U) ? p : NULL;
+    return (row != NULL && (row->flags & X2C_ROW_CHANNEL) != 0U) ? p : NULL;
 }
 
 /* 12 01 00 state nch prescaler[2] {type addr[4] size}[nch]
@@ -577,9 +576,4 @@ void x2c_rx_byte(x2c_t *x, uint8_t byte)
 bool x2c_tx_byte(x2c_t *x, uint8_t *byte)
 {
     return lnet_tx_next(&x->tx, byte);
-}
-
-bool x2c_sample(x2c_t *x, uint16_t *at)
-{
-    return x2c_scope_sample(&x->scope, at);
 }

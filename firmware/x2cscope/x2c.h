@@ -1,4 +1,5 @@
-/* x2c.h - the X2Cscope target: the LNet services MPLAB X's X2CScope, Data Visualizer and pyx2cscope use. */
+/* x2c.h - the X2Cscope target: the LNet services MPLAB X's X2CScope, Data Visualizer and pyx2cscope
+ * use. */
 #ifndef X2C_H
 #define X2C_H
 
@@ -51,12 +52,12 @@
 #define X2C_SVC_LOAD_PARAM  0x11U
 #define X2C_SVC_SAVE_PARAM  0x12U
 
-#define X2C_PARAM_SCOPE    1U   /* the one parameter id: the scope */
-#define X2C_PROCESSOR_ID   0x8210U /* generic dsPIC: clients use 16-bit addresses */
-#define X2C_MONITOR_VER    5U
-#define X2C_APP_VER        1U
-#define X2C_READ_MAX       (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
-#define X2C_INFO_BYTES     44U
+#define X2C_PARAM_SCOPE       1U      /* the one parameter id: the scope */
+#define X2C_PROCESSOR_ID      0x8210U /* generic dsPIC: clients use 16-bit addresses */
+#define X2C_MONITOR_VER       5U
+#define X2C_APP_VER           1U
+#define X2C_READ_MAX          (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
+#define X2C_INFO_BYTES        44U
 #define X2C_SCOPE_STATE_BYTES 29U
 
 /* The dates device info reports, "MmmDDYYYY" and "HHMM": the target's
@@ -108,7 +109,10 @@ bool x2c_tx_byte(x2c_t *x, uint8_t *byte); /* the next byte to send, false if no
 
 /* ISR, once per PWM period after the core's step. True when the scope
  * stored a dataset (at byte *at of its buffer, when at is not NULL). */
-bool x2c_sample(x2c_t *x, uint16_t *at);
+static inline bool x2c_sample(x2c_t *x, uint16_t *at)
+{
+    return x2c_scope_sample(&x->scope, at);
+}
 
 /* The wire address of an object (x2c_obj_t). */
 uint16_t x2c_wire(const x2c_t *x, x2c_obj_t obj);

@@ -23,6 +23,10 @@ void x2c_scope_init(x2c_scope_t *s)
     }
     s->dataset = 1;
     s->used = X2C_SCOPE_BYTES;
+    s->nwords = 0;
+    for (i = 0; i < 2U * X2C_SCOPE_CHANNELS; i++) {
+        s->word[i] = NULL;
+    }
     s->run.wr = 0;
     s->run.trig_pos = 0;
     s->run.left = 0;
@@ -80,8 +84,37 @@ uint8_t x2c_scope_check(const x2c_scope_cfg_t *cfg)
         if (cfg->delay >= (int32_t)used) {
             return X2C_ERR_LIMIT; /* more history than the ring holds */
         }
+        if (cfg->delay < -(int32_t)X2C_SCOPE_WAIT_MAX * (int32_t)dataset) {
+            return X2C_ERR_LIMIT; /* a wait of hours, or an overflow */
+        }
     }
     return X2C_ERR_OK;
+}
+
+/* The interrupt's copy list (x2c_scope_t.word): the words of every
+ * channel when all are 2 or 4 bytes (their sources aligned: the target
+ * checked), returning their count; else each channel's start, returning 0. */
+static uint8_t words_of(const x2c_scope_cfg_t *cfg, const volatile void **word)
+{
+    uint8_t i, n = 0;
+    for (i = 0; i < cfg->nch; i++) {
+        if (cfg->size[i] == 1U) {
+            break;
+        }
+    }
+    if (i < cfg->nch) {
+        for (i = 0; i < cfg->nch; i++) {
+            word[i] = cfg->src[i];
+        }
+        return 0;
+    }
+    for (i = 0; i < cfg->nch; i++) {
+        word[n++] = cfg->src[i];
+        if (cfg->size[i] == 4U) {
+            word[n++] = cfg->src[i] + 2;
+        }
+    }
+    return n;
 }
 
 void x2c_scope_stop(x2c_scope_t *s)
@@ -98,10 +131,16 @@ void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
     }
     s->dataset = dataset_of(cfg);
     s->used = (uint16_t)(X2C_SCOPE_BYTES - X2C_SCOPE_BYTES % s->dataset);
+    s->nwords = words_of(cfg, s->word);
     s->run.wr = 0;
     s->run.trig_pos = 0;
-    s->run.left = (cfg->state == X2C_SCOPE_WAIT_TRIG && cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
-    s->run.wait = 0;
+    if (cfg->state == X2C_SCOPE_SAMPLE) {
+        s->run.left = s->used;
+    } else {
+        s->run.left = (cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
+    }
+    /* the negative delay in datasets, divided here, not in the interrupt */
+    s->run.wait = (cfg->delay < 0) ? (uint32_t)(-(cfg->delay / (int32_t)s->dataset)) : 0UL;
     s->run.div = 0;
     s->run.prev = 0;
     s->run.primed = false;
@@ -121,46 +160,62 @@ uint32_t x2c_scope_key(uint32_t raw, uint8_t dtype)
     return raw;
 }
 
-/* The trigger source's raw bytes, little-endian, n = 1, 2 or 4, aligned. */
-static uint32_t read_raw(const volatile uint8_t *p, uint8_t n)
-{
-    if (n == 1U) {
-        return *p;
-    }
-    if (n == 2U) {
-        return *(const volatile uint16_t *)(const volatile void *)p;
-    }
-    return (uint32_t) * (const volatile uint16_t *)(const volatile void *)p |
-           ((uint32_t) * (const volatile uint16_t *)(const volatile void *)(p + 2) << 16);
-}
-
-/* Did the source cross the level this call? */
+/* Did the source cross the level this call? The key (x2c_scope_key) is
+ * built from 16-bit halves: no 32-bit shift in the interrupt. */
 static bool edge(x2c_scope_t *s)
 {
     const x2c_scope_cfg_t *c = &s->cfg;
-    uint32_t key, prev;
+    const volatile uint8_t *p = c->trig_src;
+    uint32_t key, prev, level;
     bool was;
-    if (c->trig_src == NULL) {
+    if (p == NULL) {
         return true; /* auto */
     }
-    key = x2c_scope_key(read_raw(c->trig_src, (uint8_t)(c->trig_dtype & X2C_TRIG_SIZE)),
-                        c->trig_dtype);
+    switch (c->trig_dtype & (X2C_TRIG_SIZE | X2C_TRIG_FLOAT | X2C_TRIG_SIGNED)) {
+        case 1U:
+            key = *p;
+            break;
+        case 1U | X2C_TRIG_SIGNED:
+            key = (uint8_t)(*p ^ 0x80U);
+            break;
+        case 2U:
+            key = *(const volatile uint16_t *)(const volatile void *)p;
+            break;
+        case 2U | X2C_TRIG_SIGNED:
+            key = (uint16_t)(*(const volatile uint16_t *)(const volatile void *)p ^ 0x8000U);
+            break;
+        default: { /* 4 bytes: two aligned words */
+            uint16_t lo = *(const volatile uint16_t *)(const volatile void *)p;
+            uint16_t hi = *(const volatile uint16_t *)(const volatile void *)(p + 2);
+            if ((c->trig_dtype & X2C_TRIG_FLOAT) != 0U) {
+                if ((hi & 0x8000U) != 0U) { /* negative: the magnitude reversed */
+                    hi = (uint16_t)~hi;
+                    lo = (uint16_t)~lo;
+                } else {
+                    hi |= 0x8000U;
+                }
+            } else if ((c->trig_dtype & X2C_TRIG_SIGNED) != 0U) {
+                hi ^= 0x8000U;
+            }
+            key = ((uint32_t)hi << 16) | lo;
+            break;
+        }
+    }
     prev = s->run.prev;
     was = s->run.primed;
     s->run.prev = key;
     s->run.primed = true;
-    if (!was) {
-        return false;
+    level = c->trig_level;
+    if (c->rising) {
+        return was && prev < level && key >= level;
     }
-    return c->rising ? (prev < c->trig_level && key >= c->trig_level)
-                     : (prev > c->trig_level && key <= c->trig_level);
+    return was && prev > level && key <= level;
 }
 
 bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
 {
     x2c_scope_run_t *r = &s->run;
     uint8_t state = r->state;
-    uint8_t *d;
     uint8_t i;
 
     if (state == X2C_SCOPE_IDLE) {
@@ -171,8 +226,7 @@ bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
         bool fired = edge(s);
         if (fired && r->left == 0U) { /* armed: the history is in */
             if (s->cfg.delay < 0) {
-                state = X2C_SCOPE_DELAY;
-                r->wait = (uint32_t)(-(s->cfg.delay / (int32_t)s->dataset));
+                state = X2C_SCOPE_DELAY; /* r->wait was set by x2c_scope_start */
             } else {
                 state = X2C_SCOPE_POST_TRIG;
                 r->trig_pos = r->wr;
@@ -197,56 +251,109 @@ bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
         state = X2C_SCOPE_SAMPLE;
         r->wr = 0;
         r->trig_pos = 0;
+        r->left = s->used;
         r->state = state;
     }
 
-    /* one dataset: each channel's bytes in order */
-    d = &s->buf[r->wr];
-    for (i = 0; i < s->cfg.nch; i++) {
-        const volatile uint8_t *p = s->cfg.src[i];
-        switch (s->cfg.size[i]) {
+    /* one dataset */
+    if (s->nwords != 0U) {
+        /* every channel 2 or 4 bytes: the dataset is even, so is wr; one
+         * load and one store a word, unrolled (docs/x2cscope.md "Cycles") */
+        volatile uint16_t *d = (volatile uint16_t *)(volatile void *)&s->buf[r->wr];
+        const volatile void *const *w = s->word;
+        switch (s->nwords) {
+            case 16:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 15:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 14:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 13:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 12:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 11:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 10:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 9:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 8:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 7:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 6:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 5:
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
             case 4:
-                d[3] = p[3];
-                d[2] = p[2];
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 3:
+                *d++ = *(const volatile uint16_t *)*w++;
                 /* fall through */
             case 2:
-                d[1] = p[1];
+                *d++ = *(const volatile uint16_t *)*w++;
+                /* fall through */
+            case 1:
+                *d++ = *(const volatile uint16_t *)*w++;
                 /* fall through */
             default:
-                d[0] = p[0];
                 break;
         }
-        d += s->cfg.size[i];
+    } else {
+        /* a 1-byte channel among them: byte by byte */
+        uint8_t *d = &s->buf[r->wr];
+        for (i = 0; i < s->cfg.nch; i++) {
+            const volatile uint8_t *p = (const volatile uint8_t *)s->word[i];
+            switch (s->cfg.size[i]) {
+                case 4:
+                    d[3] = p[3];
+                    d[2] = p[2];
+                    /* fall through */
+                case 2:
+                    d[1] = p[1];
+                    /* fall through */
+                default:
+                    d[0] = p[0];
+                    break;
+            }
+            d += s->cfg.size[i];
+        }
     }
     if (at != NULL) {
         *at = r->wr;
     }
+    /* `left` counts the bytes still to record (SAMPLE, POST_TRIG) or the
+     * history still missing (WAIT_TRIG) */
     r->wr = (uint16_t)(r->wr + s->dataset);
-
-    switch (state) {
-        case X2C_SCOPE_SAMPLE:
-            if (r->wr >= s->used) {
-                r->state = X2C_SCOPE_IDLE; /* full: the pointer stays at `used` */
-            }
-            break;
-        case X2C_SCOPE_WAIT_TRIG:
-            if (r->wr >= s->used) {
-                r->wr = 0; /* the ring */
-            }
-            if (r->left != 0U) {
-                r->left = (r->left > s->dataset) ? (uint16_t)(r->left - s->dataset) : 0U;
-            }
-            break;
-        default: /* X2C_SCOPE_POST_TRIG */
-            if (r->wr >= s->used) {
-                r->wr = 0;
-            }
-            r->left = (uint16_t)(r->left - s->dataset);
-            if (r->left == 0U) {
-                r->wr = s->used; /* done: the pointer says full */
-                r->state = X2C_SCOPE_IDLE;
-            }
-            break;
+    if (state == X2C_SCOPE_WAIT_TRIG) {
+        if (r->wr >= s->used) {
+            r->wr = 0; /* the ring */
+        }
+        if (r->left != 0U) {
+            r->left = (r->left > s->dataset) ? (uint16_t)(r->left - s->dataset) : 0U;
+        }
+        return true;
+    }
+    r->left = (uint16_t)(r->left - s->dataset);
+    if (r->left == 0U) {
+        r->wr = s->used; /* done: the pointer says full */
+        r->state = X2C_SCOPE_IDLE;
+    } else if (r->wr >= s->used) {
+        r->wr = 0; /* POST_TRIG wraps round the ring */
     }
     return true;
 }

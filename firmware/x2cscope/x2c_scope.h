@@ -44,13 +44,14 @@
 #include <stdint.h>
 
 #ifndef X2C_SCOPE_BYTES
-/* The sample buffer, bytes. 480 = 2^5 x 3 x 5: whole datasets of 2, 4, 6,
- * 8, 10, 12, 16 and 32 bytes fill it exactly. docs/x2cscope.md, "RAM",
+/* The sample buffer, bytes. 360 = 2^3 x 3^2 x 5: whole datasets of 2, 4, 6,
+ * 8, 10, 12, 18, 20 and 24 bytes fill it exactly. docs/x2cscope.md, "RAM",
  * says why not more on the 2 KB dsPIC33FJ32MC204. */
-#define X2C_SCOPE_BYTES 480U
+#define X2C_SCOPE_BYTES 360U
 #endif
-#define X2C_SCOPE_CHANNELS 8U    /* most channels one dataset holds */
-#define X2C_SCOPE_VERSION  0x82U /* the scope's layout version (load parameter) */
+#define X2C_SCOPE_CHANNELS 8U     /* most channels one dataset holds */
+#define X2C_SCOPE_WAIT_MAX 65535L /* longest negative delay, datasets (3.3 s at 20 kHz) */
+#define X2C_SCOPE_VERSION  0x82U  /* the scope's layout version (load parameter) */
 
 /* Scope states (the protocol's numbers). */
 #define X2C_SCOPE_IDLE      0U
@@ -65,10 +66,10 @@
 #define X2C_TRIG_SIZE   0x0FU
 
 typedef struct {
-    uint8_t state; /* X2C_SCOPE_*: the interrupt's, the main loop's only while idle */
-    uint16_t wr;   /* next byte of the ring to write */
+    uint8_t state;     /* X2C_SCOPE_*: the interrupt's, the main loop's only while idle */
+    uint16_t wr;       /* next byte of the ring to write */
     uint16_t trig_pos; /* where the dataset at or after the edge was stored, bytes */
-    uint16_t left;     /* POST_TRIG: bytes still to record; WAIT_TRIG: history missing */
+    uint16_t left;     /* SAMPLE, POST_TRIG: bytes still to record; WAIT_TRIG: history missing */
     uint32_t wait;     /* DELAY: datasets still to wait */
     uint16_t div;      /* calls since the last dataset */
     uint32_t prev;     /* the trigger source's key at the last call */
@@ -94,6 +95,11 @@ typedef struct {
     x2c_scope_cfg_t cfg;
     uint8_t dataset; /* bytes per dataset */
     uint16_t used;   /* bytes of whole datasets the buffer holds */
+    /* What the interrupt copies: with every channel 2 or 4 bytes (nwords
+     * > 0), the dataset's nwords words from word[0..nwords-1], word-aligned
+     * at both ends; otherwise channel i's size[i] bytes from word[i]. */
+    uint8_t nwords;
+    const volatile void *word[2U * X2C_SCOPE_CHANNELS];
     x2c_scope_run_t run;
     uint8_t buf[X2C_SCOPE_BYTES];
 } x2c_scope_t;

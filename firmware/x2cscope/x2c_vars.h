@@ -36,8 +36,8 @@
 #define X2C_FS_VOLT (MC_VOLTAGE_FULLSCALE_V)
 #define X2C_FS_VBUS (BOARD_VBUS_FULLSCALE_V)
 #define X2C_FS_EMF  (SMC_EMF_FS_RATIO * MC_VOLTAGE_FULLSCALE_V) /* smc.h: E_FS */
-#define X2C_FS_DEG  180.0 /* a Q15 binary angle: 32768 = pi */
-#define X2C_FS_CODE 0.0   /* the raw value is the value */
+#define X2C_FS_DEG  180.0                                       /* a Q15 binary angle: 32768 = pi */
+#define X2C_FS_CODE 0.0                                         /* the raw value is the value */
 
 /* clang-format off */
 #define X2C_MOTOR_VARS(X)                                        \
@@ -81,8 +81,10 @@
  *   X(field, min, max, unit, full_scale)
  * The gains are the PI mantissas (Q15, exponent fixed at build time,
  * mc.h note 3): the build-time value / 8 .. x 8, at least 1: wide enough to
- * tune, narrow enough that a typo cannot zero a loop. speed_ref_rpm is the
- * pot's range (0: the pot again); run is S2 (1 start, 0 stop).
+ * tune, narrow enough that a typo cannot zero a loop. speed_ref_rpm, in
+ * rpm, is 0 (the pot again) or the pot's range, X2C_RPM_MIN..X2C_RPM_MAX:
+ * the values between are refused (X2C_ERR_LIMIT); run is S2 (1 start,
+ * 0 stop).
  */
 #define X2C_GAIN_MIN(g) ((int16_t)((g) / 8 > 0 ? (g) / 8 : 1))
 #define X2C_GAIN_MAX(g) ((int16_t)((int32_t)(g)*8 > 32767 ? 32767 : (int32_t)(g)*8))
@@ -95,7 +97,7 @@
     X(cur_ki,        X2C_GAIN_MIN(MC_CUR_KI), X2C_GAIN_MAX(MC_CUR_KI), "", X2C_FS_CODE) \
     X(spd_kp,        X2C_GAIN_MIN(MC_SPD_KP), X2C_GAIN_MAX(MC_SPD_KP), "", X2C_FS_CODE) \
     X(spd_ki,        X2C_GAIN_MIN(MC_SPD_KI), X2C_GAIN_MAX(MC_SPD_KI), "", X2C_FS_CODE) \
-    X(speed_ref_rpm, 0,                       X2C_RPM_MAX,             "rpm", 1.0)      \
+    X(speed_ref_rpm, 0,                       X2C_RPM_MAX,             "rpm", X2C_FS_CODE) \
     X(run,           0,                       1,                       "", X2C_FS_CODE)
 /* clang-format on */
 
@@ -107,10 +109,10 @@ typedef struct {
 } x2c_tune_t;
 
 /* Row counts: the motor's, the tunables', and the scope buffer's one. */
-#define X2C_COUNT_ROW(a, b, c, d) +1U
+#define X2C_COUNT_ROW(a, b, c, d)     +1U
 #define X2C_COUNT_TUNE(a, b, c, d, e) +1U
-#define X2C_MOTOR_ROWS (0U X2C_MOTOR_VARS(X2C_COUNT_ROW))
-#define X2C_TUNE_ROWS  (0U X2C_TUNABLES(X2C_COUNT_TUNE))
+#define X2C_MOTOR_ROWS                (0U X2C_MOTOR_VARS(X2C_COUNT_ROW))
+#define X2C_TUNE_ROWS                 (0U X2C_TUNABLES(X2C_COUNT_TUNE))
 /* X2C_TUNE_<field>: a tunable's number. */
 enum {
 #define X2C_TUNE_INDEX(field, min, max, unit, fs) X2C_TUNE_##field,
@@ -118,14 +120,15 @@ enum {
 #undef X2C_TUNE_INDEX
         X2C_TUNE_COUNT_
 };
-#define X2C_ROWS       (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U) /* + the scope buffer */
+#define X2C_ROWS (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U) /* + the scope buffer */
 
 /* The objects the rows lie in, and where each appears on the wire. */
 typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_COUNT } x2c_obj_t;
 
 /* Row flags. */
-#define X2C_ROW_READ 0x01U /* readable and usable as a scope channel or trigger */
-#define X2C_ROW_TUNE 0x02U /* writable through x2c_tune_apply */
+#define X2C_ROW_READ    0x01U /* readable */
+#define X2C_ROW_TUNE    0x02U /* writable, through the mailbox (x2c.c, tune_apply) */
+#define X2C_ROW_CHANNEL 0x04U /* a scope channel or trigger source (not the scope's own buffer) */
 
 typedef struct {
     uint16_t offset; /* in its object, bytes */

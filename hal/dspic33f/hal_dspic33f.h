@@ -196,9 +196,9 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L 
 #endif
 #define HAL_U1BRG ((uint16_t)((BOARD_FCY_HZ + 2L * HAL_UART_BAUD) / (4L * HAL_UART_BAUD) - 1L))
 /* The receive ring the U1RX interrupt fills, bytes (a power of two, <= 256):
- * a request waits here while the main loop is busy; the longest a client
- * sends before it waits for a reply is 80 bytes (a scope configuration). */
-#define HAL_UART_RX_RING 128u
+ * the bytes wait here while the main loop is busy elsewhere; 32 are 2.8 ms
+ * at 115200 Bd, far above the main loop's longest pass. */
+#define HAL_UART_RX_RING 32u
 /* U1RX's priority: above the slow step (2), below the ADC interrupt (5),
  * which pre-empts it; the handler is a few cycles a byte. */
 #define HAL_U1RX_IRQ_PRIORITY 3u

@@ -340,7 +340,7 @@ test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines(v
     (void)state;
     unsigned i;
     fake_tx_accept = false;
-    for (i = 0; i < 10U; i++) { /* 10 lines offered, the queue holds 6 */
+    for (i = 0; i < 10U; i++) { /* 10 lines offered, the queue holds 3 */
         ticks(APP_TELEMETRY_PERIOD_MS);
         app_service_uart(&app);
     }
@@ -348,12 +348,12 @@ test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines(v
     fake_tx_accept = true;
     app_service_uart(&app);
     printf("measured: %zu bytes queued while blocked (queue %u)\n", fake_tx_n, APP_TX_QUEUE_SIZE);
-    /* 127 usable bytes hold six 19-byte lines; the other four were dropped whole. */
+    /* 63 usable bytes hold three 19-byte lines; the other seven were dropped whole. */
     {
         const char *line = "S0 F0 R0 W0 A0 D0\r\n";
         unsigned k;
-        assert_int_equal(fake_tx_n, 6U * strlen(line));
-        for (k = 0; k < 6U; k++) {
+        assert_int_equal(fake_tx_n, 3U * strlen(line));
+        for (k = 0; k < 3U; k++) {
             assert_memory_equal(fake_tx + k * strlen(line), line, strlen(line));
         }
     }
@@ -396,7 +396,7 @@ static void test_s3_should_yield_the_reference_to_another_side_that_sets_it(void
     }
     assert_true(app.double_speed);
     assert_cmp(fake_ref_calls, >=, 1U);
-    /* the monitor sets a speed: S3's mode ends, no more board references */
+    /* X2Cscope sets a speed: S3's mode ends, no more board references */
     fake_status.ref_seq = (uint8_t)(fake_status.ref_seq + 1U);
     n = fake_ref_calls;
     ticks(5U * APP_STATUS_PERIOD_MS);

@@ -55,7 +55,7 @@ no-xc16)
 print)
   check_lines() { # check_lines <file> <label>
     local f=$1 n_cc n_src
-    n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/monitor/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+    n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/x2cscope/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
     n_cc=$(grep -c -- ' -c ' "$f")
     echo "measured: $2: $n_cc compile lines for $n_src sources, $(grep -c 'xc16-bin2hex' "$f") bin2hex line(s)"
     [ "$n_cc" -eq "$n_src" ] || fail "$2: $n_cc compile lines, $n_src sources"
@@ -99,7 +99,7 @@ EOS
   }
   : >"$tmp/log"
   run "no-such-file" || { cat "$tmp/stdout"; fail "fake build failed"; }
-  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/monitor/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/x2cscope/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
   echo "measured: fake XC16: $(grep -c ' -c ' "$tmp/log") compiles ($n_src sources), $(grep -c 'script=' "$tmp/log") link, $(grep -c bin2hex "$tmp/log") bin2hex"
   [ "$(grep -c ' -c ' "$tmp/log")" -eq "$n_src" ] || fail "not every source compiled"
   [ "$(grep -c 'script=p33FJ32MC204.gld' "$tmp/log")" -eq 1 ] || fail "not one link"
@@ -124,7 +124,7 @@ mplabx)
       <(grep -v '\.h</itemPath>' "$tmp/p/nbproject/configurations.xml"); then
     fail "firmware/an1078.X is out of date: run tools/firmware_build --mplabx mclv hurst"
   fi
-  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/monitor/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
+  n_src=$(cd "$root" && ls foc/*.c smc_estimator/*.c firmware/*.c firmware/x2cscope/*.c hal/dspic33f/*.c 2>/dev/null | wc -l)
   n_item=$(grep -c '<itemPath>\.\./\.\./.*\.c</itemPath>' "$committed")
   echo "measured: MPLAB X project: $n_item source items for $n_src sources"
   [ "$n_item" -eq "$n_src" ] || fail "project lists $n_item sources, the image has $n_src"
@@ -176,10 +176,10 @@ EOS
   [ -s "$tmp/out/mclv.hex" ] || fail "no hex"
   nm "$tmp/out/mclv.elf" | grep -q ' T _ADC1Interrupt$' || fail "no _ADC1Interrupt in the image"
   nm "$tmp/out/mclv.elf" | grep -q ' T main$' || fail "no main in the image"
-  nm "$tmp/out/mclv.elf" | grep -q ' T monitor_sample$' || fail "no monitor in the image"
+  nm "$tmp/out/mclv.elf" | grep -q ' T x2c_scope_sample$' || fail "no X2Cscope target in the image"
   (cd "$root" && gcc -std=c99 -Wall -Wextra -Werror -Wconversion -Wsign-conversion -Wshadow \
-    -DAPP_NO_MONITOR -DMC_BOARD_MCLV -DMC_MOTOR_HURST -Ifoc -Ismc_estimator -Ifirmware \
-    -c firmware/main.c -o "$tmp/main_nomon.o") || fail "main.c does not compile with -DAPP_NO_MONITOR"
+    -DAPP_NO_X2CSCOPE -DMC_BOARD_MCLV -DMC_MOTOR_HURST -Ifoc -Ismc_estimator -Ifirmware \
+    -c firmware/main.c -o "$tmp/main_nox2c.o") || fail "main.c does not compile with -DAPP_NO_X2CSCOPE"
   timeout 1 "$tmp/out/mclv.elf" >/dev/null 2>&1
   rc=$?
   echo "measured: host-compiled image: $(grep -c ' -c ' "$tmp/stdout") objects linked, run 1 s -> exit $rc (124 = still looping)"

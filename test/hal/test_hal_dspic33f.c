@@ -595,7 +595,8 @@ int main(void)
 #else
       cmocka_unit_test_setup(test_leds_should_drive_their_assigned_pins, setup),
 #endif
-      cmocka_unit_test_setup(test_hal_init_should_run_uart1_at_115200_baud_8n1_receiving_by_interrupt, setup),
+      cmocka_unit_test_setup(
+          test_hal_init_should_run_uart1_at_115200_baud_8n1_receiving_by_interrupt, setup),
 #if HAL_UART_TX_RP != HAL_RP_NONE
       cmocka_unit_test_setup(test_hal_init_should_map_uart1_to_its_assigned_pins, setup),
 #else
@@ -604,7 +605,8 @@ int main(void)
 #endif
       cmocka_unit_test_setup(test_uart_put_should_refuse_a_byte_when_the_transmitter_is_full,
                              setup),
-      cmocka_unit_test_setup(test_uart_get_should_pass_the_bytes_the_receive_interrupt_rings, setup),
+      cmocka_unit_test_setup(test_uart_get_should_pass_the_bytes_the_receive_interrupt_rings,
+                             setup),
       cmocka_unit_test_setup(test_tick_should_report_each_timer1_period_once, setup),
       cmocka_unit_test_setup(test_critical_section_should_raise_ipl_to_7_and_restore_it_nested,
                              setup),

@@ -1,385 +1,485 @@
-"""tools/scope against a fake device: short, corrupt, garbled and missing replies, a port that fails,
-bad ports, options and output paths. Whatever goes wrong, the tool ends with exactly one line on
-stderr and a non-zero exit status (never a traceback), resends a request only where the protocol
-allows it, and never writes a file it was not asked to write (nor half of one it was).
+"""tools/scope without a target: LNet frames (escaping of every field, both inverted checksums,
+every size, resynchronisation), the link's errors (no reply, a bad checksum, a reply for another
+service, every named error code), the scope's configuration bytes and the client's rotation, the
+variable map's reader, and the command's one-line failures (a missing port, an unknown variable
+name, a bad map file, an existing --csv / --png).
 
-usage: test_scope.py   (CTest: test_scope, with the project's .venv python)
+usage: test_scope.py   (CTest: test_scope, label unit, with the project's .venv python)
 """
 
+from __future__ import annotations
+
 import contextlib
+import importlib.util
 import io
 import os
+import random
 import struct
-import subprocess
 import sys
 import tempfile
-import time
 import unittest
-from collections.abc import Callable
+from collections import deque
+from dataclasses import dataclass
+from typing import Any
 
-from scope import cli as scope
-from scope import monproto as mp
+if __name__ == "__main__" and importlib.util.find_spec("yaml") is None:
+    print("SKIPPED: pyyaml is not installed (run tools/bootstrap)")
+    sys.exit(77)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCOPE_DIR = os.path.join(HERE, "..", "..", "tools", "scope")
+import yaml
 
-F_PWM = 20000
-VARS = [("speed_est", "rpm", 8_000_000), ("speed_ref", "rpm", 8_000_000), ("iq", "A", 4_400), ("id", "A", 4_400)]
-RPM_Q15 = round(2000 * 32768 / 8000)  # 2000 rpm on the 8000 rpm scale
-
-# A reply mutator: (request cmd, the reply frame the device would send) -> the bytes it sends.
-Mutator = Callable[[int, bytes], bytes]
+from scope import cli, lnet, varmap, x2c
 
 
-class FakeDevice:
-    """The firmware monitor's side of the protocol, enough for tools/scope: three variables, one
-    parameter, a stream of DATA frames after START, a motor that is in closed loop at once."""
-
-    def __init__(self, mutate: Mutator | None = None) -> None:
-        self.dec = mp.Decoder()
-        self.mutate = mutate
-        self.seen: list[tuple[int, bytes]] = []  # requests, in order
-        self.nch = 1
-        self.streaming = False
-        self.index = 0
-        self.data_mutate: Callable[[bytes], bytes] | None = None
-
-    def frame(self, cmd: int, payload: bytes) -> bytes:
-        out = mp.encode(cmd, payload)
-        return self.mutate(cmd & 0x7F if cmd != mp.CMD_DATA else cmd, out) if self.mutate else out
-
-    def reply(self, cmd: int, payload: bytes = b"") -> bytes:
-        return self.frame(cmd | mp.REPLY, payload)
-
-    def handle(self, cmd: int, p: bytes) -> bytes:
-        self.seen.append((cmd, p))
-        if cmd == mp.CMD_INFO:
-            return self.reply(cmd, struct.pack("<BBBBHIB", 1, len(VARS), 1, 4, 256, F_PWM, 40))
-        if cmd == mp.CMD_VAR_INFO:
-            name, unit, fs = VARS[p[0]]
-            return self.reply(cmd, struct.pack("<BBi", p[0], mp.KIND_Q15, fs) + name.encode() + b"\0" + unit.encode())
-        if cmd == mp.CMD_PARAM_INFO:
-            return self.reply(cmd, struct.pack("<Bhhh", 0, 1000, 125, 8000) + b"cur_kp")
-        if cmd == mp.CMD_SELECT:
-            self.nch = p[2]
-            return self.reply(cmd)
-        if cmd == mp.CMD_START:
-            self.streaming, self.index = True, 0
-            return self.reply(cmd, bytes(4))
-        if cmd == mp.CMD_STOP:
-            self.streaming = False
-            return self.reply(cmd)
-        if cmd == mp.CMD_STATUS:
-            return self.reply(cmd, struct.pack("<BBHB4BHHBBHhhBHH", 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0,
-                                               mp.STATE_CLOSED_LOOP, 0, RPM_Q15, RPM_Q15, 1, 0, 0))
-        return self.reply(cmd)  # MOTOR, SET_SPEED, SET_PARAM
-
-    def data_frame(self) -> bytes:
-        per = (mp.MAX_PAYLOAD - 4) // (2 * self.nch)
-        vals = [RPM_Q15 + k for k in range(per * self.nch)]
-        p = struct.pack("<BHB", 0, self.index & 0xFFFF, per) + struct.pack(f"<{len(vals)}h", *vals)
-        self.index += per
-        if self.data_mutate is not None:
-            p = self.data_mutate(p)
-        return self.frame(mp.CMD_DATA, p)
+def frame_of(data: bytes) -> lnet.Frame:
+    evs = lnet.Decoder().feed(lnet.encode(data))
+    assert len(evs) == 1 and isinstance(evs[0], lnet.Frame), evs
+    return evs[0]
 
 
-class FakePort:
-    """A pyserial stand-in wired to a FakeDevice (or to nothing: a silent line)."""
+class Frames(unittest.TestCase):
+    def test_device_info_request_should_be_five_bytes(self) -> None:
+        self.assertEqual(lnet.encode(b"\x00"), bytes((0x55, 0x01, 0x01, 0x00, 0x57)))
 
-    def __init__(self, dev: FakeDevice | None, garbage: bytes = b"", fail_reads_after: int = -1) -> None:
-        self.dev = dev
-        self.rx = bytearray(garbage)
-        self.reads = 0
-        self.fail_reads_after = fail_reads_after
-        self.closed = False
+    def test_every_reserved_byte_should_get_its_fill_in_size_node_and_data(self) -> None:
+        # SIZE 0x55 and 0x02, NODE 0x55 and 0x02, DATA 0x55 and 0x02
+        for size in (0x55, 0x02):
+            wire = lnet.encode(bytes(size))
+            self.assertEqual(wire[1:3], bytes((size, 0)))
+        for node in (0x55, 0x02):
+            wire = lnet.encode(b"\x09", node)
+            self.assertEqual(wire[2:4], bytes((node, 0)))
+            evs = lnet.Decoder().feed(wire)
+            self.assertEqual(evs, [lnet.Frame(node, b"\x09", False)])
+        wire = lnet.encode(b"\x0a\x55\x02\x03")
+        self.assertEqual(wire[3:9], b"\x0a\x55\x00\x02\x00\x03")
+        self.assertEqual(len(wire), 4 + 4 + 2)  # SYN SIZE NODE CRC, the data, two fills
 
-    @property
-    def in_waiting(self) -> int:
-        return len(self.rx)
+    def test_both_inverted_checksums_should_be_sent_and_taken(self) -> None:
+        for raw, sent in ((0x55, 0xAA), (0x02, 0xFD)):
+            # SYN + SIZE 2 + NODE 1 + 0x09 + x == raw (mod 256)
+            x = (raw - 0x55 - 2 - 1 - 0x09) % 256
+            data = bytes((0x09, x))
+            wire = lnet.encode(data)
+            self.assertEqual(wire[-1], sent, f"sum 0x{raw:02X}")
+            f = frame_of(data)
+            self.assertTrue(f.crc_inverted)
+            self.assertEqual(f.data, data)
+            # the raw sum in its place is a bad checksum
+            evs = lnet.Decoder().feed(wire[:-1] + bytes((raw,)))
+            self.assertFalse(any(isinstance(e, lnet.Frame) for e in evs), evs)
 
-    def write(self, data: bytes, /) -> int:
-        if self.dev is not None:
-            for cmd, p in self.dev.dec.feed(bytes(data)):
-                self.rx += self.dev.handle(cmd, p)
-        return len(data)
+    def test_every_size_should_round_trip_with_random_data(self) -> None:
+        rnd = random.Random(16)
+        dec = lnet.Decoder()
+        for n in range(1, 256):
+            data = bytes(rnd.choice((0x55, 0x02, 0x00, rnd.randrange(256))) for _ in range(n))
+            self.assertEqual(dec.feed(lnet.encode(data)), [lnet.Frame(1, data, lnet.crc_raw(n, 1, data)
+                                                                      in lnet.RESERVED)])
 
-    def read(self, size: int = 1) -> bytes:
-        self.reads += 1
-        if 0 <= self.fail_reads_after < self.reads:
-            raise OSError(5, "Input/output error (the adapter was unplugged)")
-        if not self.rx and self.dev is not None and self.dev.streaming:
-            self.rx += self.dev.data_frame()
-        if not self.rx:
-            time.sleep(0.001)  # a port's read timeout, short
-            return b""
-        out = bytes(self.rx[:size])
-        del self.rx[:size]
+    def test_frames_byte_by_byte_after_noise_should_all_arrive(self) -> None:
+        rnd = random.Random(78)
+        dec = lnet.Decoder()
+        got = 0
+        for _ in range(2000):
+            noise = bytes(rnd.randrange(256) for _ in range(rnd.randrange(8)))
+            data = bytes(rnd.randrange(256) for _ in range(rnd.randrange(1, 20)))
+            for b in noise + lnet.encode(data):
+                for ev in dec.feed(bytes((b,))):
+                    if isinstance(ev, lnet.Frame) and ev.data == data:
+                        got += 1
+        # a frame is lost only when the noise ended inside a frame that swallowed the SYN
+        self.assertGreater(got, 1950)
+
+    def test_a_frame_cut_short_should_not_hide_the_next(self) -> None:
+        first = lnet.encode(b"\x09\x01\x02\x03")
+        second = lnet.encode(b"\x00")
+        for cut in range(1, len(first)):
+            evs = lnet.Decoder().feed(first[:cut] + second)
+            self.assertIn(lnet.Frame(1, b"\x00", False), evs, f"cut after {cut}")
+
+    def test_a_02_without_its_fill_should_be_a_bad_frame(self) -> None:
+        wire = bytearray(lnet.encode(b"\x09\x02\x07"))
+        del wire[5]  # the fill after 0x02
+        evs = lnet.Decoder().feed(bytes(wire))
+        self.assertEqual([type(e) for e in evs], [lnet.BadFrame])
+        assert isinstance(evs[0], lnet.BadFrame)
+        self.assertEqual(evs[0].why, "fill")
+
+    def test_out_of_range_frames_should_be_refused(self) -> None:
+        for data in (b"", bytes(256)):
+            with self.assertRaises(ValueError):
+                lnet.encode(data)
+
+
+class Pty(unittest.TestCase):
+    def test_a_pty_should_carry_every_byte_value_both_ways_unchanged(self) -> None:
+        try:
+            master, slave = os.openpty()
+        except OSError as e:
+            self.skipTest(f"no pseudo-terminal: {e}")
+        try:
+            name = os.ttyname(slave)
+            t = lnet.open_transport(name, 115200)
+            self.assertIsInstance(t, lnet.TtyTransport)  # a pty never needs pyserial
+            try:
+                every = bytes(range(256)) * 2  # XON, XOFF, CR, ^C, ^D ... are data
+                os.write(master, every)
+                got = b""
+                for _ in range(50):
+                    got += t.read(0.05)
+                    if len(got) >= len(every):
+                        break
+                self.assertEqual(got, every)
+                t.write(every)
+                back = b""
+                while len(back) < len(every):
+                    back += os.read(master, 4096)
+                self.assertEqual(back, every)
+            finally:
+                t.close()
+        finally:
+            os.close(master)
+            os.close(slave)
+
+
+# ---- the link, against scripted transports ---------------------------------------------------
+
+
+class Scripted:
+    """A transport that answers each write with the next scripted reply (bytes, or None: silence)."""
+
+    def __init__(self, *replies: bytes | None) -> None:
+        self.replies: deque[bytes | None] = deque(replies)
+        self.sent: list[bytes] = []
+        self.pending = b""
+
+    def write(self, data: bytes) -> None:
+        self.sent.append(data)
+        r = self.replies.popleft() if self.replies else None
+        self.pending += r or b""
+
+    def read(self, timeout: float) -> bytes:
+        out, self.pending = self.pending, b""
         return out
 
+    def drain(self) -> None:
+        self.pending = b""
+
     def close(self) -> None:
-        self.closed = True
+        pass
 
 
-def run(argv: list[str], port: FakePort | None = None) -> tuple[int, str, str, bool]:
-    """tools/scope's main() in this process: (exit status, stdout, stderr, port opened)."""
-    out, err = io.StringIO(), io.StringIO()
-    opened = []
-
-    def opener(args: object) -> FakePort:
-        opened.append(True)
-        assert port is not None
-        return port
-
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = scope.main(argv, opener=opener)
-        except SystemExit as e:  # argparse's refusal
-            code = e.code if isinstance(e.code, int) else 1
-    return code, out.getvalue(), err.getvalue(), bool(opened)
+def reply(*data: int) -> bytes:
+    return lnet.encode(bytes(data))
 
 
-FAST = ["--reply-timeout", "0.05"]
+INFO = struct.pack("<HHBH", 5, 1, 255, 0x8210) + b"Nov2520260000Nov2520260000" + struct.pack("<BHII", 4, 0, 0, 0)
 
 
-def short(cmd_to_cut: int, keep: int) -> Mutator:
-    """Cuts the reply to one command to `keep` payload bytes, with a valid CRC (a foreign or broken
-    firmware, not line noise)."""
+class LinkErrors(unittest.TestCase):
+    def target(self, *replies: bytes | None) -> tuple[x2c.Target, Scripted]:
+        s = Scripted(*replies)
+        return x2c.Target(lnet.Link(s, timeout=0.05)), s
 
-    def m(cmd: int, frame: bytes) -> bytes:
-        if cmd != cmd_to_cut:
-            return frame
-        return mp.encode(frame[2], frame[3 : 3 + keep])
+    def test_device_info_should_parse_and_set_16_bit_addresses(self) -> None:
+        t, s = self.target(lnet.encode(b"\x00\x00" + INFO))
+        i = t.device_info()
+        self.assertEqual((i.processor_id, i.monitor_version, i.max_frame, i.dsp_state), (0x8210, 5, 255, 4))
+        self.assertEqual((i.monitor_date, i.monitor_time), ("Nov252026", "0000"))
+        self.assertEqual(s.sent, [bytes((0x55, 1, 1, 0, 0x57))])
 
-    return m
+    def test_an_unknown_processor_id_should_be_refused_by_name(self) -> None:
+        bad = INFO[:5] + struct.pack("<H", 0x1234) + INFO[7:]
+        t, _ = self.target(lnet.encode(b"\x00\x00" + bad))
+        with self.assertRaisesRegex(x2c.X2CError, "processor id 0x1234 is unknown.*address width"):
+            t.device_info()
+
+    def test_no_reply_should_time_out(self) -> None:
+        t, _ = self.target(None)
+        with self.assertRaisesRegex(lnet.LNetError, "no reply to service 0x00"):
+            t.device_info()
+
+    def test_a_bad_checksum_should_be_an_error(self) -> None:
+        good = lnet.encode(b"\x01\x00\x04")
+        t, _ = self.target(good[:-1] + bytes(((good[-1] + 1) & 0xFF,)))
+        with self.assertRaisesRegex(lnet.LNetError, "bad checksum"):
+            t.target_state()
+
+    def test_a_reply_for_another_service_should_be_an_error(self) -> None:
+        t, _ = self.target(reply(0x09, 0x00, 0x12, 0x34))
+        with self.assertRaisesRegex(lnet.LNetError, "reply for service 0x09 .* request for service 0x01"):
+            t.target_state()
+
+    def test_every_error_code_should_be_raised_with_its_name(self) -> None:
+        for code, name in x2c.ERROR_NAMES.items():
+            t, _ = self.target(reply(0x0A, code))
+            with self.assertRaises(x2c.TargetError) as cm:
+                t.write(0x0800, 2, b"\x01\x00")
+            self.assertEqual((cm.exception.code, cm.exception.name, cm.exception.service), (code, name, 0x0A))
+            self.assertIn(f"0x{code:02X} ({name}", str(cm.exception))
+
+    def test_a_read_should_go_in_chunks_of_253_bytes(self) -> None:
+        replies = [reply(0x09, 0, *([7] * n)) for n in (253, 253, 94)]
+        t, s = self.target(*replies)
+        self.assertEqual(t.read(0x0900, 600), bytes([7] * 600))
+        self.assertEqual([lnet.Decoder().feed(w)[0] for w in s.sent],
+                         [lnet.Frame(1, bytes((0x09, a & 0xFF, a >> 8, n, 1)), lnet.crc_raw(5, 1, bytes(
+                             (0x09, a & 0xFF, a >> 8, n, 1))) in lnet.RESERVED)
+                          for a, n in ((0x0900, 253), (0x09FD, 253), (0x0AFA, 94))])
+
+    def test_a_short_read_reply_should_be_an_error(self) -> None:
+        t, _ = self.target(reply(0x09, 0, 1))
+        with self.assertRaisesRegex(x2c.X2CError, "1 bytes back, asked for 2"):
+            t.read(0x0800, 2, 2)
 
 
-class ScopeFailsInOneLine(unittest.TestCase):
+# ---- the scope's bytes and the rotation ----------------------------------------------------------
+
+
+class ScopeBytes(unittest.TestCase):
+    def test_a_triggered_configuration_should_be_laid_out_as_the_protocol_says(self) -> None:
+        cfg = x2c.ScopeConfig((x2c.Channel(0x1102, 2, "S"), x2c.Channel(0x1020, 4, "U")), 3,
+                              x2c.Trigger(0x1102, 2, "S", -100, delay=10, rising=False))
+        want = (bytes((1, 2, 3, 0)) + bytes((0, 0x02, 0x11, 0, 0, 2)) + bytes((0, 0x20, 0x10, 0, 0, 4))
+                + bytes((0x80 | 0x20 | 2, 0, 0x02, 0x11, 0, 0)) + struct.pack("<h", -100)
+                + struct.pack("<i", 60) + bytes((0, 1)))
+        self.assertEqual(cfg.encode(), want)
+
+    def test_negative_delay_auto_and_float_should_encode(self) -> None:
+        cfg = x2c.ScopeConfig((x2c.Channel(0x1000, 4, "F"),), 0, x2c.Trigger(0x1000, 4, "F", 1.5, delay=-3, auto=True))
+        b = cfg.encode()
+        self.assertEqual(b[10], 0x80 | 0x40 | 0x20 | 4)
+        self.assertEqual(struct.unpack("<f", b[16:20])[0], 1.5)
+        self.assertEqual(struct.unpack("<i", b[20:24])[0], -12)
+        self.assertEqual(b[24:], bytes((1, 0)))
+
+    def test_no_trigger_should_sample_until_full(self) -> None:
+        b = x2c.ScopeConfig((x2c.Channel(0x1000, 2),)).encode()
+        self.assertEqual(b[0], 2)
+        self.assertEqual(len(b), 4 + 6 + 6 + 2 + 4 + 2)
+
+    def test_a_level_that_does_not_fit_should_be_refused(self) -> None:
+        cfg = x2c.ScopeConfig((x2c.Channel(0x1000, 1),), 0, x2c.Trigger(0x1000, 1, "U", 300))
+        with self.assertRaisesRegex(x2c.X2CError, "does not fit"):
+            cfg.encode()
+
+    def test_scope_state_should_read_29_bytes_with_a_signed_delay(self) -> None:
+        raw = struct.pack("<BBHIIiiIIB", 0, 2, 0, 480, 0x0900, -24, 0, 480, 480, 0x82)
+        st = x2c.ScopeState.parse(raw)
+        self.assertEqual((st.trigger_delay, st.buffer_address, st.version, st.done), (-24, 0x0900, 0x82, True))
+        with self.assertRaises(x2c.X2CError):
+            x2c.ScopeState.parse(raw[:-1])
+
+    def test_rotation_should_put_the_oldest_dataset_first(self) -> None:
+        cfg = x2c.ScopeConfig((x2c.Channel(0, 2),), 0, x2c.Trigger(0, 2, "U", 5, delay=3))
+        raw = b"".join(struct.pack("<H", i) for i in range(10))
+        for trig in range(10):
+            st = x2c.ScopeState(0, 1, 0, 20, 0x0900, 6, 2 * trig, 20, 20, 0x82)
+            cap = x2c.split_and_rotate(cfg, st, raw)
+            self.assertEqual(cap.channel(0)[3], trig, f"trigger at dataset {trig}")
+            self.assertEqual(cap.shift, (trig - 3) % 10)
+            self.assertEqual(sorted(cap.channel(0)), list(range(10)))
+        neg = x2c.ScopeConfig(cfg.channels, 0, x2c.Trigger(0, 2, "U", 5, delay=-3))
+        st = x2c.ScopeState(0, 1, 0, 20, 0x0900, -6, 8, 20, 20, 0x82)
+        self.assertEqual(x2c.split_and_rotate(neg, st, raw).channel(0), list(range(10)))
+
+
+# ---- the map ----------------------------------------------------------------------------------------
+
+ROWS = [
+    varmap.Var("motor.smc.omega", 0x1102, 2, "S", "int", "rpm", 8000.0),
+    varmap.Var("motor.state", 0x1020, 4, "U", "long unsigned int"),
+    varmap.Var("motor.smc.valid", 0x110E, 1, "B", "bool"),
+    varmap.Var("x2c.tune.cur_kp", 0x0800, 2, "S", "int", "", 0.0, True, 2497, 32767),
+]
+
+
+@dataclass
+class VariableInfo:
+    """pyx2cscope's VariableInfo fields (pyx2cscope/variable/variable.py), to load as it does."""
+
+    name: str
+    type: str
+    byte_size: int
+    bit_size: int
+    bit_offset: int
+    address: int
+    array_size: int
+    valid_values: dict[str, int]
+
+
+def load_as_pyx2cscope(text: str) -> Any:
+    """yaml.load with FullLoader and a !VariableInfo constructor, as pyx2cscope's import_variables."""
+
+    class Loader(yaml.FullLoader):
+        pass
+
+    def construct(loader: yaml.FullLoader, node: yaml.MappingNode) -> VariableInfo:
+        values: dict[str, Any] = {str(k): v for k, v in loader.construct_mapping(node).items()}
+        return VariableInfo(**values)
+
+    Loader.add_constructor("!VariableInfo", construct)
+    return yaml.load(text, Loader=Loader)
+
+
+class Map(unittest.TestCase):
+    def test_the_dump_should_load_as_pyx2cscope_loads_it(self) -> None:
+        doc = load_as_pyx2cscope(varmap.dump(ROWS))
+        self.assertEqual(set(doc), {"variables", "registers", "an1078"})
+        v = doc["variables"]["motor.smc.omega"]
+        self.assertEqual(v, VariableInfo("motor.smc.omega", "int", 2, 0, 0, 0x1102, 0, {}))
+        self.assertEqual(doc["registers"], {})
+        self.assertEqual(doc["an1078"]["x2c.tune.cur_kp"],
+                         {"unit": "", "full_scale": 0.0, "tunable": True, "min": 2497, "max": 32767})
+
+    def test_the_dump_should_read_back_the_same_rows(self) -> None:
+        vm = varmap.parse_map(varmap.dump(ROWS))
+        self.assertTrue(vm.has_units)
+        self.assertEqual(list(vm.vars.values()), ROWS)
+        self.assertAlmostEqual(vm.get("motor.smc.omega").to_eng(4096), 1000.0)
+        self.assertEqual(vm.get("motor.state").to_eng(3), 3.0)
+
+    def test_a_map_without_our_key_should_load_without_units(self) -> None:
+        doc = yaml.safe_load(varmap.dump(ROWS).replace("!VariableInfo", ""))
+        del doc["an1078"]
+        vm = varmap.parse_map(yaml.safe_dump(doc))
+        self.assertFalse(vm.has_units)
+        v = vm.get("motor.smc.omega")
+        self.assertEqual((v.unit, v.full_scale, v.tunable, v.kind, v.size), ("", 0.0, False, "S", 2))
+
+    def test_bad_maps_should_be_one_line_errors(self) -> None:
+        good = varmap.dump(ROWS)
+        for text, want in (("a: [", "not YAML"), ("- 1\n", "no 'variables'"), ("variables: 3\n", "no 'variables'"),
+                           (good.replace("type: int", "type: struct foo", 1), "not one this client reads"),
+                           (good.replace("byte_size: 2", "byte_size: 4", 1), "do not fit"),
+                           (good.replace("address: 4354", "address: x", 1), "not a whole number"),
+                           ("variables: {}\n", "no variables")):
+            with self.assertRaises(varmap.MapError) as cm:
+                varmap.parse_map(text, "m.yml")
+            self.assertIn(want, str(cm.exception))
+            self.assertNotIn("\n", str(cm.exception))
+
+    def test_an_unknown_name_should_say_so(self) -> None:
+        vm = varmap.parse_map(varmap.dump(ROWS))
+        with self.assertRaisesRegex(varmap.MapError, "unknown variable 'omega'.*motor.smc.omega"):
+            vm.get("omega")
+
+
+# ---- the command's failures ----------------------------------------------------------------------
+
+
+class Command(unittest.TestCase):
     def setUp(self) -> None:
-        self.tmp = tempfile.TemporaryDirectory(prefix="test_scope_")
-        self.dir = self.tmp.name
+        self.tmp = tempfile.TemporaryDirectory()
+        self.map = self.path("m.yml")
+        with open(self.map, "w", encoding="utf-8") as f:
+            f.write(varmap.dump(ROWS))
 
     def tearDown(self) -> None:
         self.tmp.cleanup()
 
-    def assertOneLine(self, err: str, *want: str) -> None:
-        self.assertNotIn("Traceback", err)
-        self.assertEqual(err.count("\n"), 1, f"want exactly one line on stderr, got {err!r}")
+    def path(self, name: str) -> str:
+        return os.path.join(self.tmp.name, name)
+
+    def run_cli(self, *argv: str, opener: cli.Opener | None = None) -> tuple[int, str, str]:
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                rc = cli.main(list(argv), opener) if opener else cli.main(list(argv))
+            except SystemExit as e:  # argparse's usage errors
+                rc = int(e.code or 0)
+        return rc, out.getvalue(), err.getvalue()
+
+    def assertOneLine(self, rc: int, err: str, code: int, *want: str) -> None:
+        self.assertEqual(rc, code, err)
+        self.assertEqual(len(err.splitlines()), 1, err)
         self.assertTrue(err.startswith("scope: "), err)
+        self.assertNotIn("Traceback", err)
         for w in want:
             self.assertIn(w, err)
 
-    def path(self, name: str) -> str:
-        return os.path.join(self.dir, name)
+    def test_list_should_show_address_type_access_range_and_unit(self) -> None:
+        rc, out, err = self.run_cli("--map", self.map, "list")
+        self.assertEqual(rc, 0, err)
+        line = next(ln for ln in out.splitlines() if ln.startswith("x2c.tune.cur_kp"))
+        self.assertEqual(line.split()[1:4], ["0x0800", "int", "RW"])
+        self.assertIn("2497..32767", line)
+        self.assertIn("rpm (8000 rpm = 32768)", out)
 
-    def existing(self, name: str) -> str:
-        p = self.path(name)
-        with open(p, "w") as f:
-            f.write("an earlier recording\n")
-        return p
+    def test_a_missing_port_should_be_one_line(self) -> None:
+        rc, _, err = self.run_cli("--port", self.path("no-such-tty"), "info")
+        self.assertOneLine(rc, err, 1, "cannot open port", "No such file")
+        rc, _, err = self.run_cli("--port", self.map, "info")
+        self.assertOneLine(rc, err, 1, "not a terminal")
+        rc, _, err = self.run_cli("--map", self.map, "read", "motor.state")
+        self.assertOneLine(rc, err, 2, "needs --port")
+        rc, _, err = self.run_cli("--port", "tcp://127.0.0.1:1", "info")
+        self.assertOneLine(rc, err, 1, "cannot connect to 127.0.0.1:1")
 
-    def assertUntouched(self, p: str) -> None:
-        with open(p) as f:
-            self.assertEqual(f.read(), "an earlier recording\n")
-        self.assertEqual([n for n in os.listdir(self.dir) if n.startswith(".scope-")], [], "a temporary left behind")
+    def test_an_unknown_variable_should_be_one_line_before_the_port_opens(self) -> None:
+        for argv in (("read", "motor.nope"), ("write", "nope", "1"), ("capture", "motor.state", "--trigger", "nope")):
+            rc, _, err = self.run_cli("--port", self.path("no-such-tty"), "--map", self.map, *argv)
+            self.assertOneLine(rc, err, 2, "unknown variable")
 
-    # ---- the fake device itself: a clean session works ----
-    def test_a_clean_headless_session_should_write_the_csv_and_png(self) -> None:
-        dev = FakeDevice()
-        csv_path, png_path = self.path("run.csv"), self.path("run.png")
-        code, _out, err, _ = run(["--port", "fake", "--headless", "--channels", "speed_est,iq", "--decim", "100",
-                                 "--duration", "0.1", "--start-rpm", "2000", "--settle", "0", "--stop",
-                                 "--csv", csv_path, "--png", png_path], FakePort(dev))
-        self.assertEqual((code, err), (0, ""))
-        with open(csv_path) as f:
-            rows = f.read().splitlines()
-        self.assertEqual(rows[0], "index,t_s,speed_est_rpm,iq_A,speed_est_raw,iq_raw")
-        self.assertEqual(len(rows), 1 + 20)  # 0.1 s at 20 kHz / 100
-        with open(png_path, "rb") as f:
-            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
-        self.assertIn((mp.CMD_MOTOR, bytes([mp.MOTOR_STOP])), dev.seen)
+    def test_a_bad_map_file_should_be_one_line(self) -> None:
+        bad = self.path("bad.yml")
+        for text in ("variables: [1, 2]\n", "\x00\x01 :", "variables:\n  x: !VariableInfo {address: 1}\n"):
+            with open(bad, "w", encoding="utf-8") as f:
+                f.write(text)
+            rc, _, err = self.run_cli("--map", bad, "list")
+            self.assertOneLine(rc, err, 1, "--map")
+        rc, _, err = self.run_cli("--map", self.path("none.yml"), "list")
+        self.assertOneLine(rc, err, 1, "No such file")
+        rc, _, err = self.run_cli("list")
+        self.assertOneLine(rc, err, 2, "needs --map")
 
-    def test_written_files_should_get_the_umask_or_keep_their_mode(self) -> None:
-        old = os.umask(0o022)
-        try:
-            csv_path, png_path = self.path("new.csv"), self.existing("old.png")
-            os.chmod(png_path, 0o640)
-            code, _, err, _ = run(["--port", "fake", "--headless", "--channels", "speed_est", "--decim", "100",
-                                   "--duration", "0.05", "--csv", csv_path, "--png", png_path],
-                                  FakePort(FakeDevice()))
-            self.assertEqual((code, err), (0, ""))
-            self.assertEqual(os.stat(csv_path).st_mode & 0o777, 0o644)  # a new file: 0666 less the umask
-            self.assertEqual(os.stat(png_path).st_mode & 0o777, 0o640)  # a replaced one keeps its mode
-        finally:
-            os.umask(old)
+    def test_an_existing_csv_or_png_should_not_be_replaced(self) -> None:
+        for opt, name in (("--csv", "c.csv"), ("--png", "p.png")):
+            p = self.path(name)
+            with open(p, "w", encoding="utf-8") as f:
+                f.write("keep")
+            rc, _, err = self.run_cli("--port", self.path("no-such-tty"), "--map", self.map, "capture",
+                                      "motor.smc.omega", opt, p)
+            self.assertOneLine(rc, err, 2, "exists: not replaced", "--force")
+            with open(p, encoding="utf-8") as f:
+                self.assertEqual(f.read(), "keep")
+        # with --force the file check passes and the port is what fails
+        rc, _, err = self.run_cli("--port", self.path("no-such-tty"), "--map", self.map, "capture",
+                                  "motor.smc.omega", "--csv", self.path("c.csv"), "--force")
+        self.assertOneLine(rc, err, 1, "cannot open port")
 
-    # ---- short, corrupt and missing replies ----
-    def test_a_short_info_reply_should_end_in_one_line_and_leave_the_csv_alone(self) -> None:
-        csv_path = self.existing("run.csv")
-        code, _, err, _ = run(["--port", "fake", "--headless", "--csv", csv_path] + FAST,
-                              FakePort(FakeDevice(short(mp.CMD_INFO, 5))))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x01: corrupt reply: 5 bytes")
-        self.assertUntouched(csv_path)
+    def test_bad_capture_options_should_be_usage_errors(self) -> None:
+        base = ("--port", self.path("none"), "--map", self.map, "capture")
+        for argv, want in (((*base, "motor.state", "--delay", "3"), "only with --trigger"),
+                           ((*base, "motor.state", "--png", self.path("x.jpg")), "must end in .png"),
+                           ((*base, *(["motor.state"] * 9)), "1..8 channels"),
+                           ((*base, "motor.state", "--trigger", "motor.smc.omega", "--level", "9000"), "outside"),
+                           ((*base, "motor.state", "--trigger", "motor.state", "--level", "0.5"), "whole number"),
+                           ((*base, "motor.state", "--prescaler", "-1"), "outside"),
+                           (("--port", "x", "--map", self.map, "write", "x2c.tune.cur_kp", "1.5"), "not a whole"),
+                           (("--port", "x", "--map", self.map, "write", "x2c.tune.cur_kp", "40000"), "does not fit"),
+                           (("frobnicate",), "invalid choice")):
+            rc, _, err = self.run_cli(*argv)
+            self.assertOneLine(rc, err, 2, want)
 
-    def test_a_short_status_reply_should_end_in_one_line_and_stop_the_motor(self) -> None:
-        dev = FakeDevice(short(mp.CMD_STATUS, 10))
-        code, _, err, _ = run(["--port", "fake", "--headless", "--start-rpm", "2000", "--stop"] + FAST,
-                              FakePort(dev))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x08: corrupt reply: 10 bytes")
-        self.assertEqual(dev.seen[-1], (mp.CMD_MOTOR, bytes([mp.MOTOR_STOP])), "--stop on a failure")
+    def test_a_refused_write_should_exit_1_naming_the_code(self) -> None:
+        def opener(port: str, baud: int) -> lnet.Transport:
+            return Scripted(lnet.encode(b"\x00\x00" + INFO), reply(0x0A, 0x42), reply(0x09, 0, 0x0E, 0x4E))
 
-    def test_a_silent_device_should_be_asked_three_times_then_end_in_one_line(self) -> None:
-        t0 = time.monotonic()
-        code, _, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(None))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x01: no reply within 0.05 s (sent 3 times)")
-        self.assertLess(time.monotonic() - t0, 2.0)
+        rc, out, err = self.run_cli("--port", "fake", "--map", self.map, "write", "x2c.tune.cur_kp", "1",
+                                    opener=opener)
+        self.assertOneLine(rc, err, 1, "0x42 (limit", "it reads 19982")
+        self.assertEqual(out, "")
 
-    def test_garbage_only_should_end_in_one_line(self) -> None:
-        noise = bytes((k * 37 + 11) & 0xFF for k in range(3000)).replace(b"\xa5", b"\x00")
-        code, _, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(None, garbage=noise))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "no reply")
+    def test_a_corrupt_reply_should_be_one_line(self) -> None:
+        def opener(port: str, baud: int) -> lnet.Transport:
+            good = lnet.encode(b"\x00\x00" + INFO)
+            return Scripted(good[:-1] + bytes(((good[-1] ^ 1),)))
 
-    def test_garbage_before_the_replies_should_be_skipped(self) -> None:
-        noise = b"\x00\xa5\x30\xff" * 50  # a SOF with an impossible LEN among it
-        code, out, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(FakeDevice(), garbage=noise))
-        self.assertEqual((code, err), (0, ""))
-        self.assertIn("speed_est", out)
-
-    def test_a_bad_checksum_once_should_be_resent_and_then_work(self) -> None:
-        hit: list[int] = []
-
-        def once(cmd: int, frame: bytes) -> bytes:
-            if cmd == mp.CMD_VAR_INFO and not hit:
-                hit.append(1)
-                return frame[:-1] + bytes([frame[-1] ^ 0xFF])
-            return frame
-
-        port = FakePort(FakeDevice(once))
-        mon = mp.Monitor(port, timeout=0.05)
-        mon.connect()
-        self.assertEqual([v.name for v in mon.vars], [v[0] for v in VARS])
-        self.assertEqual(mon.resends, 1)
-
-    def test_a_bad_checksum_every_time_should_end_in_one_line(self) -> None:
-        def always(cmd: int, frame: bytes) -> bytes:
-            return frame[:-1] + bytes([frame[-1] ^ 0xFF])
-
-        code, _, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(FakeDevice(always)))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x01: no reply", "sent 3 times")
-
-    def test_a_lost_motor_start_reply_should_not_be_resent(self) -> None:
-        def drop(cmd: int, frame: bytes) -> bytes:
-            return b"" if cmd == mp.CMD_MOTOR else frame
-
-        dev = FakeDevice(drop)
-        code, _, err, _ = run(["--port", "fake", "--headless", "--start-rpm", "2000"] + FAST, FakePort(dev))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x10: no reply within 0.05 s")
-        self.assertEqual(sum(1 for c, _ in dev.seen if c == mp.CMD_MOTOR), 1, "START could run twice")
-
-    def test_a_crc_error_reply_should_resend_even_a_motor_start(self) -> None:
-        hit: list[int] = []
-
-        def crc_error(cmd: int, frame: bytes) -> bytes:
-            if cmd == mp.CMD_MOTOR and not hit:
-                hit.append(1)  # the device saw a corrupted request: it changed nothing
-                return mp.encode(mp.CMD_ERROR, bytes([mp.CMD_MOTOR, mp.ERR_CRC]))
-            return frame
-
-        mon = mp.Monitor(FakePort(FakeDevice(crc_error)), timeout=0.05)
-        mon.motor(mp.MOTOR_START)
-        self.assertEqual(mon.resends, 1)
-
-    def test_a_range_error_reply_should_end_in_one_line_without_a_resend(self) -> None:
-        def rng(cmd: int, frame: bytes) -> bytes:
-            return mp.encode(mp.CMD_ERROR, bytes([cmd, mp.ERR_RANGE])) if cmd == mp.CMD_SET_PARAM else frame
-
-        dev = FakeDevice(rng)
-        code, _, err, _ = run(["--port", "fake", "--headless", "--set", "cur_kp=1"] + FAST, FakePort(dev))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "command 0x12: error RANGE")
-        self.assertEqual(sum(1 for c, _ in dev.seen if c == mp.CMD_SET_PARAM), 1)
-
-    def test_a_data_frame_of_the_wrong_size_should_end_in_one_line(self) -> None:
-        dev = FakeDevice()
-        dev.data_mutate = lambda p: p[:-1]  # one byte short of its sets
-        csv_path = self.existing("run.csv")
-        code, _, err, _ = run(["--port", "fake", "--headless", "--decim", "100", "--csv", csv_path] + FAST,
-                              FakePort(dev))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "corrupt DATA frame")
-        self.assertUntouched(csv_path)
-
-    def test_corrupt_info_and_var_info_contents_should_end_in_one_line(self) -> None:
-        def zero_pwm(cmd: int, frame: bytes) -> bytes:
-            return mp.encode(frame[2], struct.pack("<BBBBHIB", 1, 4, 1, 4, 256, 0, 40)) if cmd == mp.CMD_INFO else frame
-
-        def bad_name(cmd: int, frame: bytes) -> bytes:
-            return mp.encode(frame[2], frame[3:9] + b"\xff\xfe\0rpm") if cmd == mp.CMD_VAR_INFO else frame
-
-        def wrong_index(cmd: int, frame: bytes) -> bytes:
-            return mp.encode(frame[2], bytes([7]) + frame[4:-2]) if cmd == mp.CMD_VAR_INFO else frame
-
-        for mut, want in ((zero_pwm, "corrupt INFO reply"), (bad_name, "corrupt VAR_INFO 0 name"),
-                          (wrong_index, "corrupt VAR_INFO reply for variable 0")):
-            with self.subTest(want):
-                code, _, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(FakeDevice(mut)))
-                self.assertEqual(code, 1)
-                self.assertOneLine(err, want)
-
-    def test_a_port_that_fails_mid_session_should_end_in_one_line(self) -> None:
-        code, _, err, _ = run(["--port", "fake", "--list"] + FAST, FakePort(FakeDevice(), fail_reads_after=3))
-        self.assertEqual(code, 1)
-        self.assertOneLine(err, "reading the port failed", "Input/output error")
-
-    # ---- ports, options, output paths ----
-    def test_a_bad_port_should_end_in_one_line(self) -> None:
-        for port in (self.path("no-such-tty"), self.dir, os.devnull):
-            with self.subTest(port):
-                p = subprocess.run([sys.executable, SCOPE_DIR, "--port", port, "--list"], capture_output=True,
-                                   text=True, timeout=60)
-                self.assertEqual(p.returncode, 1)
-                self.assertOneLine(p.stderr, "cannot open port")
-
-    def test_bad_options_should_be_refused_in_one_line_before_the_port_opens(self) -> None:
-        cases = [["--duration", "nan"], ["--duration", "inf"], ["--duration", "1e300"], ["--baud", "0"],
-                 ["--baud", "9600.5"], ["--decim", "20000"], ["--decim", "-1"], ["--start-rpm", "inf"],
-                 ["--start-rpm", "40000"], ["--window", "nan"], ["--reply-timeout", "0"], ["--set", "cur_kp"],
-                 ["--set", "cur_kp=abc"], ["--set", "=5"], ["--frob"], ["--baud", "+-5"],
-                 ["--set", "cur_kp=99999999999"], ["--set", "cur_kp=0x10"], ["--set", "cur_kp=40000"]]
-        for extra in cases:
-            with self.subTest(extra):
-                code, _, err, opened = run(["--port", "fake"] + extra, FakePort(FakeDevice()))
-                self.assertEqual(code, 2)
-                self.assertOneLine(err)
-                self.assertFalse(opened)
-
-    def test_bad_output_paths_should_be_refused_before_the_port_opens(self) -> None:
-        os.mkdir(self.path("adir"))
-        cases = [
-            (["--csv", self.path("missing/run.csv")], "no folder"),
-            (["--csv", self.path("adir")], "not a regular file"),
-            (["--csv", os.devnull], "not a regular file"),
-            (["--png", self.path("run.csv")], "must end in .png"),
-            (["--png", self.path("run")], "must end in .png"),
-            (["--csv", self.path("same.png"), "--png", self.path("same.png")], "the same file"),
-            (["--csv", ""], "empty file name"),
-        ]
-        for extra, want in cases:
-            with self.subTest(extra):
-                code, _, err, opened = run(["--port", "fake", "--headless"] + extra, FakePort(FakeDevice()))
-                self.assertEqual(code, 2)
-                self.assertOneLine(err, want)
-                self.assertFalse(opened)
-        code, _, err, opened = run(["--port", "fake", "--png", self.path("a.png")], FakePort(FakeDevice()))
-        self.assertEqual(code, 2)
-        self.assertOneLine(err, "--png: only with --headless")
+        rc, _, err = self.run_cli("--port", "fake", "info", opener=opener)
+        self.assertOneLine(rc, err, 1, "bad checksum")
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    unittest.main(verbosity=1, argv=[sys.argv[0]])

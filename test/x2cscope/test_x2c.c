@@ -83,8 +83,14 @@ static void test_device_info_should_present_a_generic_dspic_with_255_byte_frames
     assert_int_equal(r[0] | (r[1] << 8), X2C_MONITOR_VER);
     assert_int_equal(r[4], 255);
     assert_int_equal(r[5] | (r[6] << 8), 0x8210);
-    assert_memory_equal(&r[7], "Nov252026" "0000", 13);
-    assert_memory_equal(&r[20], "Nov252026" "0000", 13);
+    assert_memory_equal(&r[7],
+                        "Nov252026"
+                        "0000",
+                        13);
+    assert_memory_equal(&r[20],
+                        "Nov252026"
+                        "0000",
+                        13);
     assert_int_equal(r[33], X2C_DSP_POWER_OFF);
 }
 
@@ -188,8 +194,8 @@ static void test_the_scope_buffer_should_read_in_253_byte_chunks(void **state)
         rig.x.scope.buf[i] = (uint8_t)(i ^ 0x55U);
     }
     while (at < X2C_SCOPE_BYTES) {
-        uint8_t n = (uint8_t)((X2C_SCOPE_BYTES - at > X2C_READ_MAX) ? X2C_READ_MAX
-                                                                   : X2C_SCOPE_BYTES - at);
+        uint8_t n =
+            (uint8_t)((X2C_SCOPE_BYTES - at > X2C_READ_MAX) ? X2C_READ_MAX : X2C_SCOPE_BYTES - at);
         assert_int_equal(read_ram((uint16_t)(RIG_SCOPE(&rig) + at), n, 1U, got, &err), n);
         assert_int_equal(err, X2C_ERR_OK);
         assert_memory_equal(got, &rig.x.scope.buf[at], n);
@@ -207,11 +213,11 @@ static void test_reads_outside_the_whitelist_or_misaligned_should_be_refused(voi
         uint16_t addr;
         uint8_t n, width, err;
     } cases[] = {
-        {0, 2, 2, X2C_ERR_FORMAT},                                        /* below everything */
-        {0xFFFE, 2, 2, X2C_ERR_FORMAT},                                   /* above everything */
-        {RIG_MOTOR(&rig, req_posted[0]), 1, 1, X2C_ERR_FORMAT},           /* not exported */
-        {RIG_MOTOR(&rig, i_dq.d), 4, 2, X2C_ERR_FORMAT},                  /* straddles two rows */
-        {(uint16_t)(RIG_MOTOR(&rig, i_dq.d) + 1U), 2, 2, X2C_ERR_FORMAT}, /* odd, word */
+        {0, 2, 2, X2C_ERR_FORMAT},                                          /* below everything */
+        {0xFFFE, 2, 2, X2C_ERR_FORMAT},                                     /* above everything */
+        {RIG_MOTOR(&rig, req_posted[0]), 1, 1, X2C_ERR_FORMAT},             /* not exported */
+        {RIG_MOTOR(&rig, i_dq.d), 4, 2, X2C_ERR_FORMAT},                    /* straddles two rows */
+        {(uint16_t)(RIG_MOTOR(&rig, i_dq.d) + 1U), 2, 2, X2C_ERR_FORMAT},   /* odd, word */
         {(uint16_t)(RIG_MOTOR(&rig, ol_angle) + 1U), 4, 4, X2C_ERR_FORMAT}, /* odd, long */
         {RIG_MOTOR(&rig, i_dq.d), 3, 3, X2C_ERR_FORMAT},                    /* width 3 */
         {RIG_MOTOR(&rig, i_dq.d), 2, 0, X2C_ERR_FORMAT},                    /* width 0 */
@@ -335,17 +341,17 @@ static void test_writes_other_than_a_whole_tunable_should_be_refused(void **stat
         const uint8_t *data;
         uint8_t n;
     } cases[] = {
-        {RIG_MOTOR(&rig, i_ref.q), 2, two, 2},                           /* read-only */
-        {RIG_MOTOR(&rig, state), 2, two, 2},                             /* read-only */
-        {RIG_MOTOR(&rig, req_posted[0]), 1, two, 1},                     /* not exported */
-        {RIG_TUNE(&rig, cur_kp), 1, two, 1},                             /* half of it */
-        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 1, two, 1},            /* its other half */
-        {RIG_TUNE(&rig, cur_kp), 2, four, 4},                            /* two tunables */
-        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 2, two, 2},            /* odd address */
-        {RIG_TUNE(&rig, cur_kp), 3, four, 3},                            /* width 3 */
-        {RIG_TUNE(&rig, cur_kp), 4, two, 2},                             /* not whole longs */
-        {RIG_SCOPE(&rig), 1, two, 1},                                    /* the scope's buffer */
-        {(uint16_t)(RIG_TUNE(&rig, run) + 2U), 2, two, 2},               /* past the tunables */
+        {RIG_MOTOR(&rig, i_ref.q), 2, two, 2},                /* read-only */
+        {RIG_MOTOR(&rig, state), 2, two, 2},                  /* read-only */
+        {RIG_MOTOR(&rig, req_posted[0]), 1, two, 1},          /* not exported */
+        {RIG_TUNE(&rig, cur_kp), 1, two, 1},                  /* half of it */
+        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 1, two, 1}, /* its other half */
+        {RIG_TUNE(&rig, cur_kp), 2, four, 4},                 /* two tunables */
+        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 2, two, 2}, /* odd address */
+        {RIG_TUNE(&rig, cur_kp), 3, four, 3},                 /* width 3 */
+        {RIG_TUNE(&rig, cur_kp), 4, two, 2},                  /* not whole longs */
+        {RIG_SCOPE(&rig), 1, two, 1},                         /* the scope's buffer */
+        {(uint16_t)(RIG_TUNE(&rig, run) + 2U), 2, two, 2},    /* past the tunables */
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rig_snap_t before;
@@ -430,7 +436,7 @@ static void test_scope_should_sample_until_full_and_report_its_state(void **stat
     assert_int_equal(st[1], 2);
     assert_int_equal(st[2] | (st[3] << 8), 1);
     assert_int_equal(get32(&st[8]), RIG_SCOPE(&rig));
-    assert_int_equal(get32(&st[20]), 480U); /* 80 datasets of 6 */
+    assert_int_equal(get32(&st[20]), X2C_SCOPE_BYTES / 6U * 6U); /* whole datasets of 6 */
     assert_int_equal(get32(&st[24]), X2C_SCOPE_BYTES);
     assert_int_equal(st[28], 0x82);
     while (rig.x.scope.run.state != X2C_SCOPE_IDLE) {
@@ -440,12 +446,13 @@ static void test_scope_should_sample_until_full_and_report_its_state(void **stat
         k++;
         assert_cmp(k, <, 1000U);
     }
-    assert_int_equal(k, 2U * 80U - 1U); /* the first call stores, then every 2nd */
+    assert_int_equal(k,
+                     2U * (X2C_SCOPE_BYTES / 6U) - 1U); /* the first call stores, then every 2nd */
     load_state(st);
     assert_int_equal(st[0], 0);
-    assert_int_equal(get32(&st[4]), 480U); /* the pointer at the used length */
-    assert_int_equal(get32(&st[16]), 0U);  /* no rotation */
-    for (unsigned d = 0; d < 80U; d++) {
+    assert_int_equal(get32(&st[4]), X2C_SCOPE_BYTES / 6U * 6U); /* the pointer at the used length */
+    assert_int_equal(get32(&st[16]), 0U);                       /* no rotation */
+    for (unsigned d = 0; d < X2C_SCOPE_BYTES / 6U; d++) {
         const uint8_t *ds = &rig.x.scope.buf[6U * d];
         uint32_t call = 2U * d;
         assert_int_equal(ds[0] | (ds[1] << 8), (uint16_t)call);
@@ -504,7 +511,7 @@ static void test_scope_configurations_outside_the_rules_should_be_refused(void *
     assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_FORMAT);
     cfg_begin(&c, X2C_SCOPE_WAIT_TRIG, 1, 0); /* more history than the ring */
     cfg_channel(&c, iq, 2);
-    cfg_trigger(&c, 0xA2, iq, 0, 480, 1, 1);
+    cfg_trigger(&c, 0xA2, iq, 0, X2C_SCOPE_BYTES, 1, 1);
     assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_LIMIT);
     cfg_begin(&c, X2C_SCOPE_WAIT_TRIG, 1, 0); /* a delay of half a dataset */
     cfg_channel(&c, iq, 2);
@@ -549,8 +556,8 @@ static void test_scope_trigger_should_place_the_edge_where_the_client_rotates_to
         cfg_buf_t c;
         uint8_t st[X2C_SCOPE_STATE_BYTES];
         uint16_t iq = RIG_MOTOR(&rig, i_dq.q);
-        unsigned k = 0, n = 240U; /* datasets of 2 bytes */
-        int16_t rot[240];
+        unsigned k = 0, n = X2C_SCOPE_BYTES / 2U; /* datasets of 2 bytes */
+        int16_t rot[X2C_SCOPE_BYTES / 2U];
         rig.mc.i_dq.q = -1000;
         cfg_begin(&c, X2C_SCOPE_WAIT_TRIG, 1, 0);
         cfg_channel(&c, iq, 2);
@@ -600,15 +607,15 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(test_gains_should_be_applied_through_the_mailbox_and_read_back,
                                setup),
-        cmocka_unit_test_setup(
-            test_speed_reference_should_be_remote_until_zero_gives_the_pot_back, setup),
+        cmocka_unit_test_setup(test_speed_reference_should_be_remote_until_zero_gives_the_pot_back,
+                               setup),
         cmocka_unit_test_setup(test_run_should_start_and_stop_like_s2_and_follow_its_guard, setup),
         cmocka_unit_test_setup(test_writes_other_than_a_whole_tunable_should_be_refused, setup),
         cmocka_unit_test_setup(test_scope_should_sample_until_full_and_report_its_state, setup),
         cmocka_unit_test_setup(test_scope_configurations_outside_the_rules_should_be_refused,
                                setup),
-        cmocka_unit_test_setup(
-            test_scope_trigger_should_place_the_edge_where_the_client_rotates_to, setup),
+        cmocka_unit_test_setup(test_scope_trigger_should_place_the_edge_where_the_client_rotates_to,
+                               setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,5 @@
-/* test_x2c_fuzz.c - a million random requests: one reply each, no crash, no change from a refusal. */
+/* test_x2c_fuzz.c - a million random requests: one reply each, no crash, no change from a refusal.
+ */
 #include "x2c_util.h"
 
 #include <stdio.h>
@@ -131,8 +132,8 @@ static uint8_t some_request(uint8_t *d)
     return n;
 }
 
-static void test_a_million_random_frames_should_each_get_one_reply_and_refusals_change_nothing(
-    void **state)
+static void
+test_a_million_random_frames_should_each_get_one_reply_and_refusals_change_nothing(void **state)
 {
     (void)state;
     static const char *const names[] = {"ok", "refused"};

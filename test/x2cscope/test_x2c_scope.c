@@ -52,9 +52,8 @@ static void test_keys_should_order_like_the_values_of_every_type(void **state)
             /* floats: finite values of every magnitude and sign */
             f = (float)a / (float)((y & 0xFFFFU) + 1U);
             g = (float)b / (float)((x & 0xFFU) + 1U);
-            assert_int_equal(x2c_scope_key(raw_of_float(f), 0xC4) <
-                                 x2c_scope_key(raw_of_float(g), 0xC4),
-                             f < g);
+            assert_int_equal(
+                x2c_scope_key(raw_of_float(f), 0xC4) < x2c_scope_key(raw_of_float(g), 0xC4), f < g);
             pairs += 3U;
         }
     }
@@ -62,8 +61,8 @@ static void test_keys_should_order_like_the_values_of_every_type(void **state)
 }
 
 /* A configuration of one 2-byte channel, the trigger on src (dtype) at level. */
-static void start(const volatile void *chan, uint8_t csize, const volatile void *src,
-                  uint8_t dtype, uint32_t level, bool rising, int32_t delay, uint16_t prescaler)
+static void start(const volatile void *chan, uint8_t csize, const volatile void *src, uint8_t dtype,
+                  uint32_t level, bool rising, int32_t delay, uint16_t prescaler)
 {
     x2c_scope_cfg_t c;
     memset(&c, 0, sizeof c);
@@ -170,11 +169,11 @@ static void test_the_prescaler_should_thin_the_datasets_not_the_trigger(void **s
         k++;
         assert_cmp(k, <, 10000U);
     }
-    assert_int_equal(stored, 500U / 5U + 240U - 2U); /* the ring ran until the edge */
+    assert_int_equal(stored, 500U / 5U + X2C_SCOPE_BYTES / 2U - 2U); /* the ring ran to the edge */
     {
         uint16_t p = scope.run.trig_pos;
         int16_t at = (int16_t)(uint16_t)(scope.buf[p] | (scope.buf[p + 1U] << 8));
-        uint16_t q = (uint16_t)((p + 480U - 2U) % 480U);
+        uint16_t q = (uint16_t)((p + X2C_SCOPE_BYTES - 2U) % X2C_SCOPE_BYTES);
         int16_t before = (int16_t)(uint16_t)(scope.buf[q] | (scope.buf[q + 1U] << 8));
         assert_int_equal(at, 500); /* k = 500 is a storing call: 500 = 5 x 100 */
         assert_int_equal(before, 495);
@@ -203,7 +202,7 @@ static void test_auto_should_fire_once_the_history_is_in(void **state)
         (void)x2c_scope_sample(&scope, NULL);
         k++;
     }
-    assert_int_equal(k, 240U);
+    assert_int_equal(k, X2C_SCOPE_BYTES / 2U);
     assert_int_equal(scope.run.trig_pos, 20U);
     assert_int_equal(scope.buf[0], 0);
 }

@@ -123,7 +123,8 @@ static inline bool rig_same(const rig_t *r, const rig_snap_t *s)
 
 /* Wire addresses of a motor field and of a tunable. */
 #define RIG_MOTOR(r, field) ((uint16_t)(x2c_wire(&(r)->x, X2C_OBJ_MOTOR) + offsetof(mc_t, field)))
-#define RIG_TUNE(r, field)  ((uint16_t)(x2c_wire(&(r)->x, X2C_OBJ_TUNE) + offsetof(x2c_tune_t, field)))
-#define RIG_SCOPE(r)        (x2c_wire(&(r)->x, X2C_OBJ_SCOPE))
+#define RIG_TUNE(r, field)                                                                         \
+    ((uint16_t)(x2c_wire(&(r)->x, X2C_OBJ_TUNE) + offsetof(x2c_tune_t, field)))
+#define RIG_SCOPE(r) (x2c_wire(&(r)->x, X2C_OBJ_SCOPE))
 
 #endif /* X2C_UTIL_H */

@@ -1,4 +1,5 @@
-/* vec_x2c.c - 16-bit check vectors for the X2Cscope target: services, whitelist, tunables, scope. */
+/* vec_x2c.c - 16-bit check vectors for the X2Cscope target: services, whitelist, tunables, scope.
+ */
 /* (tools/check16/run reads the first directive line only: kept whole) */
 /* clang-format off */
 /* check16-requires: firmware/mc.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
@@ -159,8 +160,8 @@ static uint8_t build(uint8_t *d)
             d[1] = (uint8_t)a;
             d[2] = (uint8_t)(a >> 8);
             d[3] = (uint8_t)((r == X2C_ROWS - 1U) ? vec_rand_u16() % 256U
-                                                   : (uint16_t)(size - delta) +
-                                                         ((vec_rand_u16() % 8U == 0U) ? 1U : 0U));
+                                                  : (uint16_t)(size - delta) +
+                                                        ((vec_rand_u16() % 8U == 0U) ? 1U : 0U));
             d[4] = some_width();
             n = 5;
             break;

@@ -1,4 +1,4 @@
-"""python tools/scope (or python -m scope, or an1078-scope): the live data monitor's command."""
+"""python tools/scope (or python -m scope, or an1078-scope): the X2Cscope client's command."""
 
 import sys
 

@@ -1,18 +1,25 @@
-"""tools/scope (scope.cli) - live data monitor for the AN1078 firmware (board UART or `sim --pty`).
+"""an1078-scope (tools/scope): an X2Cscope client for the AN1078 firmware and `sim --pty`.
 
-    .venv/bin/python tools/scope --port /dev/ttyUSB0 --list
-    .venv/bin/python tools/scope --port /dev/pts/5 --channels speed_est,speed_ref,iq \\
-        --start-rpm 2000                       # live plot, keys: g start, x stop, +/- 100 rpm
-    .venv/bin/python tools/scope --port /dev/pts/5 --headless --start-rpm 2000 \\
-        --duration 1 --csv run.csv --png run.png
+    an1078-scope --port /dev/pts/5 info
+    an1078-scope --map x2cmap.yml list
+    an1078-scope --port /dev/pts/5 --map x2cmap.yml read motor.smc.omega motor.state
+    an1078-scope --port /dev/pts/5 --map x2cmap.yml write x2c.tune.speed_ref_rpm 1000
+    an1078-scope --port /dev/pts/5 --map x2cmap.yml capture motor.smc.omega motor.i_dq.q \\
+        --trigger motor.state --level 1 --delay 40 --then x2c.tune.run=1 --csv run.csv --png run.png
+    an1078-scope --port tcp://127.0.0.1:12666 --map x2cmap.yml live motor.smc.omega
 
-docs/monitor.md describes the protocol and the options. Every failure (a bad option, a port
-that does not open, an output that cannot be written, a missing or corrupt reply) ends with one
-line on stderr, "scope: ...", and exit status 1 (2 for a bad option); an output file is written
-whole or not at all.
+The map (--map) is the YAML an1078-x2cmap writes from the simulator's ELF (pyx2cscope's
+import_variables format); engineering values are raw / 32768 x full scale where the map gives a
+full scale, else the raw value. `write` takes the raw integer (`list` shows each tunable's range).
+Every failure ends with one line on stderr, "scope: ...", and exit status 1 (2 for a usage
+error); --csv and --png never replace an existing file without --force, and are written whole or
+not at all.
 """
 
+from __future__ import annotations
+
 import argparse
+import contextlib
 import csv
 import math
 import os
@@ -21,423 +28,456 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable, Iterator
-from contextlib import ExitStack, contextmanager, suppress
-from typing import NoReturn
+from typing import TYPE_CHECKING, NoReturn
 
-from scope import monproto as mp
+from scope import lnet, mc_names, x2c
+from scope.varmap import MapError, Var, VarMap, load_map
 
-DEFAULT_CHANNELS = "speed_est,speed_ref,iq,id"
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
 EXIT_FAIL, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
+DEFAULT_PERIOD_US = 50.0  # the ADC interrupt's period at 20 kHz PWM: one scope call each
 
-PortOpener = Callable[[argparse.Namespace], mp.Port]
+
+class UsageError(Exception):
+    """A command line that cannot be carried out as asked (exit 2)."""
 
 
-class ScopeArgumentParser(argparse.ArgumentParser):
+class _Parser(argparse.ArgumentParser):
     """argparse that refuses in one line, like every other failure of the tool."""
 
     def error(self, message: str) -> NoReturn:
-        print(f"scope: {' '.join(message.split())} (tools/scope --help)", file=sys.stderr)
+        print(f"scope: {' '.join(message.split())} (an1078-scope --help)", file=sys.stderr)
         sys.exit(EXIT_USAGE)
 
 
-def number(lo: float, hi: float, what: str) -> Callable[[str], float]:
-    """An argparse type: a finite number in lo..hi (nan, inf and 1e300 never get through)."""
-
-    def conv(s: str) -> float:
-        try:
-            v = float(s)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
-        if not math.isfinite(v) or not lo <= v <= hi:
-            raise argparse.ArgumentTypeError(f"{s!r} is outside {lo:g}..{hi:g} {what}")
-        return v
-
-    return conv
-
-
-def whole(lo: int, hi: int, what: str) -> Callable[[str], int]:
-    """An argparse type: a decimal whole number in lo..hi."""
-
+def _whole(lo: int, hi: int) -> Callable[[str], int]:
     def conv(s: str) -> int:
         t = s.strip()
         if re.fullmatch(r"[+-]?[0-9]+", t) is None:
             raise argparse.ArgumentTypeError(f"{s!r} is not a whole number")
         v = int(t)
         if not lo <= v <= hi:
-            raise argparse.ArgumentTypeError(f"{s!r} is outside {lo}..{hi} {what}")
+            raise argparse.ArgumentTypeError(f"{s!r} is outside {lo}..{hi}")
         return v
 
     return conv
 
 
+def _number(lo: float, hi: float) -> Callable[[str], float]:
+    def conv(s: str) -> float:
+        try:
+            v = float(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
+        if not math.isfinite(v) or not lo <= v <= hi:
+            raise argparse.ArgumentTypeError(f"{s!r} is outside {lo:g}..{hi:g}")
+        return v
+
+    return conv
+
+
+def _capture_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("names", nargs="+", metavar="NAME", help="1..8 variables of the map")
+    p.add_argument("--trigger", metavar="NAME", help="trigger on an edge of this variable")
+    p.add_argument("--level", type=_number(-1e12, 1e12), metavar="X",
+                   help="trigger level, engineering units when the map gives a full scale, else raw (default 0)")
+    p.add_argument("--edge", choices=("rising", "falling"), help="trigger edge (default rising)")
+    p.add_argument("--delay", type=_whole(-(1 << 24), 1 << 24), metavar="N",
+                   help="datasets: N > 0 keeps N before the trigger, N < 0 waits N after it (default 0)")
+    p.add_argument("--auto", action="store_true", help="trigger mode auto: fire at once")
+    p.add_argument("--prescaler", type=_whole(0, 65535), default=0, metavar="N",
+                   help="one dataset every N + 1 interrupt calls (default 0)")
+    p.add_argument("--period-us", type=_number(0.001, 1e9), default=DEFAULT_PERIOD_US, metavar="US",
+                   help=f"the scope's call period, µs (default {DEFAULT_PERIOD_US:g}: 20 kHz PWM)")
+    p.add_argument("--timeout", type=_number(0.01, 86400), default=10.0, metavar="S",
+                   help="seconds to wait for the capture (default 10)")
+
+
 def parse_args(argv: list[str]) -> argparse.Namespace:
-    ap = ScopeArgumentParser(prog="tools/scope", description=(__doc__ or "").split("\n")[0])
-    ap.add_argument("--port", required=True, help="serial port or pty (sim --pty prints it)")
-    ap.add_argument("--baud", type=whole(300, 4_000_000, "Bd"), default=38400,
-                    help="UART rate (default 38400, HAL_UART_BAUD)")
-    ap.add_argument("--list", action="store_true", help="list variables and parameters, then exit")
-    ap.add_argument("--channels", default=DEFAULT_CHANNELS, help=f"comma-separated (default {DEFAULT_CHANNELS})")
-    ap.add_argument("--decim", type=whole(0, mp.DECIM_MAX, "PWM periods"), default=0,
-                    help="PWM periods per sample, 1..10000 (default 0: the smallest the baud rate carries, "
-                         "with margin)")
-    ap.add_argument("--snapshot", action="store_true",
-                    help="one full-rate snapshot into the device buffer instead of a stream")
-    ap.add_argument("--start-rpm", type=number(-32768, 32767, "rpm"),
-                    help="set the speed reference (remote) and start the motor")
-    ap.add_argument("--from-start", action="store_true",
-                    help="headless: start recording first, then start the motor (records the start-up)")
-    ap.add_argument("--settle", type=number(0, 60, "s"), default=0.5,
-                    help="with --start-rpm: seconds to wait after the reference is reached (default 0.5)")
-    ap.add_argument("--start-timeout", type=number(0.1, 600, "s"), default=20.0,
-                    help="seconds to reach closed loop (default 20)")
-    ap.add_argument("--reply-timeout", type=number(0.05, 10, "s"), default=1.0,
-                    help="seconds to wait for each reply (default 1; a lost one is asked again when safe)")
-    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                    help="set a tuning parameter (repeatable)")
-    ap.add_argument("--stop", action="store_true", help="stop the motor at the end (and on a failure)")
-    ap.add_argument("--headless", action="store_true", help="record, write CSV/PNG, no window")
-    ap.add_argument("--duration", type=number(0.001, 3600, "s"), default=1.0,
-                    help="headless: seconds to record (default 1)")
-    ap.add_argument("--window", type=number(0.01, 600, "s"), default=2.0, help="live: seconds shown (default 2)")
-    ap.add_argument("--csv", help="write the recorded samples here")
-    ap.add_argument("--png", help="headless: write the plot here (a .png name)")
-    ap.add_argument("--title", default="", help="plot title")
+    ap = _Parser(prog="an1078-scope", description=__doc__,
+                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--port", help="serial port, pty (sim --pty prints it) or tcp://HOST:PORT")
+    ap.add_argument("--baud", type=_whole(50, 4_000_000), default=115200, help="UART rate, 8N1 (default 115200)")
+    ap.add_argument("--map", metavar="FILE.yml", help="the variable map (an1078-x2cmap)")
+    ap.add_argument("--reply-timeout", type=_number(0.01, 60), default=1.0, metavar="S",
+                    help="seconds to wait for each reply (default 1)")
+    sub = ap.add_subparsers(dest="cmd", metavar="CMD", parser_class=_Parser)
+    sub.required = True
+    sub.add_parser("info", help="the target's device info and scope state")
+    sub.add_parser("list", help="the map's variables (no port needed)")
+    p = sub.add_parser("read", help="read variables: raw and engineering value")
+    p.add_argument("names", nargs="+", metavar="NAME")
+    p = sub.add_parser("write", help="write a tunable (raw integer), read it back")
+    p.add_argument("name", metavar="NAME")
+    p.add_argument("value", metavar="VALUE")
+    p = sub.add_parser("capture", help="one scope capture, printed, and to --csv / --png")
+    _capture_options(p)
+    p.add_argument("--then", action="append", default=[], metavar="NAME=VALUE",
+                   help="write a tunable (raw) once the scope is armed, e.g. x2c.tune.run=1 to capture a start "
+                        "(repeatable, in order)")
+    p.add_argument("--csv", metavar="F", help="write the capture here (time and engineering values)")
+    p.add_argument("--png", metavar="F", help="plot the capture here (a .png name)")
+    p.add_argument("--force", action="store_true", help="replace an existing --csv / --png")
+    p = sub.add_parser("live", help="repeated captures in a window")
+    _capture_options(p)
+    p.add_argument("--headless", action="store_true", help="no window: print --frames captures")
+    p.add_argument("--frames", type=_whole(1, 1_000_000), default=3, help="with --headless: captures (default 3)")
     return ap.parse_args(argv)
 
 
-def parse_sets(items: list[str]) -> list[tuple[str, int]]:
-    out = []
-    for s in items:
-        name, eq, val = s.partition("=")
-        v = int(val) if re.fullmatch(r"[+-]?[0-9]{1,6}", val.strip()) else None
-        if not eq or not name or v is None:
-            raise mp.MonitorError(f"--set {s!r}: want NAME=VALUE with a decimal whole number")
-        if not -32768 <= v <= 32767:
-            raise mp.MonitorError(f"--set {s!r}: {v} is outside the parameters' 16-bit range")
-        out.append((name, v))
-    return out
+# ---- output files ----------------------------------------------------------------------------
 
 
-# ---- output files: checked before the device is touched, written whole or not at all ----
-
-def check_output(path: str, opt: str) -> str | None:
-    """Why path cannot be written (one line), or None. Only a regular file, or a new name in an
-    existing writable folder: the tool never replaces a device, a folder or a read-only file."""
+def check_output(path: str, opt: str, force: bool) -> None:
     if not path:
-        return f"{opt}: empty file name"
+        raise UsageError(f"{opt}: empty file name")
     real = os.path.realpath(path)
+    if os.path.lexists(path) or os.path.lexists(real):
+        if not force:
+            raise UsageError(f"{opt} {path!r} exists: not replaced (--force replaces it)")
+        if not os.path.isfile(real):
+            raise UsageError(f"{opt} {path!r} exists and is not a regular file")
+        if not os.access(real, os.W_OK):
+            raise UsageError(f"{opt} {path!r} is read-only")
     folder = os.path.dirname(real) or "."
-    if os.path.lexists(real) and not os.path.isfile(real):
-        return f"{opt} {path!r}: exists and is not a regular file"
-    if os.path.isfile(real) and not os.access(real, os.W_OK):
-        return f"{opt} {path!r}: exists and is read-only"
     if not os.path.isdir(folder):
-        return f"{opt} {path!r}: no folder {folder!r}"
+        raise UsageError(f"{opt} {path!r}: no folder {folder!r}")
     if not os.access(folder, os.W_OK | os.X_OK):
-        return f"{opt} {path!r}: cannot write in {folder!r}"
-    return None
+        raise UsageError(f"{opt} {path!r}: cannot write in {folder!r}")
 
 
-def check_outputs(args: argparse.Namespace) -> str | None:
-    if args.png is not None and not args.headless:
-        return "--png: only with --headless (the live plot is a window)"
-    if args.png is not None and not args.png.lower().endswith(".png"):
-        # matplotlib would pick the format from the name, or add ".png" to it: a file not asked for
-        return f"--png {args.png!r}: the name must end in .png"
-    for path, opt in ((args.csv, "--csv"), (args.png, "--png")):
-        if path is not None:
-            why = check_output(path, opt)
-            if why is not None:
-                return why
-    if args.csv is not None and args.png is not None and os.path.realpath(args.csv) == os.path.realpath(args.png):
-        return "--csv and --png name the same file"
-    return None
-
-
-@contextmanager
+@contextlib.contextmanager
 def replacing(path: str) -> Iterator[str]:
-    """A temporary name beside path for the block to write; renamed over path only when the block
-    ends without an exception: a failure leaves path as it was (and no temporary behind)."""
+    """A temporary name beside path to write; renamed over path only when the block succeeds."""
     real = os.path.realpath(path)
     fd, tmp = tempfile.mkstemp(prefix=".scope-", suffix=".tmp", dir=os.path.dirname(real) or ".")
     os.close(fd)
-    try:
-        mode = os.stat(real).st_mode & 0o777  # a file replaced keeps its mode
-    except OSError:
-        umask = os.umask(0)  # a new one gets what open() would give it (mkstemp's is 0600)
-        os.umask(umask)
-        mode = 0o666 & ~umask
+    umask = os.umask(0)
+    os.umask(umask)
     try:
         yield tmp
-        os.chmod(tmp, mode)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, real)
     except BaseException:
-        with suppress(OSError):
+        with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
 
 
-def open_port(args: argparse.Namespace) -> mp.Port:
-    import serial
-
-    port = serial.Serial(args.port, args.baud, timeout=0.05)
-    time.sleep(0.05)
-    port.reset_input_buffer()
-    return port
+# ---- the map and the values ------------------------------------------------------------------
 
 
-def print_list(mon: mp.Monitor) -> None:
-    i = mon.info
-    print(f"monitor v{i['version']}: {i['nvars']} variables, {i['nparams']} parameters, up to "
-          f"{i['max_ch']} channels, buffer {i['buf_words']} words, PWM {i['f_pwm']} Hz")
-    print("variables:")
-    for v in mon.vars:
-        scale = f"Q15 of {v.fs:g} {v.unit}" if v.kind == mp.KIND_Q15 else "integer"
-        print(f"  {v.idx:2d} {v.name:14s} {scale}")
-    print("parameters (SET_PARAM, Q15 mantissas):")
-    for p in mon.params:
-        print(f"  {p.idx:2d} {p.name:10s} = {p.value:6d}   range {p.min}..{p.max}")
+def need_map(args: argparse.Namespace) -> VarMap:
+    if not args.map:
+        raise UsageError(f"{args.cmd}: needs --map FILE.yml (an1078-x2cmap writes it from the simulator)")
+    return load_map(args.map)
 
 
-def choose_decim(args: argparse.Namespace, mon: mp.Monitor, nch: int) -> int:
-    f_pwm = mon.info["f_pwm"]
-    if args.decim > 0:
-        return int(args.decim)
-    if args.snapshot:
-        return 1
-    limit = 0.8 * mp.max_rate(nch, args.baud)
-    # the smallest d with f_pwm / d <= limit, found from its closed form and nudged by one
-    d = max(1, math.ceil(f_pwm / limit))
-    while d > 1 and f_pwm / (d - 1) <= limit:
-        d -= 1
-    while f_pwm / d > limit:
-        d += 1
-    if d > mp.DECIM_MAX:
-        raise mp.MonitorError(f"{args.baud} Bd cannot carry {nch} channels at any decimation up to {mp.DECIM_MAX}")
-    return d
+def lookup(vm: VarMap, name: str) -> Var:
+    try:
+        return vm.get(name)
+    except MapError as e:
+        raise UsageError(str(e)) from None
 
 
-def start_motor(args: argparse.Namespace, mon: mp.Monitor) -> None:
-    fs = mon.var("speed_ref").fs  # before the start: a device without it is refused with the motor still
-    target = round(args.start_rpm * 32768.0 / fs) if fs else 0
-    mon.run_motor(args.start_rpm)
-    t_end = time.monotonic() + args.start_timeout
-    while True:
-        st = mon.status()
-        if st["state"] == mp.STATE_FAULT:
-            raise mp.MonitorError(f"motor faulted (code {st['fault']})")
-        if st["state"] == mp.STATE_CLOSED_LOOP and abs(st["speed_ref"] - target) <= 1:
-            break
-        if time.monotonic() > t_end:
-            raise mp.MonitorError(f"no closed loop at {args.start_rpm} rpm within {args.start_timeout} s "
-                                  f"(state {mp.state_name(st['state'])})")
-        time.sleep(0.05)
-    time.sleep(args.settle)
+def eng_text(v: Var, raw: float) -> str:
+    unit = f" {v.unit}" if v.unit else ""
+    return f"{v.to_eng(raw):.6g}{unit}"
 
 
-def record(args: argparse.Namespace, mon: mp.Monitor, names: list[str], decim: int,
-           after_start: Callable[[], None] | None = None) -> tuple[list[int], list[tuple[int, ...]]]:
-    """Headless recording: returns (index list, raw rows)."""
-    f_pwm = mon.info["f_pwm"]
-    mon.select(names, decim)
-    want = max(1, round(args.duration * f_pwm / decim))
-    rows: list[tuple[int, ...]] = []
-    idx: list[int] = []
-    expect = 0
-    if args.snapshot:
-        mon.start(mp.MODE_SNAPSHOT, mp.TRIG_NOW)
+def decode(v: Var, b: bytes) -> int | float:
+    return x2c.Channel(v.address, v.size, v.kind).decode(b)
+
+
+def print_list(vm: VarMap) -> None:
+    w = max(len(n) for n in vm.vars)
+    print(f"{'name':{w}s}  address  {'type':17s}  {'access':16s}  unit")
+    for v in vm.vars.values():
+        scale = f" ({v.full_scale:g} {v.unit} = 32768)" if v.full_scale > 0 else ""
+        unit = (v.unit + scale) if (v.unit or scale) else ("-" if vm.has_units else "")
+        print(f"{v.name:{w}s}  0x{v.address:04X}   {v.type:17s}  {v.access:16s}  {unit}")
+
+
+def parse_value(v: Var, s: str) -> int:
+    t = s.strip().lower()
+    try:
+        raw = int(t, 0) if re.fullmatch(r"[+-]?(0x[0-9a-f]+|[0-9]+)", t) else None
+    except ValueError:
+        raw = None
+    if raw is None:
+        raise UsageError(f"write {v.name}: {s!r} is not a whole number (write takes the raw value)")
+    lo, hi = v.raw_range
+    if not lo <= raw <= hi:
+        raise UsageError(f"write {v.name}: {raw} does not fit its {v.size} byte(s) ({lo}..{hi})")
+    return raw
+
+
+# ---- commands --------------------------------------------------------------------------------
+
+
+def cmd_info(t: x2c.Target) -> None:
+    i = t.info or t.device_info()
+    st = t.scope_state()
+    print(f"processor 0x{i.processor_id:04X} ({i.processor}): 16-bit addresses")
+    print(f"monitor version {i.monitor_version}, application version {i.app_version}, frames up to "
+          f"{i.max_frame} data bytes")
+    print(f"monitor {i.monitor_date} {i.monitor_time}, application {i.app_date} {i.app_time}")
+    print(f"DSP state 0x{i.dsp_state:02X} ({x2c.DSP_STATE_NAMES.get(i.dsp_state, 'unknown')})")
+    print(f"scope: {st.state_name}, {st.channels} channel(s), prescaler {st.prescaler}, buffer {st.buffer_size} "
+          f"bytes at 0x{st.buffer_address:04X} ({st.used_length} used), version 0x{st.version:02X}")
+
+
+def named(v: Var, raw: int | float) -> str:
+    """The core's name of a state or fault code (firmware/mc.h), else ""."""
+    if v.name not in ("motor.state", "motor.fault") or not isinstance(raw, int):
+        return ""
+    try:
+        names = mc_names.read()
+    except (OSError, mc_names.McNamesError):
+        return ""  # an installed copy without the firmware beside it: the number alone
+    return f" ({names.state(raw) if v.name == 'motor.state' else names.fault(raw)})"
+
+
+def cmd_read(t: x2c.Target, vs: list[Var]) -> None:
+    w = max(len(v.name) for v in vs)
+    for v in vs:
+        raw = decode(v, t.read(v.address, v.size, v.size))
+        print(f"{v.name:{w}s}  raw {raw}  = {eng_text(v, raw)}{named(v, raw)}")
+
+
+def cmd_write(t: x2c.Target, v: Var, raw: int) -> int:
+    try:
+        write_checked(t, v, raw)
+    except x2c.TargetError as e:
+        back = ""
+        with contextlib.suppress(lnet.LNetError):
+            back = f"; it reads {decode(v, t.read(v.address, v.size, v.size))}"
+        print(f"scope: write {v.name} = {raw}: refused with error 0x{e.code:02X} ({e.name}: "
+              f"{x2c.ERROR_TEXT.get(e.code, 'unknown')}){back}", file=sys.stderr)
+        return EXIT_FAIL
+    back_raw = decode(v, t.read(v.address, v.size, v.size))
+    print(f"{v.name}: wrote {raw}, reads back {back_raw} (= {eng_text(v, back_raw)})")
+    return 0
+
+
+def build_config(args: argparse.Namespace, vm: VarMap) -> tuple[x2c.ScopeConfig, list[Var]]:
+    vs = [lookup(vm, n) for n in args.names]
+    if not 1 <= len(vs) <= x2c.MAX_CHANNELS:
+        raise UsageError(f"{args.cmd}: 1..{x2c.MAX_CHANNELS} channels, not {len(vs)}")
+    chans = tuple(x2c.Channel(v.address, v.size, v.kind) for v in vs)
+    ds = sum(v.size for v in vs)
+    trig: x2c.Trigger | None = None
+    if args.trigger is None and not args.auto:
+        for opt, val in (("--level", args.level), ("--edge", args.edge), ("--delay", args.delay)):
+            if val is not None:
+                raise UsageError(f"{opt}: only with --trigger NAME or --auto")
     else:
-        mon.start(mp.MODE_STREAM, mp.TRIG_NOW)
-    if after_start is not None:
-        after_start()
-    t_end = time.monotonic() + args.duration * 3 + 10
-    done = False
-    while not done and time.monotonic() < t_end:
-        for flags, index, sets in mon.read_data(wait=0.05):
-            if index != (expect & 0xFFFF):
-                raise mp.MonitorError(f"samples lost: got index {index}, expected {expect & 0xFFFF}")
-            for s in sets:
-                idx.append(expect)
-                rows.append(s)
-                expect += 1
-            if flags & mp.DATA_OVERFLOW:
-                raise mp.MonitorError("the device stopped the stream: host too slow for this rate; "
-                                      "raise --decim")
-            if flags & mp.DATA_LAST:
-                done = True
-        if not args.snapshot and len(rows) >= want:
-            done = True
-    if not args.snapshot:
-        mon.stop()
-        rows, idx = rows[:want], idx[:want]
-    if not done:
-        raise mp.MonitorError("recording timed out")
-    return idx, rows
+        delay = args.delay or 0
+        if not -(1 << 31) <= delay * ds < (1 << 31):
+            raise UsageError(f"--delay {delay}: too many datasets")
+        rising = args.edge != "falling"
+        if args.trigger is None:
+            if args.level is not None:
+                raise UsageError("--level: only with --trigger NAME")
+            trig = x2c.Trigger(0, 2, "U", 0, delay, rising, auto=True)
+        else:
+            tv = lookup(vm, args.trigger)
+            level = 0.0 if args.level is None else args.level
+            raw: int | float
+            if tv.kind == "F":
+                raw = tv.from_eng(level)
+            else:
+                exact = tv.from_eng(level)
+                raw = round(exact)
+                if tv.full_scale <= 0 and exact != raw:
+                    raise UsageError(f"--level {level:g}: {tv.name} is an integer without a scale: a whole number")
+                lo, hi = tv.raw_range
+                if not lo <= raw <= hi:
+                    raise UsageError(f"--level {level:g}: raw {raw} is outside {tv.name}'s {lo}..{hi}")
+            trig = x2c.Trigger(tv.address, tv.size, tv.kind, raw, delay, rising, auto=args.auto)
+    return x2c.ScopeConfig(chans, args.prescaler, trig), vs
 
 
-def csv_row(i: int, decim: int, f_pwm: int, vs: list[mp.Var], raw: tuple[int, ...]) -> list[object]:
-    """Sample set i: index, time, the values in engineering units."""
-    return [i, f"{i * decim / f_pwm:.6f}"] + [f"{v.to_eng(x):.6g}" for v, x in zip(vs, raw, strict=True)]
+def times(cap: x2c.Capture, dt: float) -> list[float]:
+    """Seconds from the trigger (delay >= 0: the trigger dataset is 0; < 0: the first dataset is
+    -delay datasets after it), or from the first dataset without a trigger."""
+    t = cap.config.trigger
+    first = 0 if t is None else -t.delay
+    return [(first + i) * dt for i in range(len(cap.datasets))]
 
 
-def write_csv(path: str, mon: mp.Monitor, names: list[str], decim: int, idx: list[int],
-              rows: list[tuple[int, ...]]) -> None:
-    f_pwm = mon.info["f_pwm"]
-    vs = [mon.var(n) for n in names]
-    with replacing(path) as tmp, open(tmp, "w", newline="") as f:
+def eng_columns(cap: x2c.Capture, vs: list[Var]) -> list[list[float]]:
+    return [[v.to_eng(x) for x in cap.channel(k)] for k, v in enumerate(vs)]
+
+
+def progress_printer(enabled: bool = True) -> x2c.Progress:
+    tty = sys.stderr.isatty()
+    last = {"state": -1, "shown": 0.0}
+
+    def show(st: x2c.ScopeState, elapsed: float) -> None:
+        if not enabled:
+            return
+        if tty:
+            end = "\n" if st.done else ""
+            print(f"\rscope: capture: {st.state_name}, {elapsed:5.1f} s, {st.pointer}/{st.used_length} bytes"
+                  f"\033[K", end=end, file=sys.stderr, flush=True)
+        elif st.state != last["state"] or elapsed - last["shown"] >= 2.0:
+            print(f"scope: capture: {st.state_name}, {elapsed:.1f} s, {st.pointer}/{st.used_length} bytes",
+                  file=sys.stderr, flush=True)
+            last["state"], last["shown"] = st.state, elapsed
+
+    return show
+
+
+def summary(cap: x2c.Capture, vs: list[Var], dt: float) -> list[str]:
+    trig = cap.trigger_index
+    lines = [f"captured {len(cap.datasets)} datasets of {cap.config.dataset_size} bytes, one every {dt * 1e6:g} µs"
+             + (f", trigger at dataset {trig}" if trig is not None else "")
+             + (f", starting {-cap.config.trigger.delay} datasets after the trigger"
+                if cap.config.trigger is not None and cap.config.trigger.delay < 0 else "")]
+    for v, col in zip(vs, eng_columns(cap, vs), strict=True):
+        if col:
+            lines.append(f"  {v.name}: min {min(col):.6g}, mean {sum(col) / len(col):.6g}, max {max(col):.6g}"
+                         + (f" {v.unit}" if v.unit else ""))
+    return lines
+
+
+def write_csv(path: str, cap: x2c.Capture, vs: list[Var], dt: float) -> None:
+    cols = eng_columns(cap, vs)
+    with replacing(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
-        w.writerow(["index", "t_s"] + [f"{v.name}_{v.unit}" if v.unit else v.name for v in vs]
-                   + [f"{v.name}_raw" for v in vs])
-        for i, r in zip(idx, rows, strict=True):
-            w.writerow(csv_row(i, decim, f_pwm, vs, r) + list(r))
+        w.writerow(["t_s"] + [f"{v.name}_{v.unit}" if v.unit else v.name for v in vs])
+        for i, t in enumerate(times(cap, dt)):
+            w.writerow([f"{t:.9g}"] + [f"{c[i]:.9g}" for c in cols])
 
 
-def plot(mon: mp.Monitor, names: list[str], decim: int, idx: list[int], rows: list[tuple[int, ...]],
-         png: str, title: str) -> None:
+def _plot(ax_list: list[Axes], cap: x2c.Capture, vs: list[Var], dt: float) -> None:
+    t = times(cap, dt)
+    cols = eng_columns(cap, vs)
+    units = list(dict.fromkeys(v.unit for v in vs))
+    for ax, u in zip(ax_list, units, strict=True):
+        ax.clear()
+        for v, col in zip(vs, cols, strict=True):
+            if v.unit == u:
+                ax.plot(t, col, label=v.name, lw=1.0)
+        ax.set_ylabel(u or "value")
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+        if cap.config.trigger is not None:
+            ax.axvline(0.0, color="k", lw=0.6, ls="--")
+    ax_list[-1].set_xlabel("s from the trigger" if cap.config.trigger is not None else "s from the first dataset")
+
+
+def write_png(path: str, cap: x2c.Capture, vs: list[Var], dt: float, title: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import numpy as np
 
-    f_pwm = mon.info["f_pwm"]
-    vs = [mon.var(n) for n in names]
-    t = np.array(idx, dtype=float) * decim / f_pwm
-    data = np.array(rows, dtype=float).reshape(len(rows), len(vs)) if rows else np.zeros((0, len(vs)))
-    units: list[str] = []
-    for v in vs:
-        if v.unit not in units:
-            units.append(v.unit)
-    fig, axes = plt.subplots(len(units), 1, sharex=True, figsize=(9, 2.4 * len(units) + 0.6), squeeze=False)
-    for ax, u in zip(axes[:, 0], units, strict=True):
-        for k, v in enumerate(vs):
-            if v.unit == u:
-                ax.plot(t, [v.to_eng(x) for x in data[:, k]], label=v.name, lw=1.0)
-        ax.set_ylabel(u or "value")
-        ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
-    axes[-1, 0].set_xlabel(f"time since the first sample (s); one sample every {decim} PWM periods "
-                           f"({f_pwm / decim:g} Hz)")
-    fig.suptitle(title or "tools/scope", fontsize=10)
-    fig.tight_layout()
+    n = len(dict.fromkeys(v.unit for v in vs))
+    fig, axes = plt.subplots(n, 1, sharex=True, figsize=(9, 2.4 * n + 0.6), squeeze=False)
     try:
-        with replacing(png) as tmp:
+        _plot(list(axes[:, 0]), cap, vs, dt)
+        fig.suptitle(title, fontsize=10)
+        fig.tight_layout()
+        with replacing(path) as tmp:
             fig.savefig(tmp, dpi=100, format="png")  # format given: the name never chooses it
     finally:
         plt.close(fig)
 
 
-def live(args: argparse.Namespace, mon: mp.Monitor, names: list[str], decim: int) -> None:
-    import collections
+def check_fits(t: x2c.Target, cfg: x2c.ScopeConfig) -> None:
+    """A pre-trigger history the target's buffer cannot hold is a usage error, named as such
+    (the target would only answer 0x42)."""
+    st = t.scope_state()
+    n = st.buffer_size // cfg.dataset_size
+    if n == 0:
+        raise UsageError(f"a dataset of {cfg.dataset_size} bytes does not fit the {st.buffer_size}-byte buffer")
+    if cfg.trigger is not None and cfg.trigger.delay >= n:
+        raise UsageError(f"--delay {cfg.trigger.delay}: the buffer holds {n} datasets of {cfg.dataset_size} bytes, "
+                         f"so at most {n - 1} before the trigger")
 
+
+def parse_then(vm: VarMap, items: list[str]) -> list[tuple[Var, int]]:
+    out = []
+    for item in items:
+        name, eq, value = item.partition("=")
+        if not eq:
+            raise UsageError(f"--then {item!r}: want NAME=VALUE")
+        v = lookup(vm, name.strip())
+        out.append((v, parse_value(v, value)))
+    return out
+
+
+def write_checked(t: x2c.Target, v: Var, raw: int) -> None:
+    t.write(v.address, v.size, raw.to_bytes(v.size, "little", signed=v.kind == "S" and raw < 0))
+
+
+def cmd_capture(args: argparse.Namespace, t: x2c.Target, cfg: x2c.ScopeConfig, vs: list[Var],
+                then: list[tuple[Var, int]]) -> None:
+    dt = (args.prescaler + 1) * args.period_us * 1e-6
+    check_fits(t, cfg)
+
+    def armed_then_write() -> None:
+        # the trigger is armed once the pre-trigger history is in: the pointer has passed it
+        history = cfg.trigger.delay * cfg.dataset_size if cfg.trigger is not None else 0
+        t_end = time.monotonic() + args.timeout
+        last = 0
+        while history > 0:
+            st = t.scope_state()
+            if st.pointer >= history or st.pointer < last or st.state != x2c.SCOPE_WAIT_TRIG:
+                break  # past the history, or the ring wrapped already
+            last = st.pointer
+            if time.monotonic() > t_end:
+                raise x2c.X2CError(f"capture: the scope did not record its {cfg.trigger.delay if cfg.trigger else 0} "
+                                   f"datasets of history within {args.timeout:g} s")
+            time.sleep(0.005)
+        for v, raw in then:
+            write_checked(t, v, raw)
+
+    cap = t.capture(cfg, args.timeout, progress_printer(), after_start=armed_then_write if then else None)
+    for ln in summary(cap, vs, dt):
+        print(ln)
+    if args.csv:
+        write_csv(args.csv, cap, vs, dt)
+        print(f"CSV {args.csv}")
+    if args.png:
+        write_png(args.png, cap, vs, dt, f"an1078-scope: {', '.join(v.name for v in vs)}")
+        print(f"PNG {args.png}")
+
+
+def cmd_live(args: argparse.Namespace, t: x2c.Target, cfg: x2c.ScopeConfig, vs: list[Var]) -> None:
+    dt = (args.prescaler + 1) * args.period_us * 1e-6
+    check_fits(t, cfg)
+    if args.headless:
+        for k in range(args.frames):
+            cap = t.capture(cfg, args.timeout, None)
+            cols = eng_columns(cap, vs)
+            parts = [f"{v.name} {min(c):.6g}..{max(c):.6g}" + (f" {v.unit}" if v.unit else "")
+                     for v, c in zip(vs, cols, strict=True) if c]
+            print(f"frame {k + 1}: {len(cap.datasets)} datasets; " + "; ".join(parts), flush=True)
+        return
+    import matplotlib
     import matplotlib.pyplot as plt
 
-    f_pwm = mon.info["f_pwm"]
-    vs = [mon.var(n) for n in names]
-    n_show = max(10, int(args.window * f_pwm / decim))
-    buf_t: collections.deque[float] = collections.deque(maxlen=n_show)
-    buf = [collections.deque[float](maxlen=n_show) for _ in vs]
-    state = {"expect": 0, "rpm": args.start_rpm if args.start_rpm is not None else 1000.0}
-    mon.select(names, decim)
-    mon.start()
-    fig, ax = plt.subplots(len(vs), 1, sharex=True, squeeze=False)
-    lines = []
-    for a, v in zip(ax[:, 0], vs, strict=True):
-        (ln,) = a.plot([], [], lw=1.0)
-        a.set_ylabel(f"{v.name} [{v.unit}]" if v.unit else v.name)
-        a.grid(True, alpha=0.3)
-        lines.append(ln)
-    ax[-1, 0].set_xlabel("s")
-
-    def on_key(ev: object) -> None:
-        key = getattr(ev, "key", None)
-        try:
-            if key == "g":
-                mon.run_motor(state["rpm"])
-            elif key == "x":
-                mon.motor(mp.MOTOR_STOP)
-            elif key in ("+", "-"):
-                state["rpm"] += 100.0 if key == "+" else -100.0
-                mon.set_speed(state["rpm"])
-        except mp.MonitorError as e:
-            print(f"scope: {e}", file=sys.stderr)
-
-    fig.canvas.mpl_connect("key_press_event", on_key)
+    if os.name == "posix" and not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY") \
+            and sys.platform != "darwin":
+        raise UsageError("live: no display for a window (--headless runs without one)")
+    n = len(dict.fromkeys(v.unit for v in vs))
+    fig, axes = plt.subplots(n, 1, sharex=True, squeeze=False)
+    fig.suptitle(f"an1078-scope live ({matplotlib.get_backend()}): close the window to stop", fontsize=9)
     plt.ion()
     plt.show()
-    with ExitStack() as stack:
-        writer = None
-        if args.csv:
-            out = stack.enter_context(open(stack.enter_context(replacing(args.csv)), "w", newline=""))
-            writer = csv.writer(out)
-        if writer:
-            writer.writerow(["index", "t_s"] + [v.name for v in vs])
-        try:
-            while plt.fignum_exists(fig.number):
-                for flags, _index, sets in mon.read_data(wait=0.02):
-                    for s in sets:
-                        i = int(state["expect"])
-                        state["expect"] += 1
-                        buf_t.append(i * decim / f_pwm)
-                        for k, v in enumerate(vs):
-                            buf[k].append(v.to_eng(s[k]))
-                        if writer:
-                            writer.writerow(csv_row(i, decim, f_pwm, vs, s))
-                    if flags & mp.DATA_OVERFLOW:
-                        print("scope: overflow, restarting the stream", file=sys.stderr)
-                        state["expect"] = 0
-                        mon.start()
-                for k, ln in enumerate(lines):
-                    ln.set_data(list(buf_t), list(buf[k]))
-                    ln.axes.relim()
-                    ln.axes.autoscale_view()
-                fig.canvas.draw_idle()
-                plt.pause(0.05)
-        finally:
-            with suppress(mp.MonitorError):  # the error that ended the loop is the one to report
-                mon.stop()
+    while plt.fignum_exists(fig.number):
+        cap = t.capture(cfg, args.timeout, None)
+        _plot(list(axes[:, 0]), cap, vs, dt)
+        fig.canvas.draw_idle()
+        plt.pause(0.05)
 
 
-def session(args: argparse.Namespace, mon: mp.Monitor) -> int:
-    """Everything after the port is open. Raises MonitorError on any failure."""
-    mon.connect()
-    if args.list:
-        print_list(mon)
-        return 0
-    names = [n for n in args.channels.split(",") if n]
-    if not 1 <= len(names) <= mon.info["max_ch"]:
-        raise mp.MonitorError(f"--channels: 1..{mon.info['max_ch']} channels")
-    for n in names:
-        mon.var(n)
-    with suppress(mp.MonitorError):
-        mon.stop()  # a recording left running by an earlier session
-    mon.read_data(wait=0.1)
-    for name, value in parse_sets(args.set):
-        mon.set_param(name, value)
-    decim = choose_decim(args, mon, len(names))
-    go = None
-    if args.start_rpm is not None:
-        if args.from_start and args.headless:
-            def go() -> None:
-                mon.run_motor(args.start_rpm)
-        else:
-            start_motor(args, mon)
-    if args.headless:
-        idx, rows = record(args, mon, names, decim, go)
-        f_pwm = mon.info["f_pwm"]
-        print(f"scope: {len(rows)} samples of {','.join(names)} every {decim} periods "
-              f"({f_pwm / decim:g} Hz), {len(rows) * decim / f_pwm:.3f} s")
-        if args.csv:
-            write_csv(args.csv, mon, names, decim, idx, rows)
-            print(f"scope: CSV {args.csv}")
-        if args.png:
-            plot(mon, names, decim, idx, rows, args.png, args.title)
-            print(f"scope: PNG {args.png}")
-    else:
-        live(args, mon, names, decim)
-    if args.stop:
-        mon.motor(mp.MOTOR_STOP)
-    return 0
+# ---- main ------------------------------------------------------------------------------------
 
 
 def _fail(msg: str, code: int = EXIT_FAIL) -> int:
@@ -445,42 +485,91 @@ def _fail(msg: str, code: int = EXIT_FAIL) -> int:
     return code
 
 
-def main(argv: list[str] | None = None, opener: PortOpener = open_port) -> int:
+Opener = Callable[[str, int], lnet.Transport]
+
+
+def run(args: argparse.Namespace, opener: Opener = lnet.open_transport) -> int:
+    # everything that needs no target is checked first: the map, the names, the files
+    vm: VarMap | None = None
+    if args.cmd != "info":
+        vm = need_map(args)
+    if args.cmd == "list":
+        assert vm is not None
+        print_list(vm)
+        return 0
+    vs: list[Var] = []
+    cfg: x2c.ScopeConfig | None = None
+    raw = 0
+    if args.cmd == "read":
+        assert vm is not None
+        vs = [lookup(vm, n) for n in args.names]
+    elif args.cmd == "write":
+        assert vm is not None
+        vs = [lookup(vm, args.name)]
+        raw = parse_value(vs[0], args.value)
+    elif args.cmd in ("capture", "live"):
+        assert vm is not None
+        cfg, vs = build_config(args, vm)
+    then = parse_then(vm, args.then) if args.cmd == "capture" and vm is not None else []
+    if args.cmd == "capture":
+        if args.png is not None and not args.png.lower().endswith(".png"):
+            raise UsageError(f"--png {args.png!r}: the name must end in .png")
+        if args.csv is not None and args.png is not None and os.path.realpath(args.csv) == os.path.realpath(args.png):
+            raise UsageError("--csv and --png name the same file")
+        for path, opt in ((args.csv, "--csv"), (args.png, "--png")):
+            if path is not None:
+                check_output(path, opt, args.force)
+    if not args.port:
+        raise UsageError(f"{args.cmd}: needs --port (a serial port, a pty, or tcp://HOST:PORT)")
+    link = lnet.Link(opener(args.port, args.baud), args.reply_timeout)
+    try:
+        t = x2c.Target(link)
+        t.device_info()
+        if args.cmd == "info":
+            cmd_info(t)
+        elif args.cmd == "read":
+            cmd_read(t, vs)
+        elif args.cmd == "write":
+            return cmd_write(t, vs[0], raw)
+        elif args.cmd == "capture":
+            assert cfg is not None
+            try:
+                cmd_capture(args, t, cfg, vs, then)
+            except KeyboardInterrupt:
+                with contextlib.suppress(lnet.LNetError):
+                    t.scope_stop()
+                raise
+        else:
+            assert cfg is not None
+            cmd_live(args, t, cfg, vs)
+        return 0
+    finally:
+        link.close()
+
+
+def main(argv: list[str] | None = None, opener: Opener = lnet.open_transport) -> int:
+    """The command; opener makes the transport (tests hand in a fake one)."""
     args = parse_args(sys.argv[1:] if argv is None else argv)
     try:
-        parse_sets(args.set)  # a malformed --set is a usage error: refused before the port opens
-    except mp.MonitorError as e:
+        return run(args, opener)
+    except UsageError as e:
         return _fail(str(e), EXIT_USAGE)
-    why = check_outputs(args)
-    if why is not None:
-        return _fail(why, EXIT_USAGE)
-    try:
-        port = opener(args)
-    except ImportError as e:
-        return _fail(f"pyserial is missing ({e}): run tools/bootstrap")
-    except (OSError, ValueError) as e:  # pyserial's SerialException is an OSError
-        return _fail(f"cannot open port {args.port!r}: {mp.one_line(e)}")
-    mon = mp.Monitor(port, timeout=args.reply_timeout)
-    try:
-        return session(args, mon)
-    except mp.MonitorError as e:
-        if args.stop:
-            with suppress(mp.MonitorError):  # the motor must not run on because the recording failed
-                mon.motor(mp.MOTOR_STOP)
+    except (lnet.LNetError, MapError) as e:
         return _fail(str(e))
+    except ImportError as e:
+        return _fail(f"{e.name or 'a package'} is not installed (run tools/bootstrap)")
+    except BrokenPipeError:  # `list | head`: the reader left; nothing to say to it
+        with contextlib.suppress(OSError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_FAIL
     except OSError as e:  # writing the CSV or the PNG
-        return _fail(f"cannot write: {mp.one_line(e)}")
+        return _fail(f"cannot write: {e.strerror or e}" + (f" ({e.filename})" if e.filename else ""))
     except KeyboardInterrupt:
         return _fail("interrupted", EXIT_INTERRUPTED)
-    except Exception as e:
+    except Exception as e:  # never a traceback
         if os.environ.get("SCOPE_TRACEBACK"):
             raise
-        return _fail(f"internal error, {type(e).__name__}: {e} (SCOPE_TRACEBACK=1 shows where)")
-    finally:
-        close = getattr(port, "close", None)
-        if close is not None:
-            with suppress(OSError, ValueError):
-                close()
+        return _fail(f"internal error, {type(e).__name__}: {' '.join(str(e).split())} (SCOPE_TRACEBACK=1 shows where)")
 
 
 if __name__ == "__main__":

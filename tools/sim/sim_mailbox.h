@@ -7,7 +7,7 @@
  * ADC interrupt steps, masking that interrupt around each call. On the PC
  * the motor is stepped by the same thread that serves the mailbox (the
  * simulator's loop, a test), so there is nothing to mask: this
- * implementation runs each call straight on the attached mc_t. The monitor
+ * implementation runs each call straight on the attached mc_t. The X2Cscope target
  * and the board's main loop then run unchanged on either. One motor at a
  * time; motor_start() and motor_observe() are the dsPIC's and are not
  * provided (the caller inits and steps its motor and calls its observer).

@@ -9,12 +9,11 @@
  * one row per whitelisted variable (firmware/x2cscope/x2c_vars.h), with the
  * name a client knows from the board's ELF, its kind and width (from
  * which the generator names its XC16 type: pyx2cscope reads widths by
- * XC16's rules), its window address and its engineering scale. The rows hold no pointers, so the table's bytes
- * in the ELF's read-only data are final: `an1078-x2cmap` (tools/scope)
- * reads them from the symbol `sim_x2c_map` and writes the map clients
- * import (pyx2cscope's import_variables YAML).
- * The layout is fixed (80 bytes a row, little-endian); tools/scope/
- * x2cmap.py reads the same layout.
+ * XC16's rules), its window address and its engineering scale. The rows hold no pointers, so the
+ * table's bytes in the ELF's read-only data are final: `an1078-x2cmap` (tools/scope) reads them
+ * from the symbol `sim_x2c_map` and writes the map clients import (pyx2cscope's import_variables
+ * YAML). The layout is fixed (80 bytes a row, little-endian); tools/scope/ x2cmap.py reads the same
+ * layout.
  */
 
 #include <stdint.h>

@@ -167,9 +167,33 @@ static void test_a_start_at_2000_rpm_over_the_uart_should_reach_the_core(void **
 static void test_a_full_rate_capture_through_a_slow_uart_should_arrive_whole(void **state)
 {
     uint16_t a_vbus = (uint16_t)(X2C_WINDOW_MOTOR + offsetof(mc_t, vbus));
-    uint8_t cfg[] = {X2C_SVC_SAVE_PARAM, 1, 0, X2C_SCOPE_SAMPLE, 1, 0, 0,
-                     0, (uint8_t)a_vbus, (uint8_t)(a_vbus >> 8), 0, 0, 2,
-                     0x82, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0};
+    uint8_t cfg[] = {X2C_SVC_SAVE_PARAM,
+                     1,
+                     0,
+                     X2C_SCOPE_SAMPLE,
+                     1,
+                     0,
+                     0,
+                     0,
+                     (uint8_t)a_vbus,
+                     (uint8_t)(a_vbus >> 8),
+                     0,
+                     0,
+                     2,
+                     0x82,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     0,
+                     1,
+                     0};
     uint8_t load[3] = {X2C_SVC_LOAD_PARAM, 1, 0};
     uint8_t got[X2C_SCOPE_BYTES];
     unsigned polls = 0, k;
@@ -194,8 +218,8 @@ static void test_a_full_rate_capture_through_a_slow_uart_should_arrive_whole(voi
     }
     while (at < X2C_SCOPE_BYTES) {
         uint16_t a = (uint16_t)(X2C_WINDOW_SCOPE + at);
-        uint8_t n = (uint8_t)(X2C_SCOPE_BYTES - at > X2C_READ_MAX ? X2C_READ_MAX
-                                                                   : X2C_SCOPE_BYTES - at);
+        uint8_t n =
+            (uint8_t)(X2C_SCOPE_BYTES - at > X2C_READ_MAX ? X2C_READ_MAX : X2C_SCOPE_BYTES - at);
         uint8_t rd[5] = {X2C_SVC_GET_RAM, (uint8_t)a, (uint8_t)(a >> 8), n, 1};
         tx_n = 0;
         host_send(rd, 5U);
