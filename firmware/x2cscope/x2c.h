@@ -111,7 +111,8 @@ bool x2c_tx_byte(x2c_t *x, uint8_t *byte); /* the next byte to send, false if no
  * stored a dataset (at byte *at of its buffer, when at is not NULL). */
 static inline bool x2c_sample(x2c_t *x, uint16_t *at)
 {
-    return x2c_scope_sample(&x->scope, at);
+    /* idle, the common case, without the call */
+    return x->scope.run.state != X2C_SCOPE_IDLE && x2c_scope_sample(&x->scope, at);
 }
 
 /* The wire address of an object (x2c_obj_t). */
