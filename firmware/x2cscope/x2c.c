@@ -287,7 +287,7 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     const volatile uint8_t *p;
     const x2c_row_t *row;
     uint32_t addr;
-    uint8_t count, err, i;
+    uint8_t count, err;
     if (n != 5U) {
         return X2C_ERR_FORMAT;
     }
@@ -310,6 +310,7 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     if (row->obj == X2C_OBJ_MOTOR) {
         motor_copy(&d[2], p, count); /* at most 4 bytes (a variable), masked */
     } else {
+        uint8_t i;
         for (i = 0; i < count; i++) {
             d[2U + i] = p[i];
         }
@@ -495,7 +496,7 @@ static const svc_row_t services[] = {
     {X2C_SVC_LOAD_PARAM, svc_load_param},   {X2C_SVC_SAVE_PARAM, svc_save_param},
 };
 
-static void count(uint16_t *c)
+static void tally(uint16_t *c)
 {
     if (*c < 0xFFFFU) {
         (*c)++;
@@ -506,7 +507,7 @@ static void reply(x2c_t *x, uint8_t service, uint8_t err, uint8_t n)
 {
     x->rx.data[0] = service;
     x->rx.data[1] = err;
-    count(err == X2C_ERR_OK ? &x->answered : &x->refused);
+    tally(err == X2C_ERR_OK ? &x->answered : &x->refused);
     lnet_tx_start(&x->tx, LNET_NODE, x->rx.data, (uint8_t)(2U + (err == X2C_ERR_OK ? n : 0U)));
 }
 

@@ -216,7 +216,6 @@ bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
 {
     x2c_scope_run_t *r = &s->run;
     uint8_t state = r->state;
-    uint8_t i;
 
     if (state == X2C_SCOPE_IDLE) {
         return false;
@@ -316,6 +315,7 @@ bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
     } else {
         /* a 1-byte channel among them: byte by byte */
         uint8_t *d = &s->buf[r->wr];
+        uint8_t i;
         for (i = 0; i < s->cfg.nch; i++) {
             const volatile uint8_t *p = (const volatile uint8_t *)s->word[i];
             switch (s->cfg.size[i]) {

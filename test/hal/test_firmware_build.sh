@@ -59,8 +59,8 @@ print)
     n_cc=$(grep -c -- ' -c ' "$f")
     echo "measured: $2: $n_cc compile lines for $n_src sources, $(grep -c 'xc16-bin2hex' "$f") bin2hex line(s)"
     [ "$n_cc" -eq "$n_src" ] || fail "$2: $n_cc compile lines, $n_src sources"
-    [ "$(grep -- ' -c ' "$f" | grep -c -- '-mcpu=33FJ32MC204 -omf=elf -O2 -fno-short-double')" -eq "$n_cc" ] ||
-      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O2 -fno-short-double"
+    [ "$(grep -- ' -c ' "$f" | grep -c -- '-mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double"
     [ "$(grep -- ' -c ' "$f" | grep -c -- '-DMC_BOARD_MCLV -DMC_MOTOR_HURST')" -eq "$n_cc" ] ||
       fail "$2: a compile line lacks the board/motor defines"
     grep -q -- ' -c hal/dspic33f/hal_isr.c ' "$f" || fail "$2: hal_isr.c not compiled"

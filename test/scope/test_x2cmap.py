@@ -5,7 +5,15 @@ target's 16-bit window, with the XC16 type of each width; it loads as pyx2cscope
 the tool refuses, in one line, an ELF without the table, a table whose rows are not 80 bytes,
 and an existing output without --force.
 
-usage: test_x2cmap.py <sim executable>   (CTest: test_x2cmap, label unit)
+A board's map (--like): a 16-bit ELF with DWARF, built here with avr-gcc (int 16 bits, as on
+the dsPIC) from the firmware's own headers, holding `motor` (static, as in firmware/motor.c)
+and `x2c` (as in firmware/main.c): every variable's address and width must equal what the
+compiler itself computes (the symbols' addresses, offsetof and sizeof through a probe object),
+with the simulator's names, units and ranges; the simulator's ELF given as the board's, a
+board ELF without --like, and one without the variables, are refused in one line.
+
+usage: test_x2cmap.py <sim executable> [<-DNAME=VALUE of the build's profile>...]
+       (CTest: test_x2cmap, label unit)
 """
 
 from __future__ import annotations
@@ -17,6 +25,7 @@ import os
 import re
 import shutil
 import struct
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -31,6 +40,7 @@ from scope import varmap
 from test_scope import VariableInfo, load_as_pyx2cscope
 
 SIM = ""
+DEFS: list[str] = []  # the build's profile defines (MC_BOARD_..., MC_MOTOR_..., MC_MOTOR_HEADER=...)
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 # the type names pyx2cscope's get_variable_raw knows (its type_factory keys), as read from it
 PYX2CSCOPE_TYPES = {"bool", "char", "double", "float", "int", "long", "long double", "long int", "long long",
@@ -116,7 +126,7 @@ class X2cMap(unittest.TestCase):
 
     def test_an_elf_without_the_table_should_be_refused(self) -> None:
         rc, _, err = run(os.path.realpath(sys.executable), "-o", self.out)
-        self.assertOneLine(rc, err, "no symbol 'sim_x2c_map'")
+        self.assertOneLine(rc, err, "no simulator table", "give --like")
         rc, _, err = run(__file__, "-o", self.out)
         self.assertOneLine(rc, err, "not an ELF")
         self.assertFalse(os.path.exists(self.out))
@@ -157,9 +167,101 @@ class X2cMap(unittest.TestCase):
             self.assertIn("variables:", f.read())
 
 
+BOARD_C = """
+#include <stddef.h>
+#include "x2c.h"
+static mc_t motor __attribute__((used)); /* as firmware/motor.c has it */
+x2c_t x2c;                               /* as firmware/main.c has it */
+int main(void) { return 0; }
+"""
+
+
+class BoardMap(unittest.TestCase):
+    """an1078-x2cmap <16-bit ELF> --like <sim>: the addresses from the ELF's DWARF."""
+
+    def setUp(self) -> None:
+        self.cc = shutil.which("avr-gcc")
+        if self.cc is None:
+            self.skipTest("avr-gcc is not installed (run tools/bootstrap)")
+        self.tmp = tempfile.TemporaryDirectory()
+        self.out = os.path.join(self.tmp.name, "board.yml")
+        self.inc = [f"-I{os.path.join(ROOT, d)}" for d in ("firmware", "firmware/x2cscope", "foc", "smc_estimator",
+                                                             "hal", "boards")]
+
+    def tearDown(self) -> None:
+        self.tmp.cleanup()
+
+    def build(self, name: str, text: str, *flags: str) -> str:
+        src, elf = os.path.join(self.tmp.name, f"{name}.c"), os.path.join(self.tmp.name, f"{name}.elf")
+        with open(src, "w", encoding="utf-8") as f:
+            f.write(text)
+        assert self.cc is not None
+        subprocess.run([self.cc, "-std=gnu99", "-mmcu=atmega2560", "-Os", *flags, *self.inc, *DEFS, src, "-o", elf],
+                       check=True, capture_output=True, text=True)
+        return elf
+
+    def nm(self, path: str, *flags: str) -> dict[str, tuple[int, int]]:
+        """symbol -> (value, size)."""
+        p = subprocess.run(["avr-nm", "-S", *flags, path], check=True, capture_output=True, text=True)
+        out = {}
+        for ln in p.stdout.splitlines():
+            f = ln.split()
+            if len(f) == 4:
+                out[f[3]] = (int(f[0], 16), int(f[1], 16))
+        return out
+
+    def test_every_variable_should_sit_where_the_compiler_put_it(self) -> None:
+        elf = self.build("board", BOARD_C, "-gdwarf-2")
+        rc, _, err = run(elf, "--like", SIM, "-o", self.out)
+        self.assertEqual(rc, 0, err)
+        vm = varmap.load_map(self.out)
+        sim = varmap.read_elf(SIM)
+        self.assertEqual(list(vm.vars), [v.name for v in sim])
+        # the compiler's own answer: offsetof and sizeof of every path, as the sizes of probe arrays
+        probe = ["#include <stddef.h>", '#include "x2c.h"']
+        for i, v in enumerate(sim):
+            top, path = v.name.split(".", 1)
+            t = "mc_t" if top == "motor" else "x2c_t"
+            probe.append(f"char off_{i}[offsetof({t}, {path}) + 1]; char size_{i}[sizeof((({t} *)0)->{path})];")
+        obj = self.build("probe", "\n".join(probe) + "\n", "-c")
+        sizes = self.nm(obj)
+        syms = self.nm(elf)
+        base = {"motor": syms["motor"][0] & 0xFFFF, "x2c": syms["x2c"][0] & 0xFFFF}
+        for i, v in enumerate(sim):
+            got = vm.get(v.name)
+            want_addr = base[v.name.split(".")[0]] + sizes[f"off_{i}"][1] - 1
+            self.assertEqual((got.address, got.size), (want_addr, sizes[f"size_{i}"][1]), v.name)
+            self.assertEqual((got.unit, got.full_scale, got.tunable, got.min, got.max),
+                             (v.unit, v.full_scale, v.tunable, v.min, v.max), v.name)
+            self.assertEqual(varmap.TYPE_KINDS[got.type], (got.kind, got.size), v.name)
+        self.assertEqual(vm.get("motor.state").size, 2)  # an enum is an int: 16 bits here, 32 on the PC
+        print(f"measured: {len(vm.vars)} variables at the compiler's addresses "
+              f"(motor at 0x{base['motor']:04X}, x2c at 0x{base['x2c']:04X})")
+
+    def test_the_wrong_elf_or_none_of_the_variables_should_be_refused(self) -> None:
+        rc, _, err = run(SIM, "--like", SIM, "-o", self.out)
+        self.assertEqual((rc, len(err.splitlines())), (1, 1), err)
+        self.assertIn("give it without --like", err)
+        elf = self.build("board", BOARD_C, "-gdwarf-2")
+        rc, _, err = run(elf, "-o", self.out)
+        self.assertEqual((rc, len(err.splitlines())), (1, 1), err)
+        self.assertIn("give --like", err)
+        other = self.build("other", "int main(void) { return 0; }\n", "-gdwarf-2")
+        rc, _, err = run(other, "--like", SIM, "-o", self.out)
+        self.assertEqual((rc, len(err.splitlines())), (1, 1), err)
+        self.assertIn("no variable 'motor'", err)
+        bare = os.path.join(self.tmp.name, "bare.elf")
+        subprocess.run(["avr-objcopy", "--strip-debug", elf, bare], check=True)
+        rc, _, err = run(bare, "--like", SIM, "-o", self.out)
+        self.assertEqual((rc, len(err.splitlines())), (1, 1), err)
+        self.assertIn("no DWARF", err)
+        self.assertFalse(os.path.exists(self.out))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2 or not os.path.isfile(sys.argv[1]):
-        print("usage: test_x2cmap.py <sim executable>", file=sys.stderr)
+    if len(sys.argv) < 2 or not os.path.isfile(sys.argv[1]):
+        print("usage: test_x2cmap.py <sim executable> [-DNAME=VALUE...]", file=sys.stderr)
         sys.exit(2)
     SIM = sys.argv[1]
+    DEFS = sys.argv[2:]
     unittest.main(verbosity=1, argv=[sys.argv[0]])

@@ -147,7 +147,7 @@ static uint8_t some_width(void)
 
 static uint8_t build(uint8_t *d)
 {
-    uint8_t n = 0, r = some_row((uint8_t)X2C_ROWS), k, nch;
+    uint8_t n = 0, r = some_row((uint8_t)X2C_ROWS);
     uint16_t size = x2c_rows[r].size;
     /* inside the row now and then: the same on every platform */
     uint16_t delta = (size > 1U && vec_rand_u16() % 4U == 0U) ? vec_rand_u16() % size : 0U;
@@ -183,7 +183,7 @@ static uint8_t build(uint8_t *d)
             uint8_t tr = some_row((uint8_t)X2C_MOTOR_ROWS);
             uint16_t ta = row_addr(tr);
             uint8_t tw = (uint8_t)x2c_rows[tr].size;
-            nch = (uint8_t)(1U + vec_rand_u16() % 9U);
+            uint8_t nch = (uint8_t)(1U + vec_rand_u16() % 9U), k;
             d[0] = X2C_SVC_SAVE_PARAM;
             d[1] = 1;
             d[2] = 0;

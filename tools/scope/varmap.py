@@ -17,6 +17,17 @@ tool reads both from the section that holds them and writes
       motor.i_dq.d: {unit: A, full_scale: 4.4, tunable: false, min: 0, max: 0}
 
 `type` is the XC16 type of the width, which is how pyx2cscope picks a variable's width and sign.
+
+The board's firmware (`make firmware`'s ELF) carries no such table: its addresses are its own, and
+the ELF's DWARF describes them, which is what X2Cscope clients read on the board. For our client,
+
+    an1078-x2cmap build/firmware/mclv.elf --like build/host/tools/sim/sim -o board.yml
+
+takes the names, units, full scales and ranges from the simulator built with the same BOARD and
+MOTOR (the same whitelist, x2c_vars.h) and each variable's address and width from the board ELF's
+DWARF: the variable (`motor`, `x2c`), its members' offsets, an array's element size. A name the
+DWARF does not resolve to a scalar of a width the target reads is refused.
+
 Every failure is one line on stderr and exit status 1 (2 for a usage error); an existing output is
 replaced only with --force.
 """
@@ -26,6 +37,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import re
 import struct
 import sys
 import tempfile
@@ -181,6 +193,151 @@ def read_elf(path: str) -> list[Var]:
     return out
 
 
+# ---- a board's ELF: the addresses from its DWARF ----------------------------------------------------
+
+EM_AVR = 83  # its ELF numbers data addresses from 0x800000 (the 16-bit check's test ELFs)
+_PATH_STEP = re.compile(r"\.?([A-Za-z_]\w*)|\[(\d+)\]")
+
+
+def _die_type(die: Any) -> Any:
+    """The type DIE behind typedefs and qualifiers (None for void)."""
+    t = die.get_DIE_from_attribute("DW_AT_type") if "DW_AT_type" in die.attributes else None
+    while t is not None and t.tag in ("DW_TAG_typedef", "DW_TAG_const_type", "DW_TAG_volatile_type"):
+        t = t.get_DIE_from_attribute("DW_AT_type") if "DW_AT_type" in t.attributes else None
+    return t
+
+
+def _member_offset(m: Any, where: str) -> int:
+    at = m.attributes.get("DW_AT_data_member_location")
+    if at is None:
+        return 0  # a union's member
+    v = at.value
+    if isinstance(v, int):
+        return v
+    if isinstance(v, list) and len(v) >= 2 and v[0] == 0x23:  # DW_OP_plus_uconst ULEB128, DWARF 2
+        off, shift = 0, 0
+        for b in v[1:]:
+            off |= (int(b) & 0x7F) << shift
+            shift += 7
+            if not int(b) & 0x80:
+                return off
+    raise MapError(f"{where}: a member location this tool does not read ({v!r})")
+
+
+def _dwarf_globals(elf: Any, wanted: set[str]) -> dict[str, tuple[int, Any]]:
+    """name -> (address, the variable's DIE) for the variables named, where a definition with a
+    static address exists."""
+    out: dict[str, tuple[int, Any]] = {}
+    dwarf = elf.get_dwarf_info()
+    for cu in dwarf.iter_CUs():
+        for die in cu.iter_DIEs():
+            if die.tag != "DW_TAG_variable" or "DW_AT_location" not in die.attributes:
+                continue
+            name_at = die.attributes.get("DW_AT_name")
+            spec = None
+            if name_at is None and "DW_AT_specification" in die.attributes:
+                spec = die.get_DIE_from_attribute("DW_AT_specification")
+                name_at = spec.attributes.get("DW_AT_name")
+            if name_at is None:
+                continue
+            name = name_at.value.decode("utf-8", "replace")
+            loc = die.attributes["DW_AT_location"].value
+            if name not in wanted or not isinstance(loc, list) or len(loc) < 2 or loc[0] != 0x03:
+                continue  # only DW_OP_addr: a static address
+            addr = 0
+            for i, b in enumerate(loc[1:]):
+                addr |= int(b) << (8 * i)
+            out[name] = (addr, die if "DW_AT_type" in die.attributes else spec)
+    return out
+
+
+def _resolve(path: str, base: tuple[int, Any], where: str) -> tuple[int, int, str]:
+    """Address, byte size and base-type name of the scalar at path ('motor.i_dq.d', 'motor.duty[1]')."""
+    addr, die = base
+    steps = _PATH_STEP.findall(path)
+    t = _die_type(die)
+    for member, index in steps[1:]:
+        if t is None:
+            raise MapError(f"{where}: {path!r}: a step into void")
+        if member:
+            if t.tag not in ("DW_TAG_structure_type", "DW_TAG_union_type"):
+                raise MapError(f"{where}: {path!r}: .{member} of a {t.tag[7:]}")
+            for m in t.iter_children():
+                if m.tag == "DW_TAG_member" and m.attributes.get("DW_AT_name") and \
+                        m.attributes["DW_AT_name"].value.decode() == member:
+                    addr += _member_offset(m, where)
+                    t = _die_type(m)
+                    break
+            else:
+                raise MapError(f"{where}: {path!r}: no member {member!r} in the ELF's type")
+        else:
+            if t.tag != "DW_TAG_array_type":
+                raise MapError(f"{where}: {path!r}: [{index}] of a {t.tag[7:]}")
+            elem = _die_type(t)
+            if elem is None or "DW_AT_byte_size" not in elem.attributes:
+                raise MapError(f"{where}: {path!r}: an array of elements of unknown size")
+            addr += int(index) * int(elem.attributes["DW_AT_byte_size"].value)
+            t = elem
+    if t is None or t.tag not in ("DW_TAG_base_type", "DW_TAG_enumeration_type"):
+        raise MapError(f"{where}: {path!r} is not a scalar in the ELF ({t.tag[7:] if t is not None else 'void'})")
+    size = int(t.attributes["DW_AT_byte_size"].value)
+    name = "enum" if t.tag == "DW_TAG_enumeration_type" else t.attributes["DW_AT_name"].value.decode()
+    return addr, size, name
+
+
+def read_board_elf(path: str, like: list[Var]) -> list[Var]:
+    """The variables of `like` (a simulator's map: names, units, scales, ranges) at the addresses
+    and widths the board ELF's DWARF gives them."""
+    from elftools.common.exceptions import DWARFError, ELFError
+    from elftools.elf.elffile import ELFFile
+
+    tops = {_PATH_STEP.findall(v.name)[0][0] for v in like}
+    try:
+        with open(path, "rb") as f:
+            try:
+                elf = ELFFile(f)
+                if not elf.has_dwarf_info():
+                    raise MapError(f"{path}: no DWARF (build it with -g, as make firmware does)")
+                found = _dwarf_globals(elf, tops)
+                avr = elf["e_machine"] in ("EM_AVR", EM_AVR)
+                out: list[Var] = []
+                for v in like:
+                    top = _PATH_STEP.findall(v.name)[0][0]
+                    if top not in found:
+                        raise MapError(f"{path}: no variable {top!r} with a static address in its DWARF "
+                                       f"(is it the firmware built with the X2Cscope target?)")
+                    addr, size, tname = _resolve(v.name, found[top], path)
+                    if avr:
+                        addr &= 0xFFFF
+                    kind = "B" if tname in ("_Bool", "bool") else v.kind
+                    xt = XC16_TYPES.get((kind, size))
+                    if xt is None or addr + size > 0x10000:
+                        raise MapError(f"{path}: {v.name!r}: {size} bytes ({tname}) at 0x{addr:X}: not a "
+                                       f"variable the target reads")
+                    out.append(Var(v.name, addr, size, kind, xt, v.unit, v.full_scale, v.tunable, v.min, v.max))
+            except (ELFError, DWARFError) as e:
+                raise MapError(f"{path}: not an ELF file this tool reads ({_one_line(e)})") from None
+    except OSError as e:
+        raise MapError(f"cannot read {path!r}: {e.strerror or e}") from None
+    return out
+
+
+def has_sim_table(path: str) -> bool:
+    """Whether the ELF at path carries the simulator's table (a missing or foreign file: True,
+    so that read_elf says what is wrong with it)."""
+    from elftools.common.exceptions import ELFError
+    from elftools.elf.elffile import ELFFile
+    from elftools.elf.sections import SymbolTableSection
+
+    try:
+        with open(path, "rb") as f:
+            elf = ELFFile(f)
+            return any(isinstance(s, SymbolTableSection) and s.get_symbol_by_name(MAP_SYMBOL)
+                       for s in elf.iter_sections())
+    except (OSError, ELFError):
+        return True
+
+
 # ---- the YAML ------------------------------------------------------------------------------------
 
 
@@ -200,7 +357,7 @@ class _VariableInfo:
                        "byte_size": v.size, "name": v.name, "type": v.type, "valid_values": {}}
 
 
-def dump(rows: list[Var]) -> str:
+def dump(rows: list[Var], board: bool = False) -> str:
     import yaml
 
     class Dumper(yaml.SafeDumper):
@@ -210,7 +367,8 @@ def dump(rows: list[Var]) -> str:
         return dumper.represent_mapping(VARIABLE_INFO_TAG, data.fields)
 
     Dumper.add_representer(_VariableInfo, represent)
-    head = ("# X2Cscope variable map of the AN1078 simulator's 16-bit window (an1078-x2cmap).\n"
+    what = "a board's firmware (its DWARF)" if board else "the AN1078 simulator's 16-bit window"
+    head = (f"# X2Cscope variable map of {what} (an1078-x2cmap).\n"
             "# pyx2cscope: X2CScope.import_variables('this.yml'); tools/scope: --map this.yml\n")
     return head + yaml.dump(to_document(rows), Dumper=Dumper, sort_keys=False, default_flow_style=False)
 
@@ -352,13 +510,24 @@ class _Parser(argparse.ArgumentParser):
 def main(argv: list[str] | None = None) -> int:
     ap = _Parser(prog="an1078-x2cmap", description="The simulator's X2Cscope variable map, from its ELF, "
                  "as pyx2cscope's import_variables YAML.")
-    ap.add_argument("elf", help="the simulator executable (build/host/tools/sim/sim)")
+    ap.add_argument("elf", help="the simulator executable (build/host/tools/sim/sim), or with --like the "
+                    "board's ELF (build/firmware/mclv.elf)")
     ap.add_argument("-o", "--output", required=True, help="the map to write (.yml)")
+    ap.add_argument("--like", metavar="SIM", help="for a board's ELF: the simulator built with the same BOARD and "
+                    "MOTOR, for the names, units and ranges")
     ap.add_argument("--force", action="store_true", help="replace an existing output")
     args = ap.parse_args(sys.argv[1:] if argv is None else argv)
     try:
-        rows = read_elf(args.elf)
-        write_new(args.output, dump(rows), args.force)
+        if args.like is not None:
+            if has_sim_table(args.elf):
+                raise MapError(f"{args.elf}: the simulator's own ELF: give it without --like")
+            rows = read_board_elf(args.elf, read_elf(args.like))
+        else:
+            if not has_sim_table(args.elf):
+                raise MapError(f"{args.elf}: no simulator table; for a board's ELF give --like <the simulator "
+                               f"built with the same BOARD and MOTOR>")
+            rows = read_elf(args.elf)
+        write_new(args.output, dump(rows, board=args.like is not None), args.force)
     except MapError as e:
         print(f"an1078-x2cmap: {e}", file=sys.stderr)
         return 1

@@ -1,4 +1,5 @@
-/* test_x2c_readonly.c - the target built with X2C_READ_ONLY: every write refused, reads and the scope as before. */
+/* test_x2c_readonly.c - the target built with X2C_READ_ONLY: every write refused, reads and the
+ * scope as before. */
 #include "../x2c_util.h"
 
 static rig_t rig;
@@ -12,8 +13,12 @@ static int setup(void **state)
 
 static uint8_t write_tunable(uint16_t addr, int16_t v)
 {
-    uint8_t req[6] = {X2C_SVC_PUT_RAM, (uint8_t)(addr & 0xFFU), (uint8_t)(addr >> 8), 2U,
-                      (uint8_t)((uint16_t)v & 0xFFU), (uint8_t)((uint16_t)v >> 8)};
+    uint8_t req[6] = {X2C_SVC_PUT_RAM,
+                      (uint8_t)(addr & 0xFFU),
+                      (uint8_t)(addr >> 8),
+                      2U,
+                      (uint8_t)((uint16_t)v & 0xFFU),
+                      (uint8_t)((uint16_t)v >> 8)};
     return rig_err(&rig, req, 6U);
 }
 
