@@ -273,4 +273,34 @@
 #define MC_STALL_TRACK_TIME_S 0.04
 #endif
 
+/* ---- self-commissioning (MC_REQUEST_IDENTIFY, mc.h; docs/identify.md) ------------ */
+/* The largest current the measurement drives (A, peak phase): the DC level
+ * at which R, the inverter's error and L are measured (1.5 times it may flow
+ * for a moment while the voltage is found), a third of it turns the rotor
+ * for Ke and J. Your motor's rated current, or less; the profile in the
+ * build is the motor's *before* it is known, so set this one for the motor
+ * you measure. Must leave room below MC_OVERCURRENT_A: by default the
+ * profile's MOTOR_CURRENT_MAX_A, or less where 1.6 times that would come
+ * within 5 % of the trip. */
+#ifndef MC_ID_CURRENT_A
+#define MC_ID_CURRENT_A                                                                            \
+    ((1.6 * MOTOR_CURRENT_MAX_A < 0.95 * MC_OVERCURRENT_A) ? MOTOR_CURRENT_MAX_A                   \
+                                                           : 0.95 * MC_OVERCURRENT_A / 1.6)
+#endif
+/* The current loops' bandwidth while measuring (rad/s): set from the
+ * measured L, whatever the profile says. */
+#ifndef MC_ID_LOOP_BW_RAD_S
+#define MC_ID_LOOP_BW_RAD_S 1000.0
+#endif
+/* The spin: electrical acceleration of the turning current (Hz/s) and the
+ * highest mechanical speed it may reach (rpm). The back-EMF is measured at
+ * the speed where it reaches a fifth of the voltage scale and at twice
+ * that, or at half this limit and at the limit. */
+#ifndef MC_ID_ACCEL_HZ_S
+#define MC_ID_ACCEL_HZ_S 100.0
+#endif
+#ifndef MC_ID_SPEED_MAX_RPM
+#define MC_ID_SPEED_MAX_RPM SPEED_REF_MAX_RPM
+#endif
+
 #endif /* USERPARMS_H */

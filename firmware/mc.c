@@ -47,6 +47,18 @@ static const pi_params_t mc_pi_spd_params = {
     MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
 };
 
+static const mc_id_params_t mc_id_params = {
+    MC_ID_I_Q15,
+    MC_ID_I_MIN_Q15,
+    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */
+    (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */
+    MC_ID_WC_TS,
+    (uint16_t)MC_SLOW_STEP_PERIODS,
+    (int16_t)PWM_DUTY_MAX,
+    MC_ID_ACCEL,
+    MC_ID_STEP_MAX,
+};
+
 static const fieldweak_params_t mc_fw_params = {
     MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM),
     MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM),
@@ -253,21 +265,24 @@ static void mc_set_advance(mc_t *mc)
 
 static void mc_prepare(mc_t *mc);
 
-/* The states that drive the motor, outputs on: LOCK, OPEN_LOOP, CLOSED_LOOP
- * (consecutive in MC_STATE_LIST: one unsigned compare). */
+/* The states that drive the motor, outputs on: LOCK, OPEN_LOOP, CLOSED_LOOP,
+ * IDENTIFY (consecutive in MC_STATE_LIST: one unsigned compare). */
 Q15_STATIC_ASSERT(MC_STATE_OPEN_LOOP == MC_STATE_LOCK + 1 &&
-                      MC_STATE_CLOSED_LOOP == MC_STATE_LOCK + 2,
-                  "mc_driving needs LOCK, OPEN_LOOP, CLOSED_LOOP consecutive");
+                      MC_STATE_CLOSED_LOOP == MC_STATE_LOCK + 2 &&
+                      MC_STATE_IDENTIFY == MC_STATE_LOCK + 3,
+                  "mc_driving needs LOCK, OPEN_LOOP, CLOSED_LOOP, IDENTIFY consecutive");
 Q15_INLINE bool mc_driving(mc_state_t s)
 {
     return (unsigned)s - (unsigned)MC_STATE_LOCK <=
-           (unsigned)MC_STATE_CLOSED_LOOP - (unsigned)MC_STATE_LOCK;
+           (unsigned)MC_STATE_IDENTIFY - (unsigned)MC_STATE_LOCK;
 }
 
 static void mc_enter(mc_t *mc, mc_state_t s)
 {
     mc->state = s;
     mc->timer = 0U;
+    /* the window's voltage sums: the dead-time measurement's, the identification's */
+    mc->sums_on = s == MC_STATE_IDENTIFY || (MC_DTM_ON && s == MC_STATE_LOCK);
 }
 
 /* Everything the power stage and the loops hold, back to rest. */
@@ -288,12 +303,17 @@ static void mc_outputs_off(mc_t *mc)
     pi_reset(&mc->pi_q);
     mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
     mc->preset_pending = false;
+    mc->id_inj = 0;
+    mc->ol_inc = 0U;
 }
+
+static void mc_id_stop(mc_t *mc, uint16_t error);
 
 /* FAULT's entry: the cause recorded, the outputs off. */
 static void mc_enter_fault(mc_t *mc, uint16_t code)
 {
     mc->fault = code;
+    mc_id_stop(mc, MC_ID_ERROR_FAULT);
     mc_outputs_off(mc);
     mc_enter(mc, MC_STATE_FAULT);
 }
@@ -318,6 +338,7 @@ static void mc_begin_calibration(mc_t *mc, uint16_t wait)
 
 static void mc_stop(mc_t *mc)
 {
+    mc_id_stop(mc, MC_ID_ERROR_ABORTED);
     mc_outputs_off(mc);
     mc_enter(mc, MC_STATE_STOPPED);
 }
@@ -615,6 +636,21 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     mc_duty_set(mc, 2U, d2, dt2, (int16_t)PWM_DUTY_MAX, false);
 }
 
+/* OPEN_LOOP, IDENTIFY: the forced angle one step of inc further, its sin/cos
+ * into *sc and the voltage's, advanced by 1.5 - MC_SAMPLE_AT periods of
+ * the forced speed (the step is below 2^15 counts: the MOTOR_RAMP_END_RPM
+ * and MC_ID_SPEED_MAX_RPM checks), into scv_next. */
+Q15_INLINE angle_q15_t mc_forced_angle(mc_t *mc, uint32_t inc, sincos_q15_t *sc)
+{
+    mc->ol_step += inc;
+    mc->ol_angle += mc->ol_step;
+    angle_q15_t th = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
+    *sc = sincos_compute(th);
+    angle_q15_t adv = q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
+    mc->scv_next = (adv != 0) ? sincos_compute(angle_add(th, adv)) : *sc;
+    return th;
+}
+
 /* The next period's angles and bus ripple gain, at the end of this one
  * (mc_step_finish), so that the part of the step before the duties does
  * not compute them: theta_next (the angle of the next sample), its sin/cos,
@@ -624,11 +660,12 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
  *   LOCK         the lock angle 0, no advance;
  *   OPEN_LOOP    the forced angle one more step of the ramp on, advanced
  *                by (1.5 - MC_SAMPLE_AT) steps;
+ *   IDENTIFY     the same with the identification's acceleration (ol_inc);
  *   CLOSED_LOOP  the hand-off difference bled one step further; the
  *                estimator's angle of this sample plus the difference, one
  *                period of the estimated speed on (mc.h note 2), advanced
  *                by a rotation by adv_sc (set once per window).
- * Called in those three states only (the outputs on). */
+ * Called in those four states only (the outputs on). */
 static void mc_prepare(mc_t *mc)
 {
     angle_q15_t th;
@@ -647,14 +684,9 @@ static void mc_prepare(mc_t *mc)
         sc = sincos_compute(th);
         mc->scv_next = mc_advance(sc, mc->adv_sc);
     } else if (mc->state == MC_STATE_OPEN_LOOP) {
-        mc->ol_step += MC_RAMP_STEP_INC;
-        mc->ol_angle += mc->ol_step;
-        th = (angle_q15_t)(int16_t)(uint16_t)(mc->ol_angle >> 16);
-        sc = sincos_compute(th);
-        /* 1.5 - MC_SAMPLE_AT periods of the forced speed (the step is
-         * below 2^15 counts: the MOTOR_RAMP_END_RPM check above). */
-        angle_q15_t adv = q15_mul((q15_t)(uint16_t)(mc->ol_step >> 16), MC_ADV_PERIODS);
-        mc->scv_next = (adv != 0) ? sincos_compute(angle_add(th, adv)) : sc;
+        th = mc_forced_angle(mc, MC_RAMP_STEP_INC, &sc);
+    } else if (mc->state == MC_STATE_IDENTIFY) {
+        th = mc_forced_angle(mc, mc->ol_inc, &sc);
     } else { /* LOCK */
         th = 0;
         sc = sincos_compute(th);
@@ -665,6 +697,135 @@ static void mc_prepare(mc_t *mc)
 #if defined(ENVOLTRIPPLE)
     mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15);
 #endif
+}
+
+/* ---- identification (mc_id.h) ----------------------------------------------------------- */
+
+/* The sequence's command (mc_id_cmd_t) into the interrupt's loops: at
+ * IDENTIFY's entry and MC_SLOW_APPLY_PERIODS after each window end. An open
+ * loop sets the PIs' integrals to the voltage (and the injection's present
+ * half); the first closed-loop command keeps them (a bumpless hand-over). */
+static void mc_id_apply(mc_t *mc, const mc_id_cmd_t *c)
+{
+    pi_t *pis[2];
+    uint8_t k;
+    pis[0] = &mc->pi_d;
+    pis[1] = &mc->pi_q;
+    for (k = 0; k < 2U; k++) {
+        pis[k]->p.kp = c->kp;
+        pis[k]->p.kp_shift = c->kp_shift;
+        pis[k]->p.ki = c->ki;
+        pis[k]->p.kc = c->ki;
+    }
+    if (c->open_loop) {
+        q15_t inj = (c->inj != 0 && mc->id_sign < 0) ? (q15_t)(-c->inj) : c->inj;
+        mc->pi_d.sum = (q31_t)(c->v_d + ((c->inj_q == 0U) ? inj : 0)) * 65536L;
+        mc->pi_q.sum = (q31_t)((c->inj_q != 0U) ? inj : 0) * 65536L;
+    } else if (mc->id_open) {
+        mc->pi_d.sum = (q31_t)c->v_d * 65536L;
+        mc->pi_q.sum = 0;
+    }
+    mc->id_open = c->open_loop;
+    if (c->inj_q != mc->id_inj_q || c->inj_half != mc->id_half) {
+        mc->id_cnt = 0U;
+    }
+    mc->id_inj = c->inj;
+    mc->id_inj_q = c->inj_q;
+    mc->id_half = c->inj_half;
+    mc->i_ref = c->i_ref;
+    mc->ol_inc = (uint32_t)c->accel;
+    if (c->dt_counts != mc->dt_counts) {
+        mc->dt_counts = c->dt_counts;
+        mc->dt_slope = mc_deadtime_slope(c->dt_counts);
+    }
+}
+
+/* IDENTIFY, after CALIBRATE: the rotor's expected axis (d) on beta, the
+ * dead time uncompensated while it is measured (mc_id.c note 4). */
+static void mc_enter_identify(mc_t *mc)
+{
+    mc_id_cmd_t cmd;
+    mc->id_pending = false;
+    pi_reset(&mc->pi_d);
+    pi_reset(&mc->pi_q);
+    mc->epoch = (uint8_t)(mc->epoch + 1U);
+    mc->ol_angle = 0x40000000UL; /* 90 degrees */
+    mc->ol_step = 0U;
+    mc->theta_offset = 0;
+    mc->id_sign = 1;
+    mc->id_z = 1;
+    mc->id_i_prev = 0;
+    mc->id_u_prev = 0;
+    mc->id_open = true;
+    memset(&mc->id_win, 0, sizeof mc->id_win);
+    mc->lock_va = 0;
+    mc->lock_vb = 0;
+    mc_id_begin(&mc->id, &mc_id_params, &cmd);
+    mc_id_apply(mc, &cmd);
+    mc_enter(mc, MC_STATE_IDENTIFY);
+    mc_prepare(mc); /* the outputs turn on with the next period */
+}
+
+/* An identification ended, or was ended (error: MC_ID_ERROR_*, NONE when
+ * the sequence finished): the status for mc_identify_result, the loops
+ * back to the build's gains and dead time. Any state may call it; only a
+ * run that is going changes. */
+static void mc_id_stop(mc_t *mc, uint16_t error)
+{
+    if (mc->state != MC_STATE_IDENTIFY && !mc->id_pending) {
+        return;
+    }
+    mc->id_pending = false;
+    mc->id_error = error;
+    mc->id_status = (error == MC_ID_ERROR_NONE) ? MC_ID_DONE : MC_ID_FAILED;
+    mc_apply_gains(mc);
+    mc->pi_d.p.kp_shift = MC_CUR_KP_SHIFT;
+    mc->pi_q.p.kp_shift = MC_CUR_KP_SHIFT;
+    mc->dt_counts = MC_DT_COUNTS;
+    mc->dt_slope = MC_DT_SLOPE;
+}
+
+/* IDENTIFY's work in each period after the duties (mc_step_finish, after
+ * mc_estimate): the window's sums and the injected square wave (mc_id.c
+ * note 2). v_hist[1] is the command of the period before, id_u_prev the
+ * one before that: over the interval that ends at this sample they acted
+ * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). With
+ * the frame at 90 degrees, d is beta and q alpha (the sign of an axis
+ * drops out of its ratio). */
+Q15_INLINE void mc_id_period(mc_t *mc)
+{
+    mc_id_win_t *w = &mc->id_win;
+    w->i_d += mc->i_dq.d;
+    w->i_q += mc->i_dq.q;
+    w->u_d += mc->pi_d.out;
+    w->u_q += mc->pi_q.out;
+    if (mc->id_inj != 0) {
+        bool q = mc->id_inj_q != 0U;
+        q15_t un = q ? mc->v_hist[1].alpha : mc->v_hist[1].beta;
+        q15_t u = q15_dsp_mac2_r(un, MC_VEST_W_NEW, mc->id_u_prev, MC_VEST_W_OLD);
+        q15_t i = q ? mc->i_ab.alpha : mc->i_ab.beta;
+        int32_t di = (int32_t)i - (int32_t)mc->id_i_prev;
+        int32_t im = (int32_t)i + (int32_t)mc->id_i_prev;
+        mc->id_u_prev = un;
+        mc->id_i_prev = i;
+        if (mc->id_z > 0) {
+            w->zi += di;
+            w->zu += u;
+            w->zm += im;
+        } else {
+            w->zi -= di;
+            w->zu -= u;
+            w->zm -= im;
+        }
+        mc->id_z = mc->id_sign; /* the sign this period's command carries */
+        if (++mc->id_cnt >= mc->id_half) {
+            pi_t *pi = q ? &mc->pi_q : &mc->pi_d;
+            q31_t step = (q31_t)mc->id_inj * 131072L; /* 2 x inj, Q31 */
+            mc->id_cnt = 0U;
+            mc->id_sign = (int8_t)-mc->id_sign;
+            pi->sum = q31_add_sat(pi->sum, (mc->id_sign > 0) ? step : -step);
+        }
+    }
 }
 
 /* CALIBRATE: after calib_wait periods of coasting, sum the two current
@@ -696,7 +857,11 @@ static void mc_calibrate_end(mc_t *mc)
         mc_fault(mc, MC_FAULT_OFFSET);
         return;
     }
-    mc_enter_lock(mc);
+    if (mc->id_pending) {
+        mc_enter_identify(mc);
+    } else {
+        mc_enter_lock(mc);
+    }
 }
 
 int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
@@ -769,7 +934,7 @@ static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
         mc->sens_bal_n = 0U;
         mc->sens_emf_low = 0U;
     }
-    if (!mc_driving(si->state)) {
+    if (!mc_driving(si->state) || si->state == MC_STATE_IDENTIFY) {
         mc->sens_cnt = 0U;
         so->sensor_fault = false;
         return;
@@ -1069,6 +1234,15 @@ static void mc_slow_apply(mc_t *mc)
         }
     }
 #endif
+    if (mc->state == MC_STATE_IDENTIFY && so->epoch == mc->epoch) {
+        mc_id_apply(mc, &mc->id.cmd);
+        if (mc->id.cmd.end) {
+            mc_id_stop(mc, mc->id.error);
+            mc_outputs_off(mc);
+            mc_enter(mc, MC_STATE_STOPPED);
+            return;
+        }
+    }
     if (so->sensor_fault && so->epoch == mc->epoch && mc->outputs_on) {
         mc_fault(mc, MC_FAULT_CURRENT_SENSOR);
         return;
@@ -1113,6 +1287,18 @@ static void mc_window_end(mc_t *mc)
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
+    if (mc->state == MC_STATE_IDENTIFY) {
+        /* d is beta and q alpha at the frame's 90 degrees (the sums serve
+         * the stages that stand still) */
+        mc->id_win.v_d = mc->lock_vb;
+        mc->id_win.v_q = mc->lock_va;
+        mc->id_win.step = mc->ol_step;
+        si->id = mc->id_win;
+        si->vbus = mc->vbus;
+        memset(&mc->id_win, 0, sizeof mc->id_win);
+        mc->lock_va = 0;
+        mc->lock_vb = 0;
+    }
 #if MC_DTM_ON
     si->lock_va = mc->lock_va;
     si->lock_vb = mc->lock_vb;
@@ -1190,6 +1376,8 @@ void mc_slow_step(mc_t *mc)
 #endif
     if (si->state == MC_STATE_CLOSED_LOOP) {
         mc_slow_speed_loop(mc, &mc->smc.res, so);
+    } else if (si->state == MC_STATE_IDENTIFY) {
+        mc_id_window(&mc->id, &si->id, si->vbus, &mc->id.cmd);
     }
     so->epoch = si->epoch;
     MC_BARRIER(); /* the results are written before the flag hands them back */
@@ -1220,6 +1408,7 @@ typedef struct {
     bool start;    /* START */
     bool stop;     /* STOP */
     bool hw_fault; /* HW_FAULT */
+    bool identify; /* IDENTIFY (in STOPPED: refused in any other state) */
 } mc_events_t;
 
 /* Takes the posted requests into ev, applies posted gains and the choice
@@ -1230,6 +1419,7 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
     ev->start = false;
     ev->stop = false;
     ev->hw_fault = false;
+    ev->identify = false;
     uint8_t rseq = mc->req_seq;
     if (rseq != mc->req_seen) { /* something was posted (mc.h note 1) */
         mc->req_seen = rseq;
@@ -1237,6 +1427,14 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
         ev->hw_fault = mc_take(mc, MC_REQUEST_HW_FAULT);
         ev->start = mc_take(mc, MC_REQUEST_START);
         ev->stop = mc_take(mc, MC_REQUEST_STOP);
+        ev->identify = mc_take(mc, MC_REQUEST_IDENTIFY);
+        if (ev->identify && mc->state != MC_STATE_STOPPED) {
+            ev->identify = false;
+            if (mc->state != MC_STATE_IDENTIFY && !mc->id_pending) {
+                mc->id_status = MC_ID_FAILED; /* refused: nothing else changes */
+                mc->id_error = MC_ID_ERROR_NOT_STOPPED;
+            }
+        }
         uint8_t gseq = mc->gain_seq;
         if (gseq != mc->gain_seen) {
             mc->gain_seen = gseq;
@@ -1306,6 +1504,15 @@ static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t 
 {
     if (ev->toggle || ev->start) {
         mc_start(mc, in);
+    } else if (ev->identify) {
+        mc->id_status = MC_ID_RUNNING;
+        mc->id_error = MC_ID_ERROR_NONE;
+        mc_start(mc, in);
+        mc->id_pending = mc->state == MC_STATE_CALIBRATE;
+        if (!mc->id_pending) {
+            mc->id_status = MC_ID_FAILED; /* the bus is out of its window: FAULT */
+            mc->id_error = MC_ID_ERROR_FAULT;
+        }
     }
     return false;
 }
@@ -1344,8 +1551,8 @@ static bool mc_on_lock(mc_t *mc, const mc_events_t *ev)
     return true;
 }
 
-/* OPEN_LOOP and CLOSED_LOOP: their changes of state come from the
- * finishing part and the slow step. */
+/* OPEN_LOOP, CLOSED_LOOP and IDENTIFY: their changes of state come from
+ * the finishing part and the slow step. */
 static bool mc_on_running(mc_t *mc, const mc_events_t *ev)
 {
     if (ev->toggle || ev->stop) {
@@ -1403,12 +1610,13 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
-#if MC_DTM_ON
-        if (mc->state == MC_STATE_LOCK) { /* the dead-time measurement's sums (note 4) */
+        if (mc->sums_on) { /* the dead-time measurement's (note 4), the identification's */
             mc->lock_va += mc->v_hist[0].alpha;
             mc->lock_vb += mc->v_hist[0].beta;
+            if (mc->state == MC_STATE_IDENTIFY) {
+                mc_id_period(mc);
+            }
         }
-#endif
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
 
@@ -1478,6 +1686,75 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     uint8_t seq = mc->ref_remote_seq;
     st->ref_remote = (seq != mc->ref_remote_seen) ? !mc->ref_to_pot : mc->ref_from_remote;
     st->ref_seq = seq;
+}
+
+/* The identification's results in engineering units (mc_id.c note 1): each
+ * a ratio of the sequence's sums times one constant, rounded once here. */
+#define MC_ID_Z_FS_ (MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A) /* ohm */
+/* R = dv / di Z_FS: micro-ohms */
+#define MC_ID_K_R ((int64_t)(MC_ID_Z_FS_ * 1e6 + 0.5))
+/* L = (zu - R zm / 2) / zi Ts Z_FS: nanohenries */
+#define MC_ID_K_L ((int64_t)(MC_ID_Z_FS_ * MC_TS_S * 1e9 + 0.5))
+/* Td = sqrt(3)/2 v0 / vbus (V_FS / VBUS_FS) Ts: ns (v0, vbus in Q15) */
+#define MC_ID_K_DT                                                                                 \
+    ((int64_t)(0.8660254037844386 * MC_VOLTAGE_FULLSCALE_V / BOARD_VBUS_FULLSCALE_V * MC_TS_S *  \
+                   1e9 +                                                                           \
+               0.5))
+/* Ke = sqrt(3) E_phase / rpm: E = m / 2^19 V_FS, rpm = x 60 / (2^32 Ts p): microvolts per rpm */
+#define MC_ID_K_KE                                                                                 \
+    ((int64_t)(1.7320508075688772 * MC_VOLTAGE_FULLSCALE_V * 1e6 * MC_TS_S * MOTOR_POLE_PAIRS *    \
+                   8192.0 / 60.0 +                                                                 \
+               0.5))
+/* J = 3/4 p^2 psi di / alpha_e, psi = m / 2^19 V_FS / (x 2 pi / (2^32 Ts)),
+ * di = t / 32768 I_FS, alpha_e = accel 2 pi / (2^32 Ts^2): 1e-9 kg m^2 */
+#define MC_ID_K_J                                                                                  \
+    ((int64_t)(0.75 * MOTOR_POLE_PAIRS * MOTOR_POLE_PAIRS * MC_VOLTAGE_FULLSCALE_V *               \
+                   BOARD_I_FULLSCALE_A * MC_TS_S * MC_TS_S * MC_TS_S * 35184372088832.0 /           \
+                   (39.47841760435743 * 32768.0) * 1e9 +                                           \
+               0.5))
+
+static uint32_t mc_id_u32(int64_t v)
+{
+    return (v <= 0) ? (uint32_t)0 : (v > (int64_t)UINT32_MAX) ? (uint32_t)UINT32_MAX : (uint32_t)v;
+}
+
+void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
+{
+    const mc_id_t *id = &mc->id;
+    uint8_t ax;
+    memset(r, 0, sizeof *r);
+    r->status = (mc_id_status_t)mc->id_status;
+    r->error = mc->id_error;
+    r->pole_pairs = (uint8_t)MOTOR_POLE_PAIRS;
+    if (r->status != MC_ID_DONE || id->di <= 0) {
+        return;
+    }
+    r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
+    for (ax = 0; ax < 2U; ax++) {
+        int64_t num = (int64_t)id->l_zu[ax] - (((int64_t)id->l_zm[ax] * id->r_q16) >> 17);
+        uint32_t l = (id->l_zi[ax] > 0) ? mc_id_u32(num * MC_ID_K_L / id->l_zi[ax]) : 0U;
+        if (ax == 0U) {
+            r->ld_nh = l;
+        } else {
+            r->lq_nh = l;
+        }
+    }
+    r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
+    if (id->vbus > 0 && id->nwin > 0) {
+        uint32_t dt = mc_id_u32((int64_t)id->v0 * MC_ID_K_DT /
+                                ((int64_t)id->nwin * MC_SLOW_STEP_PERIODS * id->vbus));
+        r->deadtime_ns = (uint16_t)((dt > 65535U) ? 65535U : dt);
+    }
+    if (id->x2 > id->x1) {
+        int64_t dm = (int64_t)id->m2 - id->m1, dx = (int64_t)id->x2 - (int64_t)id->x1;
+        r->ke_uv_per_rpm = mc_id_u32(dm * MC_ID_K_KE / dx);
+        if (id->n_up > 0U && id->n_dn > 0U && id->accel > 0U) {
+            /* the torque current's difference as a fraction: t_up / n_up - t_dn / n_dn */
+            int64_t dt_num = (int64_t)id->t_up * id->n_dn - (int64_t)id->t_dn * id->n_up;
+            int64_t a = dm * MC_ID_K_J / dx;
+            r->j_ng_m2 = mc_id_u32(a * dt_num / ((int64_t)id->accel * id->n_up * id->n_dn));
+        }
+    }
 }
 
 /*

@@ -72,6 +72,7 @@
 
 #include "fieldweak.h"
 #include "frames.h"
+#include "mc_id.h"
 #include "lpf.h"
 #include "pi.h"
 #include "smc.h"
@@ -91,6 +92,7 @@ typedef enum {
     MC_REQUEST_START,      /* start (also leaves FAULT once the cause is gone); no-op if running */
     MC_REQUEST_STOP,       /* stop: outputs off, STOPPED; no-op if stopped; FAULT stays FAULT */
     MC_REQUEST_REF_POT,    /* take the reference from the pot again (undoes mc_set_reference) */
+    MC_REQUEST_IDENTIFY,   /* from STOPPED: measure the motor (mc_identify_result), then STOPPED */
     MC_REQUEST_COUNT       /* number of requests, not a request */
 } mc_request_t;
 
@@ -104,6 +106,7 @@ typedef enum {
     X(LOCK)        /* outputs on, rotor aligned at a fixed angle with controlled current */        \
     X(OPEN_LOOP)   /* forced angle at constant acceleration, d/q current loops running */          \
     X(CLOSED_LOOP) /* sensorless: angle and speed from the estimator, speed loop running */        \
+    X(IDENTIFY)    /* outputs on, measuring the motor (MC_REQUEST_IDENTIFY); then STOPPED */      \
     X(FAULT)       /* outputs off, duties 50 %; left only by a START once the cause is gone */
 
 #define MC_STATE_ENUM_(name) MC_STATE_##name,
@@ -172,6 +175,39 @@ typedef struct {
                                lost the reference */
 } mc_status_t;
 
+/* ---- self-commissioning (MC_REQUEST_IDENTIFY) ---------------------------- *
+ * mc_request(mc, MC_REQUEST_IDENTIFY) from STOPPED calibrates the current
+ * offsets (CALIBRATE), then measures the motor in MC_STATE_IDENTIFY (the
+ * sequence of mc_id.h: R and the inverter's voltage error by DC current at
+ * three levels, Ld and Lq by an injected voltage, the back-EMF constant and
+ * the inertia by turning the rotor in current-controlled open loop) and
+ * ends in STOPPED; mc_identify_result() then holds the result. Currents
+ * stay within MC_ID_CURRENT_A (UserParms.h) and every protection of the
+ * core stays armed: a fault ends it in FAULT (status FAILED, error
+ * MC_ID_ERROR_FAULT, the cause in mc_status_t.fault), a stop (S2, STOP) in
+ * STOPPED (MC_ID_ERROR_ABORTED). A request in any other state is refused
+ * (MC_ID_ERROR_NOT_STOPPED) and changes nothing else. Pole pairs are the
+ * build's MOTOR_POLE_PAIRS (Ke is per mechanical rpm). docs/identify.md
+ * has the method and its accuracy. */
+typedef enum { MC_ID_NONE, MC_ID_RUNNING, MC_ID_DONE, MC_ID_FAILED } mc_id_status_t;
+
+/* Why an identification failed (mc_id_result_t.error): MC_ID_ERROR_LIST in
+ * mc_id.h (included above), the codes and their meaning. */
+
+typedef struct {
+    mc_id_status_t status;
+    uint16_t error;         /* why it failed: MC_ID_ERROR_* (mc_id.h) */
+    uint32_t rs_uohm;       /* phase resistance, micro-ohms */
+    uint32_t ls_nh;         /* phase inductance, (Ld + Lq) / 2, nH */
+    uint32_t ke_uv_per_rpm; /* back-EMF, peak line-to-line microvolts per mechanical rpm
+                               (= mV per 1000 rpm) */
+    uint32_t j_ng_m2;       /* rotor + load inertia, 1e-9 kg m^2 (0 = not measured) */
+    uint16_t deadtime_ns;   /* the inverter's effective dead-time voltage, as ns of the bus */
+    /* additions */
+    uint32_t ld_nh, lq_nh;  /* d and q inductance, nH (the rotor aligned on d) */
+    uint8_t pole_pairs;     /* the pole pairs Ke and J were computed with (MOTOR_POLE_PAIRS) */
+} mc_id_result_t;
+
 /* ---- run-time gains -------------------------------------------------------- *
  * The PI gains a tuning interface may change while the motor runs (the live
  * X2Cscope target's tunables). Values are the Q15 mantissas of pi_params_t; each
@@ -223,6 +259,7 @@ typedef struct {
     bool est_valid;         /* ... whether the estimator vouches for its estimate ... */
     q15_t emf_ratio;        /* ... its back-EMF against the speed's, Q12 (smc.h) ... */
     q15_t speed_est;        /* ... and its speed, Q15 */
+    mc_id_win_t id;         /* IDENTIFY: the window's sums (mc_id.h) */
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -355,6 +392,25 @@ typedef struct {
     uint8_t dtm_phase;  /* MC_DTM_* phase (mc.c) */
     bool dtm_pos;       /* the alpha sum was above its mean last window */
     bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
+
+    /* IDENTIFY (mc_id.h): the interrupt's side ... */
+    mc_id_win_t id_win;    /* this window's sums */
+    uint32_t ol_inc;       /* the forced speed's change per period (OPEN_LOOP's ramp, the spin's) */
+    q15_t id_inj;          /* the injected square wave's amplitude, Q15 V_FS (0: none) */
+    uint8_t id_inj_q;      /* ... on q (else d) */
+    uint8_t id_half;       /* ... periods per half cycle */
+    uint8_t id_cnt;        /* ... periods into this half */
+    int8_t id_sign;        /* ... its sign in this period's command */
+    int8_t id_z;           /* ... in the previous period's */
+    q15_t id_i_prev;       /* the injected axis's current at the previous sample */
+    q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
+    bool id_open;          /* the last command was open loop */
+    bool id_pending;       /* CALIBRATE before IDENTIFY */
+    bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
+    uint8_t id_status;     /* mc_id_status_t, the interrupt's view */
+    uint16_t id_error;     /* MC_ID_ERROR_* of a run the interrupt ended */
+    /* ... and the slow step's: the sequence and its results */
+    mc_id_t id;
 } mc_t;
 
 /* The names of a state and of a fault code, as MC_STATE_LIST and
@@ -363,6 +419,7 @@ typedef struct {
  * dsPIC image). */
 const char *mc_state_name(int state);
 const char *mc_fault_name(unsigned fault);
+const char *mc_id_error_name(unsigned error); /* MC_ID_ERROR_LIST's, "none" for 0 */
 
 /* Reset everything, outputs off, MC_STATE_STOPPED. */
 void mc_init(mc_t *mc);
@@ -432,6 +489,11 @@ int16_t mc_get_gain(const mc_t *mc, mc_gain_t g);
 
 /* Snapshot of the state for display, logging and tests. */
 void mc_status(const mc_t *mc, mc_status_t *st);
+
+/* The identification's status and, once DONE, its result (values 0 unless
+ * DONE: a failed run never gives numbers). For the main loop: the unit
+ * conversions run here (64-bit integer arithmetic), never in an interrupt. */
+void mc_identify_result(const mc_t *mc, mc_id_result_t *r);
 
 /*
  * Notes

@@ -762,6 +762,33 @@ MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_REA
         MOTOR_FW_ID_TABLE_A(MC_FW_Q15_)                                                            \
     }
 
+/* ---- self-commissioning (mc_id.c) -------------------------------------------------- */
+
+MC_CHECK(MC_ID_CURRENT_A, MC_ID_CURRENT_A > 0.0, "must be > 0");
+/* the ramp may overshoot to 1.45 times the target before it is trimmed,
+ * and the injection swings a quarter of it on top: room below the trip */
+MC_CHECK_FOR(MC_ID_CURRENT_A, MC_OVERCURRENT_A, 1.6 * MC_ID_CURRENT_A < MC_OVERCURRENT_A,
+             "1.6 x MC_ID_CURRENT_A must stay below the overcurrent trip");
+MC_CHECK(MC_ID_LOOP_BW_RAD_S,
+         MC_ID_LOOP_BW_RAD_S >= 200.0 && MC_ID_LOOP_BW_RAD_S * MC_TS_S <= 0.15,
+         "must be in 200 rad/s .. 0.15 x PWM_FREQUENCY_HZ");
+MC_CHECK(MC_ID_ACCEL_HZ_S, MC_ID_ACCEL_HZ_S >= 1.0 && MC_ID_ACCEL_HZ_S <= 10000.0,
+         "must be in 1..10000 Hz/s (electrical)");
+MC_CHECK_FOR(MC_ID_SPEED_MAX_RPM, MC_SPEED_FULLSCALE_RPM,
+             MC_ID_SPEED_MAX_RPM > 0.0 && MC_ID_SPEED_MAX_RPM <= MC_SPEED_FULLSCALE_RPM &&
+                 (double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 0.05,
+             "must be in (0, MC_SPEED_FULLSCALE_RPM] and below PWM_FREQUENCY_HZ / 20 electrical");
+
+/* the sequence's parameters (mc.c mc_id_params, mc_id.h) */
+#define MC_ID_I_Q15     MC_Q15_AMPS(MC_ID_CURRENT_A)
+#define MC_ID_I_MIN_Q15 ((q15_t)(16L << (16 - BOARD_ADC_BITS))) /* 16 ADC codes */
+MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - BOARD_ADC_BITS)),
+             "must be at least 32 ADC codes of current");
+#define MC_ID_WC_TS Q15(MC_ID_LOOP_BW_RAD_S *MC_TS_S)
+#define MC_ID_ACCEL ((uint32_t)(MC_ID_ACCEL_HZ_S * MC_TS_S * MC_TS_S * 4294967296.0 + 0.5))
+#define MC_ID_STEP_MAX                                                                             \
+    ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0))
+
 /*
  * Notes
  *

@@ -5,6 +5,7 @@
 
 #define MC_STATE_NAME_(name)       #name,
 #define MC_FAULT_NAME_(name, code) #name,
+#define MC_ID_ERROR_NAME_(name, code) #name,
 
 const char *mc_state_name(int state)
 {
@@ -19,4 +20,13 @@ const char *mc_fault_name(unsigned fault)
         return "none";
     }
     return (fault < sizeof(names) / sizeof(names[0])) ? names[fault] : "?";
+}
+
+const char *mc_id_error_name(unsigned error)
+{
+    static const char *const names[] = {MC_ID_ERROR_LIST(MC_ID_ERROR_NAME_)};
+    if (error == MC_ID_ERROR_NONE) {
+        return "none";
+    }
+    return (error < sizeof(names) / sizeof(names[0])) ? names[error] : "?";
 }

@@ -253,6 +253,9 @@ void simcore_event(simcore_t *s, const sim_event_t *ev)
         case SIM_EV_BUTTON:
             simcore_request(s, MC_REQUEST_START_STOP);
             return;
+        case SIM_EV_IDENTIFY:
+            simcore_request(s, MC_REQUEST_IDENTIFY);
+            return;
         case SIM_EV_HW_FAULT:
             simcore_request(s, MC_REQUEST_HW_FAULT);
             return;
@@ -457,4 +460,42 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
                 s->rig.t_cond_min_s * 1e6);
     }
     sim_log_print_states(&s->log, f);
+    simcore_print_identify(s, f);
+}
+
+void simcore_print_identify(const simcore_t *s, FILE *f)
+{
+    mc_id_result_t r;
+    const sim_motor_params_t *m = &s->rig.plant.m;
+    mc_identify_result(&s->mc, &r);
+    if (r.status == MC_ID_NONE) {
+        return;
+    }
+    fprintf(f, "   identification            %s",
+            (r.status == MC_ID_DONE)      ? "done"
+            : (r.status == MC_ID_FAILED)  ? "FAILED"
+                                          : "running");
+    if (r.status == MC_ID_FAILED) {
+        fprintf(f, ", error %u (%s)\n", (unsigned)r.error, mc_id_error_name(r.error));
+        return;
+    }
+    fprintf(f, " (measured / the plant's)\n");
+    if (r.status != MC_ID_DONE) {
+        return;
+    }
+    /* peak line-to-line microvolts per mechanical rpm: sqrt(3) psi p 2 pi / 60 x 1e6 */
+    double ke_true = sqrt(3.0) * m->psi_vs * m->pole_pairs * 2.0 * M_PI / 60.0 * 1e6;
+    fprintf(f, "     R   %9.4f / %9.4f ohm   %+6.2f %%\n", r.rs_uohm * 1e-6, m->rs_ohm,
+            100.0 * (r.rs_uohm * 1e-6 / m->rs_ohm - 1.0));
+    fprintf(f, "     Ld  %9.4f / %9.4f mH    %+6.2f %%\n", r.ld_nh * 1e-6, m->ld_h * 1e3,
+            100.0 * (r.ld_nh * 1e-9 / m->ld_h - 1.0));
+    fprintf(f, "     Lq  %9.4f / %9.4f mH    %+6.2f %%\n", r.lq_nh * 1e-6, m->lq_h * 1e3,
+            100.0 * (r.lq_nh * 1e-9 / m->lq_h - 1.0));
+    fprintf(f, "     Ke  %9.3f / %9.3f V/krpm %+6.2f %%\n", r.ke_uv_per_rpm * 1e-3, ke_true * 1e-3,
+            100.0 * (r.ke_uv_per_rpm / ke_true - 1.0));
+    fprintf(f, "     J   %9.3g / %9.3g kg m^2 %+6.2f %%\n", r.j_ng_m2 * 1e-9, m->j_kgm2,
+            100.0 * (r.j_ng_m2 * 1e-9 / m->j_kgm2 - 1.0));
+    fprintf(f, "     dead time %u ns / %.0f ns   %+6.2f %%\n", (unsigned)r.deadtime_ns,
+            s->rig.inv.prm.deadtime_s * 1e9,
+            100.0 * (r.deadtime_ns * 1e-9 / s->rig.inv.prm.deadtime_s - 1.0));
 }

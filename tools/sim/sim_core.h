@@ -122,6 +122,10 @@ int simcore_run_scenario(simcore_t *s, const sim_scenario_t *sc, const char *nam
 /* Prints the summary table. */
 void simcore_print_summary(const simcore_t *s, FILE *f, const char *name);
 
+/* The identification's result against the plant's parameters (nothing
+ * when none was requested). */
+void simcore_print_identify(const simcore_t *s, FILE *f);
+
 /* Helpers for tests and the program. */
 void simcore_set_speed(simcore_t *s, double rpm); /* pot position for this reference */
 void simcore_request(simcore_t *s, mc_request_t r);

@@ -19,6 +19,7 @@ static const ev_desc_t EVENTS[] = {
     {"start", SIM_EV_START, 0, 0},
     {"stop", SIM_EV_STOP, 0, 0},
     {"button", SIM_EV_BUTTON, 0, 0},
+    {"identify", SIM_EV_IDENTIFY, 0, 0},
     {"pot", SIM_EV_POT, 1, 1},
     {"pot_ramp", SIM_EV_POT_RAMP, 2, 2},
     {"speed", SIM_EV_SPEED, 1, 1},

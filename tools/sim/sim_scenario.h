@@ -11,6 +11,7 @@
  *   start                   press START/STOP if the core is stopped or faulted
  *   stop                    press START/STOP if the core is running
  *   button                  press START/STOP unconditionally
+ *   identify                request the identification (MC_REQUEST_IDENTIFY)
  *   pot <0..1>              potentiometer position
  *   pot_ramp <0..1> <s>     move the potentiometer linearly over <s> seconds
  *   speed <rpm>|max|min     potentiometer position for this speed reference
@@ -43,6 +44,7 @@ typedef enum {
     SIM_EV_START,
     SIM_EV_STOP,
     SIM_EV_BUTTON,
+    SIM_EV_IDENTIFY,
     SIM_EV_POT,
     SIM_EV_POT_RAMP,
     SIM_EV_SPEED,

@@ -1,0 +1,619 @@
+/* mc_id.c - self-commissioning's sequence, one speed-loop window at a time (see mc_id.h). */
+#include "mc_id.h"
+
+#include "q15_dsp.h"
+#include "q15_sqrt.h"
+
+/*
+ * The stages (mc_id.h), each judged on window means (sums over N =
+ * MC_SLOW_STEP_PERIODS periods):
+ *
+ *   RAMP  open loop: the d voltage grows by 1/32 a window from
+ *         ID_V_START until the d current reaches the target
+ *         p->i_target (or the voltage limit: a motor whose R takes more
+ *         than the bus, measured at the current it allows); then held,
+ *         trimmed once to the target, until the current has settled. The
+ *         rotor turns to the current's axis on the way (d = beta).
+ *   LD    a square wave on d around that held voltage, its amplitude and
+ *         half period set until the current swings a quarter of the DC
+ *         current peak to peak; then L from ID_L_WINDOWS windows
+ *         (note 2).
+ *   LQ    the same on q.
+ *   R     the d current loop closed (gains from L, note 3) at the DC
+ *         current and at 3/4 and 1/2 of it; each level settled, then its
+ *         mean voltage and current over ID_R_WINDOWS windows. R is the
+ *         slope, the intercept the inverter's voltage error (note 4).
+ *   SPIN1 the current (a third of the target, on d) turned at a constant
+ *         acceleration until the back-EMF reaches ID_E1, or the
+ *         speed reaches half of p->step_max; HOLD1 holds that speed and averages
+ *         the back-EMF's magnitude; SPIN2 accelerates to twice the speed,
+ *         HOLD2 averages again; SPIN3 decelerates to the first speed and
+ *         SPIN4 to rest. Ke from the two holds, J from the torque current
+ *         while accelerating and decelerating over the same speeds (note 5).
+ *
+ * Every stage has a time limit; every check that fails ends the sequence
+ * with an error code (mc.h MC_ID_ERROR_*), the outputs off.
+ */
+
+/* The sequence's own timing, in windows (1 ms at the default speed-loop rate). */
+#define ID_HALF_MIN        4U   /* periods per half of the injected square wave: 2.5 kHz at 20 kHz */
+#define ID_HALF_MAX        32U  /* ... at the longest */
+#define ID_L_WINDOWS       32U  /* windows of correlation for each L */
+#define ID_INJ_WINDOWS_MAX 200U /* to set the injection's amplitude */
+#define ID_SETTLE          4U   /* windows in a row within tolerance: settled */
+#define ID_V_SETTLE        32   /* ... a voltage moving less than this (Q15, window mean) */
+#define ID_R_SETTLE_MAX    300U /* windows for a level to settle */
+#define ID_R_WINDOWS       100  /* windows each level is measured over */
+#define ID_MOVING          655  /* the q voltage's window means spread by 2 % of V_FS: turning */
+#define ID_R_BAND_TOL      20   /* the lower slope 1/20 steeper: the band */
+#define ID_R_MAX_Q16       (16L * 65536L) /* R at most 16 Z_FS */
+#define ID_V_START         ((q15_t)64)    /* the ramp's first voltage: 1/512 of V_FS */
+#define ID_E1              ((q15_t)6554)  /* |E| at the first speed: 0.2 V_FS */
+#define ID_E_MIN           ((q15_t)655)   /* less at the speed limit: no back-EMF */
+#define ID_HOLD_SETTLE     100U /* windows a hold waits before measuring */
+#define ID_HOLD_WINDOWS    200  /* windows it measures */
+#define ID_SPIN_WINDOWS_MAX 8000U
+#define ID_TWO_PI_Q12      25736L /* 2 pi x 4096 */
+
+#define N_ ((int32_t)id->p->n)
+
+/* ---- helpers ---------------------------------------------------------------------- */
+
+/* round(n 2^q / d), d > 0: n is shifted left as far as it goes, d right
+ * for the rest, so the quotient comes out of 32-bit arithmetic with at least
+ * the significant bits d keeps (the callers' d keep 15 or more). */
+static int32_t id_ratio(int32_t n, int32_t d, uint8_t q)
+{
+    bool neg = n < 0;
+    uint32_t un = neg ? (uint32_t)0 - (uint32_t)n : (uint32_t)n;
+    uint32_t ud = (uint32_t)d;
+    uint32_t r;
+    while (q > 0U && un < (uint32_t)0x40000000L) {
+        un <<= 1;
+        q--;
+    }
+    ud >>= q;
+    if (ud == 0U) {
+        return neg ? -INT32_MAX : INT32_MAX;
+    }
+    r = (un + ud / 2U) / ud;
+    if (r > (uint32_t)INT32_MAX) {
+        r = (uint32_t)INT32_MAX;
+    }
+    return neg ? -(int32_t)r : (int32_t)r;
+}
+
+static int32_t id_abs(int32_t x)
+{
+    return (x < 0) ? -x : x;
+}
+
+/* The window mean of a sum over the window's periods, rounded. */
+static q15_t id_mean(const mc_id_t *id, int32_t sum)
+{
+    return q15_sat((sum + ((sum < 0) ? -(N_ / 2) : N_ / 2)) / N_);
+}
+
+/* The PI gains for a loop crossing over at p->wc_ts (wc Ts, Q15): Kp = L wc
+ * as a Q15 mantissa and a shift, Ki = Kp wz Ts (wz the PI's zero: R / L when
+ * R is known, else wc / 8). l: L / (Ts Z_FS), Q12; r: R / Z_FS, Q16 (< 0:
+ * unknown). */
+static void id_gains(const mc_id_t *id, mc_id_cmd_t *c, int32_t l, int32_t r)
+{
+    /* Kp = l wcTs / 2^12 in Z_FS units; in Q15: l wcTs / 2^12 */
+    int32_t kp = (int32_t)(((int64_t)l * id->p->wc_ts) >> 12); /* Q15, may exceed 1 */
+    uint8_t sh = 0;
+    int32_t ki;
+    while (kp > 32767L && sh < 7U) {
+        kp = (kp + 1) >> 1;
+        sh++;
+    }
+    c->kp = (q15_t)((kp > 32767L) ? 32767L : kp);
+    c->kp_shift = sh;
+    if (r >= 0) {
+        ki = (int32_t)(((int64_t)r * id->p->wc_ts) >> 16); /* R wc Ts: Q15 */
+    } else {
+        ki = (int32_t)(((int64_t)l * id->p->wc_ts * id->p->wc_ts) >> (12 + 15 + 3));
+    }
+    c->ki = (q15_t)((ki < 1) ? 1 : (ki > 32767L) ? 32767L : ki);
+}
+
+static void id_stage(mc_id_t *id, uint8_t stage)
+{
+    uint8_t k;
+    id->stage = stage;
+    id->wins = 0U;
+    id->sub = 0U;
+    id->ok = 0U;
+    id->last = 0;
+    for (k = 0; k < 5U; k++) {
+        id->acc[k] = 0;
+    }
+    id->lo = INT32_MAX;
+    id->hi = INT32_MIN;
+}
+
+void mc_id_fail(mc_id_t *id, uint8_t error)
+{
+    if (id->stage != MC_ID_STAGE_DONE && id->stage != MC_ID_STAGE_FAILED) {
+        id->error = error;
+        id->stage = MC_ID_STAGE_FAILED;
+    }
+    id->cmd.end = true;
+}
+
+/* Settled: |x - the previous window's x| <= tol for ID_SETTLE windows in a row. */
+static bool id_settled(mc_id_t *id, int32_t x, int32_t tol)
+{
+    if (id_abs(x - id->last) <= tol) {
+        if (id->ok < 255U) {
+            id->ok++;
+        }
+    } else {
+        id->ok = 0U;
+    }
+    id->last = x;
+    return id->ok >= ID_SETTLE;
+}
+
+static void id_track(mc_id_t *id, int32_t x)
+{
+    if (x < id->lo) {
+        id->lo = x;
+    }
+    if (x > id->hi) {
+        id->hi = x;
+    }
+}
+
+void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
+{
+    id->p = p;
+    id->error = MC_ID_ERROR_NONE;
+    id->i_dc = 0;
+    id->r_q16 = -1;
+    id->l_q12 = 0;
+    id->dv = 0;
+    id->di = 0;
+    id->v0 = 0;
+    id->nwin = 0;
+    id->m1 = 0;
+    id->m2 = 0;
+    id->x1 = 0U;
+    id->x2 = 0U;
+    id->t_up = 0;
+    id->t_dn = 0;
+    id->n_up = 0U;
+    id->n_dn = 0U;
+    id->accel = 0U;
+    id->i_spin = 0;
+    id->l_zu[0] = id->l_zu[1] = 0;
+    id->l_zm[0] = id->l_zm[1] = 0;
+    id->l_zi[0] = id->l_zi[1] = 0;
+    id->vbus = 0;
+    id->cmd.i_ref.d = 0;
+    id->cmd.i_ref.q = 0;
+    id->cmd.kp = 0;
+    id->cmd.kp_shift = 0U;
+    id->cmd.ki = 0;
+    id->cmd.v_d = ID_V_START;
+    id->cmd.inj = 0;
+    id->cmd.inj_q = 0U;
+    id->cmd.inj_half = ID_HALF_MIN;
+    id->cmd.accel = 0;
+    id->cmd.dt_counts = 0;
+    id->cmd.open_loop = true;
+    id->cmd.end = false;
+    id_stage(id, MC_ID_STAGE_RAMP);
+    *cmd = id->cmd;
+}
+
+/* ---- RAMP ------------------------------------------------------------------------------ */
+
+static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
+{
+    mc_id_cmd_t *c = &id->cmd;
+    q15_t i = id_mean(id, w->i_d);
+    if (id->sub == 0U) { /* raising */
+        if (i >= id->p->i_target) {
+            id->sub = 1U;
+            id->ok = 0U;
+        } else if (c->v_d >= id->p->v_max) {
+            /* the most the bus gives: measure at the current it drives */
+            if (i < id->p->i_min) {
+                mc_id_fail(id, (i < id->p->i_min / 4) ? MC_ID_ERROR_OPEN_CIRCUIT
+                                                          : MC_ID_ERROR_TOO_SMALL);
+                return;
+            }
+            id->sub = 1U;
+            id->ok = 0U;
+        } else {
+            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / 32 + 1;
+            c->v_d = (q15_t)((v > id->p->v_max) ? id->p->v_max : v);
+        }
+        id->last = i;
+        return;
+    }
+    if (i > (q15_t)((int32_t)id->p->i_target * 29 / 20)) {
+        mc_id_fail(id, MC_ID_ERROR_TOO_SMALL); /* beyond the target at the smallest step */
+        return;
+    }
+    if (id_settled(id, i, id->p->i_target / 64)) {
+        if (id->sub == 1U && i > id->p->i_target + id->p->i_target / 8) {
+            /* overshot while the current lagged the voltage: trim once */
+            c->v_d = (q15_t)id_ratio((int32_t)c->v_d * (int32_t)id->p->i_target, i, 0);
+            id->sub = 2U;
+            id->ok = 0U;
+            return;
+        }
+        if (i < id->p->i_min) {
+            mc_id_fail(id, MC_ID_ERROR_TOO_SMALL);
+            return;
+        }
+        id->i_dc = i;
+        id_stage(id, MC_ID_STAGE_LD);
+        c->inj = (q15_t)(c->v_d / 4 + 1);
+        c->inj_q = 0U;
+        c->inj_half = ID_HALF_MIN;
+    }
+}
+
+/* ---- LD, LQ (note 2) ----------------------------------------------------------------------- */
+
+static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
+{
+    mc_id_cmd_t *c = &id->cmd;
+    uint8_t ax = c->inj_q;
+    /* peak-to-peak swing: each half cycle adds about one swing to |zi| */
+    int32_t swing = id_abs(w->zi) * (int32_t)c->inj_half / N_;
+    int32_t target = id->i_dc / 4;
+    if (id->sub == 0U) { /* the window after a change: its transient */
+        id->sub = 1U;
+        return;
+    }
+    if (id->sub == 1U) { /* setting the amplitude */
+        int32_t inj = c->inj;
+        if (swing < target - target / 4 || swing > target + target / 4) {
+            if (swing < target / 4) {
+                inj *= 4;
+            } else {
+                inj = id_ratio(inj * target, swing, 0);
+            }
+            if (inj > id->p->inj_max) {
+                inj = id->p->inj_max;
+                if (c->inj == id->p->inj_max) { /* at its largest: a longer half cycle */
+                    if (c->inj_half >= ID_HALF_MAX) {
+                        mc_id_fail(id, (swing < target / 8) ? MC_ID_ERROR_OPEN_PHASE
+                                                             : MC_ID_ERROR_OUT_OF_RANGE);
+                        return;
+                    }
+                    c->inj_half = (uint8_t)(c->inj_half * 2U);
+                }
+            }
+            c->inj = (q15_t)((inj < 1) ? 1 : inj);
+            id->sub = 0U;
+            if (id->wins > ID_INJ_WINDOWS_MAX) {
+                mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+            }
+            return;
+        }
+        id->sub = 2U; /* in range: measure from the next window */
+        return;
+    }
+    id->acc[0] += w->zu;
+    id->acc[1] += w->zm;
+    id->acc[2] += w->zi;
+    if (++id->sub < (uint8_t)(2U + ID_L_WINDOWS)) {
+        return;
+    }
+    /* q is -alpha at 90 degrees, the interrupt sums alpha: one sign for all three */
+    if (id->acc[2] < 0) {
+        id->acc[0] = -id->acc[0];
+        id->acc[1] = -id->acc[1];
+        id->acc[2] = -id->acc[2];
+    }
+    id->l_zu[ax] = id->acc[0];
+    id->l_zm[ax] = id->acc[1];
+    id->l_zi[ax] = id->acc[2];
+    if (ax == 0U) {
+        id_stage(id, MC_ID_STAGE_LQ);
+        c->inj_q = 1U;
+        return;
+    }
+    /* both: L for the gains (R unknown: its z m term is small, note 2) */
+    {
+        int32_t ld = id_ratio(id->l_zu[0], id->l_zi[0], 12);
+        int32_t lq = id_ratio(id->l_zu[1], id->l_zi[1], 12);
+        if (ld <= 0 || lq <= 0 || id->l_zi[0] <= 0 || id->l_zi[1] <= 0) {
+            mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
+            return;
+        }
+        id->l_q12 = (ld + lq) / 2;
+        id_stage(id, MC_ID_STAGE_R);
+        c->inj = 0;
+        c->open_loop = false;
+        c->i_ref.d = id->i_dc;
+        c->i_ref.q = 0;
+        id_gains(id, c, id->l_q12, -1);
+    }
+}
+
+/* ---- R (notes 3, 4) -------------------------------------------------------------------------- */
+
+static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
+{
+    mc_id_cmd_t *c = &id->cmd;
+    uint8_t lev = (uint8_t)(id->sub >> 1);
+    int32_t vq = w->v_q;
+    if ((id->sub & 1U) == 0U) { /* settling */
+        if (id_settled(id, w->v_d, ID_V_SETTLE * N_)) {
+            id->sub++;
+            id->acc[0] = 0;
+            id->acc[1] = 0;
+            id->acc[2] = 0;
+            id->lo = INT32_MAX;
+            id->hi = INT32_MIN;
+        } else if (id->wins > ID_R_SETTLE_MAX * (uint16_t)(lev + 1U)) {
+            mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+        }
+        return;
+    }
+    id->acc[0] += w->v_d;
+    id->acc[1] += w->i_d;
+    id->acc[2]++;
+    id_track(id, vq);
+    if (id->acc[2] < ID_R_WINDOWS) {
+        return;
+    }
+    /* a rotor that turns puts its back-EMF on q: the q voltage swings */
+    if (id->hi - id->lo > ID_MOVING * N_) {
+        mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
+        return;
+    }
+    /* the current must follow its reference (an open phase cannot) */
+    if (id_abs(id->acc[1] / ID_R_WINDOWS - (int32_t)c->i_ref.d * N_) > (int32_t)c->i_ref.d * N_ / 16) {
+        mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
+        return;
+    }
+    id->lv[lev] = id->acc[0];
+    id->li[lev] = id->acc[1];
+    if (lev < 2U) {
+        /* the next level: 3/4, then 1/2 of the first */
+        c->i_ref.d = (q15_t)((lev == 0U) ? (id->i_dc * 3) / 4 : id->i_dc / 2);
+        id->sub++;
+        id->ok = 0U;
+        return;
+    }
+    {
+        /* R from the outer levels, unless the middle one says the lowest is
+         * in the dead-time band (note 4): then from the upper two */
+        int32_t dv = id->lv[0] - id->lv[2], di = id->li[0] - id->li[2];
+        int32_t dvm = id->lv[1] - id->lv[2], dim = id->li[1] - id->li[2];
+        int32_t dvu = id->lv[0] - id->lv[1], diu = id->li[0] - id->li[1];
+        if (di < id->p->i_min * N_ * ID_R_WINDOWS / 4 || dv <= 0) {
+            mc_id_fail(id, (dv <= 0) ? MC_ID_ERROR_OUT_OF_RANGE : MC_ID_ERROR_TOO_SMALL);
+            return;
+        }
+        /* slopes of the lower and upper halves, Q16 of Z_FS */
+        {
+            int32_t s_lo = id_ratio(dvm, dim, 16), s_up = id_ratio(dvu, diu, 16);
+            if (s_lo - s_up > s_up / ID_R_BAND_TOL) { /* the lower half steeper: in the band */
+                dv = dvu;
+                di = diu;
+            }
+        }
+        id->dv = dv;
+        id->di = di;
+        id->r_q16 = id_ratio(dv, di, 16);
+        id->nwin = ID_R_WINDOWS;
+        /* v at zero current from the top level: v0 = v_hi - R i_hi (sums) */
+        id->v0 = id->lv[0] - (int32_t)(((int64_t)id->r_q16 * id->li[0]) >> 16);
+        if (id->r_q16 > ID_R_MAX_Q16) {
+            mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
+            return;
+        }
+        /* the spin: gains with the PI's zero on R / L, the dead time
+         * compensated as measured, a third of the current */
+        id_gains(id, c, id->l_q12, id->r_q16);
+        /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
+        c->dt_counts = (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
+        id->i_spin = (q15_t)(id->i_dc / 3);
+        c->i_ref.d = id->i_spin;
+        c->i_ref.q = 0;
+        id->accel = id->p->accel;
+        c->accel = (int32_t)id->accel;
+        id_stage(id, MC_ID_STAGE_SPIN1);
+    }
+}
+
+/* ---- the spin (note 5) ---------------------------------------------------------------------- */
+
+/* The window's back-EMF in the frame, E = u - R i - j w L i (means), its
+ * magnitude into *mag (Q15 V_FS) and the current along it (the torque
+ * current) into *it (Q15 I_FS). */
+static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *it)
+{
+    q15_t id_ = id_mean(id, w->i_d), iq = id_mean(id, w->i_q);
+    /* w L in Z_FS units, Q12: step (2^32 a turn) 2 pi / 2^32 x l / 2^12 */
+    int32_t wl = (int32_t)(((int64_t)(w->step >> 8) * id->l_q12 * ID_TWO_PI_Q12) >> (24 + 12));
+    int32_t r = id->r_q16;
+    int32_t ed = (int32_t)id_mean(id, w->u_d) - (int32_t)(((int64_t)r * id_) >> 16) +
+                 (int32_t)(((int64_t)wl * iq) >> 12);
+    int32_t eq = (int32_t)id_mean(id, w->u_q) - (int32_t)(((int64_t)r * iq) >> 16) -
+                 (int32_t)(((int64_t)wl * id_) >> 12);
+    uint32_t m2;
+    ed = (ed > 32767L) ? 32767L : (ed < -32767L) ? -32767L : ed;
+    eq = (eq > 32767L) ? 32767L : (eq < -32767L) ? -32767L : eq;
+    m2 = (uint32_t)(ed * ed) + (uint32_t)(eq * eq);
+    *mag = (q15_t)q15_isqrt_u32(m2);
+    if (*mag < 64) {
+        *it = 0;
+    } else {
+        *it = q15_dsp_divsd((int32_t)id_ * ed + (int32_t)iq * eq, *mag);
+    }
+}
+
+static void id_spin(mc_id_t *id, const mc_id_win_t *w)
+{
+    mc_id_cmd_t *c = &id->cmd;
+    q15_t mag, it;
+    id_emf(id, w, &mag, &it);
+    switch (id->stage) {
+        case MC_ID_STAGE_SPIN1:
+            if (mag >= ID_E1 || w->step >= id->p->step_max / 2U) {
+                if (mag < ID_E_MIN) {
+                    mc_id_fail(id, MC_ID_ERROR_ROTOR_LOCKED);
+                    return;
+                }
+                c->accel = 0;
+                id->x1 = w->step;
+                id_stage(id, MC_ID_STAGE_HOLD1);
+            } else if (id->wins > ID_SPIN_WINDOWS_MAX) {
+                mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+            }
+            return;
+        case MC_ID_STAGE_HOLD1:
+        case MC_ID_STAGE_HOLD2:
+            if (id->wins <= ID_HOLD_SETTLE) {
+                return;
+            }
+            id->acc[0] += mag;
+            id->acc[1]++;
+            id_track(id, mag);
+            if (id->acc[1] < ID_HOLD_WINDOWS) {
+                return;
+            }
+            {
+                int32_t m = id_ratio(id->acc[0], id->acc[1], 4); /* mean |E| x 16 */
+                /* a rotor that follows turns at the forced speed: |E| steady */
+                if ((id->hi - id->lo) * 16 > m / 2 || m < ID_E_MIN * 16) {
+                    mc_id_fail(id, (m < ID_E_MIN * 16) ? MC_ID_ERROR_ROTOR_LOCKED
+                                                               : MC_ID_ERROR_NO_SYNC);
+                    return;
+                }
+                if (id->stage == MC_ID_STAGE_HOLD1) {
+                    id->m1 = m;
+                    c->accel = (int32_t)id->accel;
+                    id_stage(id, MC_ID_STAGE_SPIN2);
+                } else {
+                    id->m2 = m;
+                    id->x2 = w->step;
+                    /* |E| / speed at both speeds must agree (note 5) */
+                    if (id_abs((int32_t)(((int64_t)id->m1 * (int64_t)(id->x2 >> 8)) / (int64_t)(id->x1 >> 8)) -
+                               id->m2) > id->m2 / 8) {
+                        mc_id_fail(id, MC_ID_ERROR_NO_SYNC);
+                        return;
+                    }
+                    c->accel = -(int32_t)id->accel;
+                    id_stage(id, MC_ID_STAGE_SPIN3);
+                }
+            }
+            return;
+        case MC_ID_STAGE_SPIN2:
+            id->t_up += it;
+            id->n_up++;
+            if (w->step >= 2U * id->x1) {
+                c->accel = 0;
+                id_stage(id, MC_ID_STAGE_HOLD2);
+            } else if (id->wins > ID_SPIN_WINDOWS_MAX) {
+                mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+            }
+            return;
+        case MC_ID_STAGE_SPIN3:
+            id->t_dn += it;
+            id->n_dn++;
+            if (w->step <= id->x1) {
+                id_stage(id, MC_ID_STAGE_SPIN4);
+            }
+            return;
+        default: /* SPIN4: to rest, then done */
+            if (w->step <= id->p->accel * 50U || w->step > id->x2 + id->x2 / 4) {
+                c->accel = 0;
+                c->end = true;
+                id->stage = MC_ID_STAGE_DONE;
+            }
+            return;
+    }
+}
+
+void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cmd)
+{
+    if (id->stage == MC_ID_STAGE_R) {
+        id->vbus = vbus; /* the bus the inverter's error is a share of */
+    }
+    if (id->stage != MC_ID_STAGE_DONE && id->stage != MC_ID_STAGE_FAILED &&
+        id->stage != MC_ID_STAGE_IDLE) {
+        if (id->wins < UINT16_MAX) {
+            id->wins++;
+        }
+        switch (id->stage) {
+            case MC_ID_STAGE_RAMP:
+                id_ramp(id, w);
+                break;
+            case MC_ID_STAGE_LD:
+            case MC_ID_STAGE_LQ:
+                id_inductance(id, w);
+                break;
+            case MC_ID_STAGE_R:
+                id_resistance(id, w);
+                break;
+            default:
+                id_spin(id, w);
+                break;
+        }
+    }
+    *cmd = id->cmd;
+}
+
+/*
+ * Notes
+ *
+ * 1. Results. R = dv / di (sums of the same number of periods, so their
+ *    ratio is R in Z_FS); L (Ld, Lq) = Ts (zu - R zm / 2) / zi; the
+ *    inverter's error from v0; Ke from m1, m2 at x1, x2; J from t_up, t_dn.
+ *    mc_identify_result (mc.c) turns them into micro-ohms, nanohenries,
+ *    microvolts per rpm and 1e-9 kg m^2 in 64-bit integers, once, outside
+ *    the interrupts.
+ *
+ * 2. Inductance by correlation. Between two samples the current changes
+ *    by Ts / L (u - R i - e), u the applied voltage over the interval
+ *    (the two commands that act in it, weighted as mc.h note 2 says), i
+ *    the mean current, e = 0 at rest. Multiplying by z (+-1, the sign of
+ *    the injected square wave in the command that acts most of that
+ *    interval) and summing, anything uncorrelated with z drops out: the
+ *    ADC noise, the slow DC loop, a constant inverter error. So
+ *    L = Ts (sum z u - R sum z i) / sum z di holds whatever z's phase; the
+ *    current is a triangle in quadrature with the square wave, so sum z i
+ *    is nearly 0 and R's term a small correction. The DC current keeps
+ *    the injected axis's phases out of the dead-time band on d (B and C
+ *    carry +-0.87 i_d); on q phase A crosses zero, whose error, a static
+ *    function of a current in quadrature with z, also sums to nearly 0.
+ *
+ * 3. Gains. With L known the PI's Kp = L wc puts the crossover at wc
+ *    whatever R; its zero at wc / 8 (R unknown) or R / L keeps the integral
+ *    from winding the loop into oscillation (a pure integral loop of an RL
+ *    plant is stable only slower than R / L, which spans the square of
+ *    R's range).
+ *
+ * 4. R and the inverter's error. With the current on beta, phases B and
+ *    C carry +-0.87 i, phase A none: at steady state the d voltage is
+ *    R i + v0, v0 = 2 / sqrt(3) Vd, Vd the dead-time voltage of one phase
+ *    (its share of the bus and the diodes' drop), when both phases' currents
+ *    lie outside the band where a current smaller than its PWM ripple
+ *    reverses in each period (there the error is linear in the current,
+ *    an apparent resistance). Three levels tell: the lower half's slope
+ *    above the upper half's by more than 1 / ID_R_BAND_TOL means the
+ *    lowest level is in the band, and the upper half alone gives R.
+ *
+ * 5. Ke and J. Turning at a steady speed w with the current on d, the
+ *    voltage the loops ask is u = R i + j w L i + E, E the back-EMF, w psi
+ *    in magnitude, on the rotor's q axis; the window's |E| is w_rotor psi,
+ *    and over a hold the rotor's mean speed is the forced one (it swings
+ *    about it), so the mean |E| is w psi without the bias a vector mean
+ *    of a swinging E would have. From two holds, psi = (m2 - m1) /
+ *    (w2 - w1): the parts of R i and of the inverter's error along E,
+ *    which do not change with speed, cancel. The current along E drives
+ *    the rotor (torque 3/2 p psi i_t); accelerating and decelerating at the
+ *    same rate over the same speeds, friction is the same both ways and
+ *    2 J alpha = 3/2 p psi (i_t,up - i_t,down).
+ */
