@@ -726,6 +726,11 @@ static void mc_id_apply(mc_t *mc, const mc_id_cmd_t *c)
         mc->pi_q.sum = 0;
     }
     mc->id_open = c->open_loop;
+    if (c->frame90 != mc->id_frame90 && mc->ol_step == 0U) {
+        mc->id_frame90 = c->frame90; /* the standing frame turned: the rotor follows */
+        mc->ol_angle = c->frame90 ? 0x40000000UL : 0UL;
+        mc_prepare(mc);
+    }
     if (c->inj_q != mc->id_inj_q || c->inj_half != mc->id_half) {
         mc->id_cnt = 0U;
     }
@@ -749,11 +754,14 @@ static void mc_enter_identify(mc_t *mc)
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
     mc->epoch = (uint8_t)(mc->epoch + 1U);
-    mc->ol_angle = 0x40000000UL; /* 90 degrees */
+    mc->id_frame90 = false;
+    mc->ol_angle = 0UL; /* the first command sets the standing frame */
+    mc->ol_damp = 0;
     mc->ol_step = 0U;
     mc->theta_offset = 0;
     mc->id_sign = 1;
     mc->id_z = 1;
+    mc->id_z2 = 1;
     mc->id_i_prev = 0;
     mc->id_u_prev = 0;
     mc->id_open = true;
@@ -762,6 +770,8 @@ static void mc_enter_identify(mc_t *mc)
     mc->lock_vb = 0;
     mc_id_begin(&mc->id, &mc_id_params, &cmd);
     mc_id_apply(mc, &cmd);
+    mc->ol_angle = cmd.frame90 ? 0x40000000UL : 0UL;
+    mc->id_frame90 = cmd.frame90;
     mc_enter(mc, MC_STATE_IDENTIFY);
     mc_prepare(mc); /* the outputs turn on with the next period */
 }
@@ -789,9 +799,10 @@ static void mc_id_stop(mc_t *mc, uint16_t error)
  * mc_estimate): the window's sums and the injected square wave (mc_id.c
  * note 2). v_hist[1] is the command of the period before, id_u_prev the
  * one before that: over the interval that ends at this sample they acted
- * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). With
- * the frame at 90 degrees, d is beta and q alpha (the sign of an axis
- * drops out of its ratio). */
+ * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). The
+ * injected axis in the stationary frame: at 0 degrees d is alpha and q
+ * beta, at 90 d is beta and q -alpha (an axis's sign drops out of its
+ * ratio). */
 Q15_INLINE void mc_id_period(mc_t *mc)
 {
     mc_id_win_t *w = &mc->id_win;
@@ -801,22 +812,22 @@ Q15_INLINE void mc_id_period(mc_t *mc)
     w->u_q += mc->pi_q.out;
     if (mc->id_inj != 0) {
         bool q = mc->id_inj_q != 0U;
-        q15_t un = q ? mc->v_hist[1].alpha : mc->v_hist[1].beta;
+        bool beta = q != mc->id_frame90;
+        q15_t un = beta ? mc->v_hist[1].beta : mc->v_hist[1].alpha;
         q15_t u = q15_dsp_mac2_r(un, MC_VEST_W_NEW, mc->id_u_prev, MC_VEST_W_OLD);
-        q15_t i = q ? mc->i_ab.alpha : mc->i_ab.beta;
-        int32_t di = (int32_t)i - (int32_t)mc->id_i_prev;
-        int32_t im = (int32_t)i + (int32_t)mc->id_i_prev;
+        q15_t i = beta ? mc->i_ab.beta : mc->i_ab.alpha;
+        q15_t di = q15_sat((int32_t)i - (int32_t)mc->id_i_prev);
+        q15_t im = (q15_t)(((int32_t)i + (int32_t)mc->id_i_prev) >> 1);
+        /* z: the injected square wave as it acts over this interval, the
+         * same weights (Q15): +-1, or +-(W_NEW - W_OLD) across a reversal */
+        q15_t z = (mc->id_z == mc->id_z2) ? (q15_t)(mc->id_z * 32767)
+                                          : (q15_t)(mc->id_z * (MC_VEST_W_NEW - MC_VEST_W_OLD));
         mc->id_u_prev = un;
         mc->id_i_prev = i;
-        if (mc->id_z > 0) {
-            w->zi += di;
-            w->zu += u;
-            w->zm += im;
-        } else {
-            w->zi -= di;
-            w->zu -= u;
-            w->zm -= im;
-        }
+        w->zi += q15_dsp_mulss(z, di) >> 15;
+        w->zu += q15_dsp_mulss(z, u) >> 15;
+        w->zm += q15_dsp_mulss(z, im) >> 15;
+        mc->id_z2 = mc->id_z;
         mc->id_z = mc->id_sign; /* the sign this period's command carries */
         if (++mc->id_cnt >= mc->id_half) {
             pi_t *pi = q ? &mc->pi_q : &mc->pi_d;
@@ -1288,10 +1299,10 @@ static void mc_window_end(mc_t *mc)
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
     if (mc->state == MC_STATE_IDENTIFY) {
-        /* d is beta and q alpha at the frame's 90 degrees (the sums serve
-         * the stages that stand still) */
-        mc->id_win.v_d = mc->lock_vb;
-        mc->id_win.v_q = mc->lock_va;
+        /* the applied voltage on the standing frame's axes: at 90 degrees d
+         * is beta and q -alpha, at 0 d is alpha and q beta */
+        mc->id_win.v_d = mc->id_frame90 ? mc->lock_vb : mc->lock_va;
+        mc->id_win.v_q = mc->id_frame90 ? -mc->lock_va : mc->lock_vb;
         mc->id_win.step = mc->ol_step;
         si->id = mc->id_win;
         si->vbus = mc->vbus;
@@ -1731,7 +1742,7 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
     }
     r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
     for (ax = 0; ax < 2U; ax++) {
-        int64_t num = (int64_t)id->l_zu[ax] - (((int64_t)id->l_zm[ax] * id->r_q16) >> 17);
+        int64_t num = (int64_t)id->l_zu[ax] - (((int64_t)id->l_zm[ax] * id->r_q16) >> 16);
         uint32_t l = (id->l_zi[ax] > 0) ? mc_id_u32(num * MC_ID_K_L / id->l_zi[ax]) : 0U;
         if (ax == 0U) {
             r->ld_nh = l;

@@ -402,9 +402,11 @@ typedef struct {
     uint8_t id_cnt;        /* ... periods into this half */
     int8_t id_sign;        /* ... its sign in this period's command */
     int8_t id_z;           /* ... in the previous period's */
+    int8_t id_z2;          /* ... in the one before */
     q15_t id_i_prev;       /* the injected axis's current at the previous sample */
     q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
     bool id_open;          /* the last command was open loop */
+    bool id_frame90;       /* the standing frame at 90 degrees (else 0) */
     bool id_pending;       /* CALIBRATE before IDENTIFY */
     bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
     uint8_t id_status;     /* mc_id_status_t, the interrupt's view */

@@ -54,6 +54,8 @@
 #define ID_HOLD_WINDOWS    200  /* windows it measures */
 #define ID_SPIN_WINDOWS_MAX 8000U
 #define ID_TWO_PI_Q12      25736L /* 2 pi x 4096 */
+#define ID_SPIN_START      20U  /* windows the loops settle at the spin's start */
+
 
 #define N_ ((int32_t)id->p->n)
 
@@ -203,6 +205,7 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->cmd.accel = 0;
     id->cmd.dt_counts = 0;
     id->cmd.open_loop = true;
+    id->cmd.frame90 = true;
     id->cmd.end = false;
     id_stage(id, MC_ID_STAGE_RAMP);
     *cmd = id->cmd;
@@ -228,21 +231,20 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             id->sub = 1U;
             id->ok = 0U;
         } else {
-            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / 32 + 1;
+            /* 1/32 a window, 1/128 past half the target: the current lags by
+             * L / R, up to tens of ms, and the target is passed by that lag
+             * times the rate */
+            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / ((i < id->p->i_target / 2) ? 32 : 128) + 1;
             c->v_d = (q15_t)((v > id->p->v_max) ? id->p->v_max : v);
         }
         id->last = i;
         return;
     }
-    if (i > (q15_t)((int32_t)id->p->i_target * 29 / 20)) {
-        mc_id_fail(id, MC_ID_ERROR_TOO_SMALL); /* beyond the target at the smallest step */
-        return;
-    }
     if (id_settled(id, i, id->p->i_target / 64)) {
-        if (id->sub == 1U && i > id->p->i_target + id->p->i_target / 8) {
-            /* overshot while the current lagged the voltage: trim once */
+        if (id->sub < 3U && i > id->p->i_target + id->p->i_target / 8) {
+            /* overshot while the current lagged the voltage: trimmed */
             c->v_d = (q15_t)id_ratio((int32_t)c->v_d * (int32_t)id->p->i_target, i, 0);
-            id->sub = 2U;
+            id->sub++;
             id->ok = 0U;
             return;
         }
@@ -251,10 +253,7 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             return;
         }
         id->i_dc = i;
-        id_stage(id, MC_ID_STAGE_LD);
-        c->inj = (q15_t)(c->v_d / 4 + 1);
-        c->inj_q = 0U;
-        c->inj_half = ID_HALF_MIN;
+        id_stage(id, MC_ID_STAGE_R);
     }
 }
 
@@ -267,6 +266,15 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     /* peak-to-peak swing: each half cycle adds about one swing to |zi| */
     int32_t swing = id_abs(w->zi) * (int32_t)c->inj_half / N_;
     int32_t target = id->i_dc / 4;
+    if (c->inj == 0) { /* the DC current at 0 degrees settled first (the rotor turns to it) */
+        if (id_settled(id, w->i_d, id->p->i_target / 128 * N_)) {
+            c->inj = (q15_t)(c->v_d / 4 + 1);
+            c->inj_half = ID_HALF_MIN;
+        } else if (id->wins > ID_R_SETTLE_MAX) {
+            mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+        }
+        return;
+    }
     if (id->sub == 0U) { /* the window after a change: its transient */
         id->sub = 1U;
         return;
@@ -329,91 +337,10 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
             return;
         }
         id->l_q12 = (ld + lq) / 2;
-        id_stage(id, MC_ID_STAGE_R);
+        /* the spin: the loops closed with the PI's zero on R / L (note 3),
+         * the dead time compensated as measured, a third of the current */
         c->inj = 0;
         c->open_loop = false;
-        c->i_ref.d = id->i_dc;
-        c->i_ref.q = 0;
-        id_gains(id, c, id->l_q12, -1);
-    }
-}
-
-/* ---- R (notes 3, 4) -------------------------------------------------------------------------- */
-
-static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
-{
-    mc_id_cmd_t *c = &id->cmd;
-    uint8_t lev = (uint8_t)(id->sub >> 1);
-    int32_t vq = w->v_q;
-    if ((id->sub & 1U) == 0U) { /* settling */
-        if (id_settled(id, w->v_d, ID_V_SETTLE * N_)) {
-            id->sub++;
-            id->acc[0] = 0;
-            id->acc[1] = 0;
-            id->acc[2] = 0;
-            id->lo = INT32_MAX;
-            id->hi = INT32_MIN;
-        } else if (id->wins > ID_R_SETTLE_MAX * (uint16_t)(lev + 1U)) {
-            mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
-        }
-        return;
-    }
-    id->acc[0] += w->v_d;
-    id->acc[1] += w->i_d;
-    id->acc[2]++;
-    id_track(id, vq);
-    if (id->acc[2] < ID_R_WINDOWS) {
-        return;
-    }
-    /* a rotor that turns puts its back-EMF on q: the q voltage swings */
-    if (id->hi - id->lo > ID_MOVING * N_) {
-        mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
-        return;
-    }
-    /* the current must follow its reference (an open phase cannot) */
-    if (id_abs(id->acc[1] / ID_R_WINDOWS - (int32_t)c->i_ref.d * N_) > (int32_t)c->i_ref.d * N_ / 16) {
-        mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
-        return;
-    }
-    id->lv[lev] = id->acc[0];
-    id->li[lev] = id->acc[1];
-    if (lev < 2U) {
-        /* the next level: 3/4, then 1/2 of the first */
-        c->i_ref.d = (q15_t)((lev == 0U) ? (id->i_dc * 3) / 4 : id->i_dc / 2);
-        id->sub++;
-        id->ok = 0U;
-        return;
-    }
-    {
-        /* R from the outer levels, unless the middle one says the lowest is
-         * in the dead-time band (note 4): then from the upper two */
-        int32_t dv = id->lv[0] - id->lv[2], di = id->li[0] - id->li[2];
-        int32_t dvm = id->lv[1] - id->lv[2], dim = id->li[1] - id->li[2];
-        int32_t dvu = id->lv[0] - id->lv[1], diu = id->li[0] - id->li[1];
-        if (di < id->p->i_min * N_ * ID_R_WINDOWS / 4 || dv <= 0) {
-            mc_id_fail(id, (dv <= 0) ? MC_ID_ERROR_OUT_OF_RANGE : MC_ID_ERROR_TOO_SMALL);
-            return;
-        }
-        /* slopes of the lower and upper halves, Q16 of Z_FS */
-        {
-            int32_t s_lo = id_ratio(dvm, dim, 16), s_up = id_ratio(dvu, diu, 16);
-            if (s_lo - s_up > s_up / ID_R_BAND_TOL) { /* the lower half steeper: in the band */
-                dv = dvu;
-                di = diu;
-            }
-        }
-        id->dv = dv;
-        id->di = di;
-        id->r_q16 = id_ratio(dv, di, 16);
-        id->nwin = ID_R_WINDOWS;
-        /* v at zero current from the top level: v0 = v_hi - R i_hi (sums) */
-        id->v0 = id->lv[0] - (int32_t)(((int64_t)id->r_q16 * id->li[0]) >> 16);
-        if (id->r_q16 > ID_R_MAX_Q16) {
-            mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
-            return;
-        }
-        /* the spin: gains with the PI's zero on R / L, the dead time
-         * compensated as measured, a third of the current */
         id_gains(id, c, id->l_q12, id->r_q16);
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts = (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
@@ -423,6 +350,112 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         id->accel = id->p->accel;
         c->accel = (int32_t)id->accel;
         id_stage(id, MC_ID_STAGE_SPIN1);
+    }
+}
+
+/* ---- R (note 4) -------------------------------------------------------------------------------- */
+
+/* Open loop at 90 degrees, four levels of d voltage, each settled and then
+ * measured over ID_R_WINDOWS windows: the ramp's (the target current), a
+ * probe 1/16 below it (the slope, for the next two), and the voltages for
+ * 3/4 and 1/2 of the current. */
+static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
+{
+    mc_id_cmd_t *c = &id->cmd;
+    uint8_t lev = (uint8_t)(id->sub >> 1);
+    if ((id->sub & 1U) == 0U) { /* settling */
+        if (id_settled(id, w->i_d, id->p->i_target / 128 * N_)) {
+            id->sub++;
+            id->acc[0] = 0;
+            id->acc[1] = 0;
+            id->acc[2] = 0;
+            id->acc[3] = 0;
+            id->lo = INT32_MAX;
+            id->hi = INT32_MIN;
+        } else if (id->wins > ID_R_SETTLE_MAX * (uint16_t)(lev + 1U)) {
+            mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+        }
+        return;
+    }
+    id->acc[0] += w->v_d;
+    id->acc[1] += w->i_d;
+    id->acc[3] += w->i_q;
+    id->acc[2]++;
+    id_track(id, w->i_q);
+    if (id->acc[2] < ID_R_WINDOWS) {
+        return;
+    }
+    /* a rotor that turns drives a current on q through R by its back-EMF */
+    if (id->hi - id->lo > (int32_t)id->p->i_target / 16 * N_) {
+        mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
+        return;
+    }
+    /* a d voltage that drives current on q: a phase open (note 6) */
+    if (id_abs(id->acc[3]) > id_abs(id->acc[1]) / 4) {
+        mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
+        return;
+    }
+    id->lv[lev < 2U ? 0U : lev - 1U] = id->acc[0];
+    id->li[lev < 2U ? 0U : lev - 1U] = id->acc[1];
+    if (lev == 0U) { /* the top level, kept in [1] while the probe runs */
+        id->lv[1] = id->acc[0];
+        id->li[1] = id->acc[1];
+        c->v_d = (q15_t)(c->v_d - c->v_d / 16);
+        id->sub++;
+        id->ok = 0U;
+        return;
+    }
+    if (lev == 1U) {
+        /* slope from the top and the probe, Q16 of Z_FS, then 3/4 of the top current */
+        int32_t dvp = id->lv[1] - id->acc[0], dip = id->li[1] - id->acc[1];
+        if (dip <= 0 || dvp <= 0) {
+            mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
+            return;
+        }
+        id->lv[0] = id->lv[1];
+        id->li[0] = id->li[1];
+        id->r_q16 = id_ratio(dvp, dip, 16);
+    }
+    if (lev < 3U) {
+        /* the voltage for 3/4 (then 1/2) of the top current: v_top - R (i_top - i) */
+        int32_t di = id->li[0] / ((lev == 1U) ? 4 : 2) / (ID_R_WINDOWS * N_);
+        c->v_d = q15_sat((int32_t)(id->lv[0] / (ID_R_WINDOWS * N_)) -
+                         (int32_t)(((int64_t)id->r_q16 * di) >> 16));
+        id->sub++;
+        id->ok = 0U;
+        return;
+    }
+    {
+        /* R from the outer levels (the top, 1/2), unless the middle one says
+         * the lowest is in the dead-time band (note 4): then from the upper two */
+        int32_t dv = id->lv[0] - id->lv[2], di = id->li[0] - id->li[2];
+        int32_t dvm = id->lv[1] - id->lv[2], dim = id->li[1] - id->li[2];
+        int32_t dvu = id->lv[0] - id->lv[1], diu = id->li[0] - id->li[1];
+        int32_t v0;
+        if (di < id->p->i_min * N_ * ID_R_WINDOWS / 4 || dv <= 0 || dim <= 0 || diu <= 0) {
+            mc_id_fail(id, (dv <= 0) ? MC_ID_ERROR_OUT_OF_RANGE : MC_ID_ERROR_TOO_SMALL);
+            return;
+        }
+        if (id_ratio(dvm, dim, 16) - id_ratio(dvu, diu, 16) > id_ratio(dvu, diu, 16) / ID_R_BAND_TOL) {
+            dv = dvu; /* the lower half steeper: its lowest level in the band */
+            di = diu;
+        }
+        id->dv = dv;
+        id->di = di;
+        id->r_q16 = id_ratio(dv, di, 16);
+        id->nwin = ID_R_WINDOWS;
+        if (id->r_q16 > ID_R_MAX_Q16) {
+            mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
+            return;
+        }
+        /* v at zero current from the top level: v0 = v_top - R i_top (sums) */
+        id->v0 = id->lv[0] - (int32_t)(((int64_t)id->r_q16 * id->li[0]) >> 16);
+        v0 = id->v0 / (ID_R_WINDOWS * N_);
+        /* on to 0 degrees for the inductances: the same current takes R i
+         * and, of the dead time, 4/3 Vd = 2/sqrt(3) v0 (Q15 1.1547 = 37837) */
+        c->v_d = q15_sat((int32_t)(((int64_t)id->r_q16 * id->i_dc) >> 16) + (int32_t)((v0 * 37837L) >> 15));
+        c->frame90 = false;
+        id_stage(id, MC_ID_STAGE_LD);
     }
 }
 
@@ -460,7 +493,10 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
     id_emf(id, w, &mag, &it);
     switch (id->stage) {
         case MC_ID_STAGE_SPIN1:
-            if (mag >= ID_E1 || w->step >= id->p->step_max / 2U) {
+            if (id->wins <= ID_SPIN_START) {
+                return; /* the loops take over from the open loop */
+            }
+            if ((mag >= ID_E1 && ++id->ok >= ID_SETTLE) || w->step >= id->p->step_max / 2U) {
                 if (mag < ID_E_MIN) {
                     mc_id_fail(id, MC_ID_ERROR_ROTOR_LOCKED);
                     return;
@@ -523,11 +559,14 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             id->t_dn += it;
             id->n_dn++;
             if (w->step <= id->x1) {
+                /* J is measured: to rest at four times the rate (the
+                 * stopping distance of the rest is the spin's longest) */
+                c->accel = -4 * (int32_t)id->accel;
                 id_stage(id, MC_ID_STAGE_SPIN4);
             }
             return;
         default: /* SPIN4: to rest, then done */
-            if (w->step <= id->p->accel * 50U || w->step > id->x2 + id->x2 / 4) {
+            if (w->step <= id->p->accel * 200U || w->step > id->x2 + id->x2 / 4) {
                 c->accel = 0;
                 c->end = true;
                 id->stage = MC_ID_STAGE_DONE;

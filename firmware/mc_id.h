@@ -16,10 +16,13 @@
  * test/closedloop/test_cl_identify.c). The method and its error budget are
  * in docs/identify.md; mc_id.c's notes say why each stage is as it is.
  *
- * Frame. The interrupt's d/q frame is the forced angle (mc_t.ol_angle):
- * 90 degrees while the rotor stands, so d is the beta axis (phases B and C,
- * the lock's axis, mc.c note 4) and q the alpha axis; turning during the
- * spin. Units: currents Q15 of BOARD_I_FULLSCALE_A, voltages Q15 of
+ * Frame. The interrupt's d/q frame is the forced angle (mc_t.ol_angle),
+ * standing at 0 or 90 degrees while the rotor stands (cmd.frame90), turning
+ * during the spin. At 0 degrees d is the alpha axis: phase A carries the d
+ * current, B and C half of it each, and neither a d nor a q injection makes
+ * a phase current cross zero (the inductances' stages). At 90 degrees d is
+ * beta: B and C carry 0.87 of the d current, A none (the resistance's
+ * stage, mc.c note 4's axis). Units: currents Q15 of BOARD_I_FULLSCALE_A, voltages Q15 of
  * MC_VOLTAGE_FULLSCALE_V (the applied phase amplitude), Z_FS = V_FS / I_FS
  * ohm for their ratio, angles per period in the open loop's 2^32 units.
  */
@@ -55,9 +58,9 @@ enum { MC_ID_ERROR_LIST(MC_ID_ERROR_ENUM_) MC_ID_ERROR_COUNT };
 #define MC_ID_STAGE_LIST(X)                                                                        \
     X(IDLE)     /* not running */                                                                  \
     X(RAMP)     /* d voltage raised in open loop until the current reaches the target */          \
-    X(LD)       /* voltage injected on d, the d current held: Ld */                               \
+    X(R)        /* open loop at four d voltages: R and the inverter's voltage error */            \
+    X(LD)       /* at 0 degrees, voltage injected on d, the d current held: Ld */                 \
     X(LQ)       /* injected on q: Lq */                                                            \
-    X(R)        /* d current loop at three levels: R and the inverter's voltage error */          \
     X(SPIN1)    /* the current vector turned faster: to the first speed */                        \
     X(HOLD1)    /* ... held: the back-EMF at it */                                                \
     X(SPIN2)    /* up to twice the first speed (the torque that accelerates) */                   \
@@ -93,9 +96,9 @@ typedef struct {
     int32_t u_d;  /* the current loops' outputs (their voltage in the frame), sums */
     int32_t u_q;  /*  */
     int32_t v_q;  /* applied voltage on q, sum */
-    int32_t zi;   /* injection: sum of z (i_n - i_n-1) on the injected axis, z = +-1 */
-    int32_t zu;   /* ... of z u_n, u the applied voltage over the sample interval */
-    int32_t zm;   /* ... of z (i_n + i_n-1) */
+    int32_t zi;   /* injection: sum of z (i_n - i_n-1) on the injected axis, z the injected */
+    int32_t zu;   /* ... wave over the sample interval (+-1, Q15); of z u_n, u the applied */
+    int32_t zm;   /* ... voltage over the interval; of z (i_n + i_n-1) / 2 */
     uint32_t step; /* the forced speed at the window end, angle per period (2^32 a turn) */
 } mc_id_win_t;
 
@@ -112,6 +115,7 @@ typedef struct {
     int32_t accel;     /* change of the forced speed per period, 2^32 a turn per period */
     int16_t dt_counts; /* dead-time compensation, duty counts (0 while measuring it) */
     bool open_loop;    /* the PI integral is set to v_d (and the injection) */
+    bool frame90;      /* the standing frame at 90 degrees (else 0) */
     bool end;          /* the sequence is over: outputs off, STOPPED */
 } mc_id_cmd_t;
 
