@@ -1759,11 +1759,14 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
     if (id->x2 > id->x1) {
         int64_t dm = (int64_t)id->m2 - id->m1, dx = (int64_t)id->x2 - (int64_t)id->x1;
         r->ke_uv_per_rpm = mc_id_u32(dm * MC_ID_K_KE / dx);
-        if (id->n_up > 0U && id->n_dn > 0U && id->accel > 0U) {
-            /* the torque current's difference as a fraction: t_up / n_up - t_dn / n_dn */
-            int64_t dt_num = (int64_t)id->t_up * id->n_dn - (int64_t)id->t_dn * id->n_up;
+        /* the slope of the torque current against the acceleration, Q16 (a
+         * least-squares line: its intercept, friction, drops out) */
+        int64_t den = (int64_t)id->j_n * id->j_aa - (int64_t)id->j_a * id->j_a;
+        if (den > 0 && id->accel > 0U) {
+            int64_t k = ((int64_t)id->j_n * id->j_ia - (int64_t)id->j_i * id->j_a) * 65536 / den;
             int64_t a = dm * MC_ID_K_J / dx;
-            r->j_ng_m2 = mc_id_u32(a * dt_num / ((int64_t)id->accel * id->n_up * id->n_dn));
+            /* up minus down at the spin's acceleration: 2 ID_A_UNIT k */
+            r->j_ng_m2 = mc_id_u32(a * 64 * k / ((int64_t)id->accel * 65536));
         }
     }
 }

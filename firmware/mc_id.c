@@ -55,6 +55,8 @@
 #define ID_SPIN_WINDOWS_MAX 8000U
 #define ID_TWO_PI_Q12      25736L /* 2 pi x 4096 */
 #define ID_SPIN_START      20U  /* windows the loops settle at the spin's start */
+#define ID_JERK            32U  /* windows the spin's acceleration takes to change */
+#define ID_A_UNIT          32   /* the J fit's unit of acceleration: the spin's = 32 */
 
 
 #define N_ ((int32_t)id->p->n)
@@ -183,11 +185,14 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->m2 = 0;
     id->x1 = 0U;
     id->x2 = 0U;
-    id->t_up = 0;
-    id->t_dn = 0;
-    id->n_up = 0U;
-    id->n_dn = 0U;
+    id->j_n = 0;
+    id->j_a = 0;
+    id->j_aa = 0;
+    id->j_i = 0;
+    id->j_ia = 0;
+    id->a_prev = 0;
     id->accel = 0U;
+    id->goal = 0;
     id->i_spin = 0;
     id->l_zu[0] = id->l_zu[1] = 0;
     id->l_zm[0] = id->l_zm[1] = 0;
@@ -348,7 +353,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         c->i_ref.d = id->i_spin;
         c->i_ref.q = 0;
         id->accel = id->p->accel;
-        c->accel = (int32_t)id->accel;
+        id->goal = (int32_t)id->accel;
         id_stage(id, MC_ID_STAGE_SPIN1);
     }
 }
@@ -486,6 +491,22 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
     }
 }
 
+/* One window of the J fit (note 5): the torque current against the
+ * acceleration that acted over the window, in units of ID_A_UNIT per the
+ * spin's acceleration, once it has eased to the full acceleration. */
+static void id_j(mc_id_t *id, q15_t it)
+{
+    int32_t a = id_ratio(id->a_prev * ID_A_UNIT, (int32_t)id->accel, 0);
+    if (a > -ID_A_UNIT && a < ID_A_UNIT) {
+        return; /* easing: the rotor's torque lags a changing acceleration */
+    }
+    id->j_n++;
+    id->j_a += a;
+    id->j_aa += a * a;
+    id->j_i += it;
+    id->j_ia += (int32_t)it * a;
+}
+
 static void id_spin(mc_id_t *id, const mc_id_win_t *w)
 {
     mc_id_cmd_t *c = &id->cmd;
@@ -501,8 +522,7 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                     mc_id_fail(id, MC_ID_ERROR_ROTOR_LOCKED);
                     return;
                 }
-                c->accel = 0;
-                id->x1 = w->step;
+                id->goal = 0;
                 id_stage(id, MC_ID_STAGE_HOLD1);
             } else if (id->wins > ID_SPIN_WINDOWS_MAX) {
                 mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
@@ -529,7 +549,8 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                 }
                 if (id->stage == MC_ID_STAGE_HOLD1) {
                     id->m1 = m;
-                    c->accel = (int32_t)id->accel;
+                    id->x1 = w->step;
+                    id->goal = (int32_t)id->accel;
                     id_stage(id, MC_ID_STAGE_SPIN2);
                 } else {
                     id->m2 = m;
@@ -540,39 +561,50 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                         mc_id_fail(id, MC_ID_ERROR_NO_SYNC);
                         return;
                     }
-                    c->accel = -(int32_t)id->accel;
+                    id->goal = -(int32_t)id->accel;
                     id_stage(id, MC_ID_STAGE_SPIN3);
                 }
             }
             return;
         case MC_ID_STAGE_SPIN2:
-            id->t_up += it;
-            id->n_up++;
-            if (w->step >= 2U * id->x1) {
-                c->accel = 0;
+            id_j(id, it);
+            if (w->step >= 2U * id->x1 - id->x1 / 8U) { /* the rest while the acceleration eases */
+                id->goal = 0;
                 id_stage(id, MC_ID_STAGE_HOLD2);
             } else if (id->wins > ID_SPIN_WINDOWS_MAX) {
                 mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
             }
             return;
         case MC_ID_STAGE_SPIN3:
-            id->t_dn += it;
-            id->n_dn++;
-            if (w->step <= id->x1) {
+            id_j(id, it);
+            if (w->step <= id->x1 + id->x1 / 8U) {
                 /* J is measured: to rest at four times the rate (the
                  * stopping distance of the rest is the spin's longest) */
-                c->accel = -4 * (int32_t)id->accel;
+                id->goal = -4 * (int32_t)id->accel;
                 id_stage(id, MC_ID_STAGE_SPIN4);
             }
             return;
         default: /* SPIN4: to rest, then done */
             if (w->step <= id->p->accel * 200U || w->step > id->x2 + id->x2 / 4) {
                 c->accel = 0;
+                id->goal = 0;
                 c->end = true;
                 id->stage = MC_ID_STAGE_DONE;
             }
             return;
     }
+}
+
+/* The spin's acceleration moves to its goal by 1/ID_JERK of the spin's a
+ * window: a step of acceleration is a step of torque, and a rotor pulled
+ * by a current at a forced angle swings, undamped, about the angle that
+ * torque needs (note 5). */
+static void id_ease(mc_id_t *id)
+{
+    int32_t step = (int32_t)(id->accel / ID_JERK) + 1;
+    int32_t a = id->cmd.accel;
+    a += (id->goal > a + step) ? step : (id->goal < a - step) ? -step : id->goal - a;
+    id->cmd.accel = a;
 }
 
 void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cmd)
@@ -597,7 +629,11 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
                 id_resistance(id, w);
                 break;
             default:
+                id->a_prev = id->cmd.accel; /* what acted over this window */
                 id_spin(id, w);
+                if (!id->cmd.end) {
+                    id_ease(id);
+                }
                 break;
         }
     }
@@ -609,7 +645,8 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *
  * 1. Results. R = dv / di (sums of the same number of periods, so their
  *    ratio is R in Z_FS); L (Ld, Lq) = Ts (zu - R zm / 2) / zi; the
- *    inverter's error from v0; Ke from m1, m2 at x1, x2; J from t_up, t_dn.
+ *    inverter's error from v0; Ke from m1, m2 at x1, x2; J from the fit
+ *    of the torque current against the acceleration (j_*).
  *    mc_identify_result (mc.c) turns them into micro-ohms, nanohenries,
  *    microvolts per rpm and 1e-9 kg m^2 in 64-bit integers, once, outside
  *    the interrupts.

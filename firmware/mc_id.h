@@ -146,9 +146,12 @@ typedef struct {
     int32_t nwin;         /* windows in each level's sums (the same for all) */
     int32_t m1, m2;       /* mean |back-EMF| at the two speeds, Q15 V_FS x 16 */
     uint32_t x1, x2;      /* the two forced speeds, 2^32 a turn per period */
-    int32_t t_up, t_dn;   /* torque current's sums while accelerating and decelerating */
-    uint16_t n_up, n_dn;  /* ... their windows */
+    /* J: the torque current i (Q15) against the window's acceleration a
+     * (ID_A_UNIT = the spin's), fitted over the ramps between the speeds */
+    int32_t j_n, j_a, j_aa, j_i, j_ia; /* windows, sums of a, a^2, i, i a */
+    int32_t a_prev;                    /* the acceleration that acted over the last window */
     uint32_t accel;       /* the spin's acceleration, 2^32 a turn per period per period */
+    int32_t goal;         /* the acceleration cmd.accel eases to */
     q15_t i_spin;         /* the spin's d current */
 } mc_id_t;
 
