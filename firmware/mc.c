@@ -720,17 +720,12 @@ static void mc_id_apply(mc_t *mc, const mc_id_cmd_t *c)
     if (c->open_loop) {
         q15_t inj = (c->inj != 0 && mc->id_sign < 0) ? (q15_t)(-c->inj) : c->inj;
         mc->pi_d.sum = (q31_t)(c->v_d + ((c->inj_q == 0U) ? inj : 0)) * 65536L;
-        mc->pi_q.sum = (q31_t)((c->inj_q != 0U) ? inj : 0) * 65536L;
+        mc->pi_q.sum = (q31_t)(c->v_q + ((c->inj_q != 0U) ? inj : 0)) * 65536L;
     } else if (mc->id_open) {
         mc->pi_d.sum = (q31_t)c->v_d * 65536L;
         mc->pi_q.sum = 0;
     }
     mc->id_open = c->open_loop;
-    if (c->frame90 != mc->id_frame90 && mc->ol_step == 0U) {
-        mc->id_frame90 = c->frame90; /* the standing frame turned: the rotor follows */
-        mc->ol_angle = c->frame90 ? 0x40000000UL : 0UL;
-        mc_prepare(mc);
-    }
     if (c->inj_q != mc->id_inj_q || c->inj_half != mc->id_half) {
         mc->id_cnt = 0U;
     }
@@ -754,8 +749,7 @@ static void mc_enter_identify(mc_t *mc)
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
     mc->epoch = (uint8_t)(mc->epoch + 1U);
-    mc->id_frame90 = false;
-    mc->ol_angle = 0UL; /* the first command sets the standing frame */
+    mc->ol_angle = 0x40000000UL; /* 90 degrees */
     mc->ol_damp = 0;
     mc->ol_step = 0U;
     mc->theta_offset = 0;
@@ -770,8 +764,6 @@ static void mc_enter_identify(mc_t *mc)
     mc->lock_vb = 0;
     mc_id_begin(&mc->id, &mc_id_params, &cmd);
     mc_id_apply(mc, &cmd);
-    mc->ol_angle = cmd.frame90 ? 0x40000000UL : 0UL;
-    mc->id_frame90 = cmd.frame90;
     mc_enter(mc, MC_STATE_IDENTIFY);
     mc_prepare(mc); /* the outputs turn on with the next period */
 }
@@ -800,9 +792,8 @@ static void mc_id_stop(mc_t *mc, uint16_t error)
  * note 2). v_hist[1] is the command of the period before, id_u_prev the
  * one before that: over the interval that ends at this sample they acted
  * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). The
- * injected axis in the stationary frame: at 0 degrees d is alpha and q
- * beta, at 90 d is beta and q -alpha (an axis's sign drops out of its
- * ratio). */
+ * injected axis in the stationary frame: d is beta and q -alpha (an axis's
+ * sign drops out of its ratio). */
 Q15_INLINE void mc_id_period(mc_t *mc)
 {
     mc_id_win_t *w = &mc->id_win;
@@ -812,10 +803,9 @@ Q15_INLINE void mc_id_period(mc_t *mc)
     w->u_q += mc->pi_q.out;
     if (mc->id_inj != 0) {
         bool q = mc->id_inj_q != 0U;
-        bool beta = q != mc->id_frame90;
-        q15_t un = beta ? mc->v_hist[1].beta : mc->v_hist[1].alpha;
+        q15_t un = q ? mc->v_hist[1].alpha : mc->v_hist[1].beta;
         q15_t u = q15_dsp_mac2_r(un, MC_VEST_W_NEW, mc->id_u_prev, MC_VEST_W_OLD);
-        q15_t i = beta ? mc->i_ab.beta : mc->i_ab.alpha;
+        q15_t i = q ? mc->i_ab.alpha : mc->i_ab.beta;
         q15_t di = q15_sat((int32_t)i - (int32_t)mc->id_i_prev);
         q15_t im = (q15_t)(((int32_t)i + (int32_t)mc->id_i_prev) >> 1);
         /* z: the injected square wave as it acts over this interval, the
@@ -1299,10 +1289,9 @@ static void mc_window_end(mc_t *mc)
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
     if (mc->state == MC_STATE_IDENTIFY) {
-        /* the applied voltage on the standing frame's axes: at 90 degrees d
-         * is beta and q -alpha, at 0 d is alpha and q beta */
-        mc->id_win.v_d = mc->id_frame90 ? mc->lock_vb : mc->lock_va;
-        mc->id_win.v_q = mc->id_frame90 ? -mc->lock_va : mc->lock_vb;
+        /* the applied voltage on the standing frame's axes: d is beta, q -alpha */
+        mc->id_win.v_d = mc->lock_vb;
+        mc->id_win.v_q = -mc->lock_va;
         mc->id_win.step = mc->ol_step;
         si->id = mc->id_win;
         si->vbus = mc->vbus;
@@ -1748,6 +1737,15 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
             r->ld_nh = l;
         } else {
             r->lq_nh = l;
+        }
+    }
+    /* LQ's rotor stood at phi = atan(i_q / i_d) to its d axis: the q
+     * injection saw Lq cos^2 phi + Ld sin^2 phi (mc_id.c note 2) */
+    {
+        int64_t d2 = (int64_t)(id->lq_i[0] / 256) * (id->lq_i[0] / 256);
+        int64_t q2 = (int64_t)(id->lq_i[1] / 256) * (id->lq_i[1] / 256);
+        if (d2 > 0) {
+            r->lq_nh = mc_id_u32((((int64_t)r->lq_nh * (d2 + q2)) - (int64_t)r->ld_nh * q2) / d2);
         }
     }
     r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);

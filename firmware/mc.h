@@ -406,7 +406,6 @@ typedef struct {
     q15_t id_i_prev;       /* the injected axis's current at the previous sample */
     q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
     bool id_open;          /* the last command was open loop */
-    bool id_frame90;       /* the standing frame at 90 degrees (else 0) */
     bool id_pending;       /* CALIBRATE before IDENTIFY */
     bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
     uint8_t id_status;     /* mc_id_status_t, the interrupt's view */

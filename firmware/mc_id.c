@@ -210,7 +210,8 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->cmd.accel = 0;
     id->cmd.dt_counts = 0;
     id->cmd.open_loop = true;
-    id->cmd.frame90 = true;
+    id->cmd.v_q = 0;
+    id->inj_set = 0;
     id->cmd.end = false;
     id_stage(id, MC_ID_STAGE_RAMP);
     *cmd = id->cmd;
@@ -271,10 +272,9 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     /* peak-to-peak swing: each half cycle adds about one swing to |zi| */
     int32_t swing = id_abs(w->zi) * (int32_t)c->inj_half / N_;
     int32_t target = id->i_dc / 4;
-    if (c->inj == 0) { /* the DC current at 0 degrees settled first (the rotor turns to it) */
-        if (id_settled(id, w->i_d, id->p->i_target / 128 * N_)) {
-            c->inj = (q15_t)(c->v_d / 4 + 1);
-            c->inj_half = ID_HALF_MIN;
+    if (c->inj == 0) { /* the DC currents settled first (LQ: the rotor turns to its bias) */
+        if (id_settled(id, ax ? w->i_q : w->i_d, id->p->i_target / 128 * N_)) {
+            c->inj = (id->inj_set != 0) ? id->inj_set : (q15_t)(c->v_d / 4 + 1);
         } else if (id->wins > ID_R_SETTLE_MAX) {
             mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
         }
@@ -286,18 +286,28 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     }
     if (id->sub == 1U) { /* setting the amplitude */
         int32_t inj = c->inj;
+        /* the DC voltage and the injection below 0.8 of the limit: a phase
+         * clipped at 0 or 100 % loses its dead time in that half only,
+         * which the correlation would take for inductance */
+        int32_t room = (int32_t)id->p->v_max * 8 / 7 - id_abs(c->v_d) - id_abs(c->v_q);
+        int32_t most = (room < id->p->inj_max) ? room : id->p->inj_max;
         if (swing < target - target / 4 || swing > target + target / 4) {
             if (swing < target / 4) {
                 inj *= 4;
             } else {
                 inj = id_ratio(inj * target, swing, 0);
             }
-            if (inj > id->p->inj_max) {
-                inj = id->p->inj_max;
-                if (c->inj == id->p->inj_max) { /* at its largest: a longer half cycle */
+            if (inj > most) {
+                inj = most;
+                if (c->inj >= most) { /* at its largest: a longer half cycle */
                     if (c->inj_half >= ID_HALF_MAX) {
-                        mc_id_fail(id, (swing < target / 8) ? MC_ID_ERROR_OPEN_PHASE
-                                                             : MC_ID_ERROR_OUT_OF_RANGE);
+                        /* the swing it gives, if a quarter of the aim: measured */
+                        if (swing >= target / 4) {
+                            id->sub = 2U;
+                            return;
+                        }
+                        mc_id_fail(id, (swing < target / 16) ? MC_ID_ERROR_OPEN_PHASE
+                                                              : MC_ID_ERROR_OUT_OF_RANGE);
                         return;
                     }
                     c->inj_half = (uint8_t)(c->inj_half * 2U);
@@ -316,10 +326,12 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     id->acc[0] += w->zu;
     id->acc[1] += w->zm;
     id->acc[2] += w->zi;
+    id->acc[3] += w->i_d;
+    id->acc[4] += w->i_q;
     if (++id->sub < (uint8_t)(2U + ID_L_WINDOWS)) {
         return;
     }
-    /* q is -alpha at 90 degrees, the interrupt sums alpha: one sign for all three */
+    /* q is -alpha, the interrupt sums alpha: one sign for all three */
     if (id->acc[2] < 0) {
         id->acc[0] = -id->acc[0];
         id->acc[1] = -id->acc[1];
@@ -329,14 +341,34 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     id->l_zm[ax] = id->acc[1];
     id->l_zi[ax] = id->acc[2];
     if (ax == 0U) {
-        id_stage(id, MC_ID_STAGE_LQ);
+        /* LQ with a quarter of the current on q as well, so that phase A's
+         * current does not cross zero under the injection (note 2): the
+         * rotor turns by atan(1/4) to the current, the correction for which
+         * is in the result (mc.c mc_identify_result). Its voltage: R i and,
+         * of the inverter's error, Vd 2/3 = v0 / sqrt(3) (Q15 18919) */
+        int32_t v0 = id->v0 / (ID_R_WINDOWS * N_);
+        id->inj_set = c->inj;
+        c->inj = 0;
         c->inj_q = 1U;
+        c->v_q = q15_sat((int32_t)(((int64_t)id->r_q16 * (id->i_dc / 4)) >> 16) + (int32_t)((v0 * 18919L) >> 15));
+        id_stage(id, MC_ID_STAGE_LQ);
         return;
     }
-    /* both: L for the gains (R unknown: its z m term is small, note 2) */
+    id->lq_i[0] = id->acc[3];
+    id->lq_i[1] = id->acc[4];
+    /* both: L for the gains and the spin's back-EMF (note 2): the R term
+     * taken off, Lq corrected for the rotor's angle to the current */
     {
-        int32_t ld = id_ratio(id->l_zu[0], id->l_zi[0], 12);
-        int32_t lq = id_ratio(id->l_zu[1], id->l_zi[1], 12);
+        int32_t ld = id_ratio(id->l_zu[0] - (int32_t)(((int64_t)id->l_zm[0] * id->r_q16) >> 16), id->l_zi[0], 12);
+        int32_t lq = id_ratio(id->l_zu[1] - (int32_t)(((int64_t)id->l_zm[1] * id->r_q16) >> 16), id->l_zi[1], 12);
+        {
+            /* Lq cos^2 + Ld sin^2 was measured: Lq = (lq (d^2 + q^2) - ld q^2) / d^2 */
+            int32_t d = id->lq_i[0] / 256, q = id->lq_i[1] / 256;
+            int64_t d2 = (int64_t)d * d, q2 = (int64_t)q * q;
+            if (d2 > 0) {
+                lq = (int32_t)((((int64_t)lq * (d2 + q2)) - (int64_t)ld * q2) / d2);
+            }
+        }
         if (ld <= 0 || lq <= 0 || id->l_zi[0] <= 0 || id->l_zi[1] <= 0) {
             mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
             return;
@@ -346,6 +378,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
          * the dead time compensated as measured, a third of the current */
         c->inj = 0;
         c->open_loop = false;
+        c->v_q = 0;
         id_gains(id, c, id->l_q12, id->r_q16);
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts = (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
@@ -436,7 +469,6 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         int32_t dv = id->lv[0] - id->lv[2], di = id->li[0] - id->li[2];
         int32_t dvm = id->lv[1] - id->lv[2], dim = id->li[1] - id->li[2];
         int32_t dvu = id->lv[0] - id->lv[1], diu = id->li[0] - id->li[1];
-        int32_t v0;
         if (di < id->p->i_min * N_ * ID_R_WINDOWS / 4 || dv <= 0 || dim <= 0 || diu <= 0) {
             mc_id_fail(id, (dv <= 0) ? MC_ID_ERROR_OUT_OF_RANGE : MC_ID_ERROR_TOO_SMALL);
             return;
@@ -455,11 +487,9 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         }
         /* v at zero current from the top level: v0 = v_top - R i_top (sums) */
         id->v0 = id->lv[0] - (int32_t)(((int64_t)id->r_q16 * id->li[0]) >> 16);
-        v0 = id->v0 / (ID_R_WINDOWS * N_);
-        /* on to 0 degrees for the inductances: the same current takes R i
-         * and, of the dead time, 4/3 Vd = 2/sqrt(3) v0 (Q15 1.1547 = 37837) */
-        c->v_d = q15_sat((int32_t)(((int64_t)id->r_q16 * id->i_dc) >> 16) + (int32_t)((v0 * 37837L) >> 15));
-        c->frame90 = false;
+        /* the inductances at the lowest level's current (half the top's):
+         * out of the band, and room for the injection under the limit */
+        c->v_d = q15_sat(id->lv[2] / (ID_R_WINDOWS * N_));
         id_stage(id, MC_ID_STAGE_LD);
     }
 }
@@ -491,6 +521,18 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
     }
 }
 
+/* The voltage the loops would ask at twice this window's speed, Q15 V_FS:
+ * R i stays, the rest (back-EMF and w L i) doubles: |2 u - R i|. */
+static int32_t id_volts2(const mc_id_t *id, const mc_id_win_t *w)
+{
+    q15_t i_d = id_mean(id, w->i_d), i_q = id_mean(id, w->i_q);
+    int32_t vd = 2 * (int32_t)id_mean(id, w->u_d) - (int32_t)(((int64_t)id->r_q16 * i_d) >> 16);
+    int32_t vq = 2 * (int32_t)id_mean(id, w->u_q) - (int32_t)(((int64_t)id->r_q16 * i_q) >> 16);
+    vd = (vd > 46340) ? 46340 : (vd < -46340) ? -46340 : vd; /* squares below 2^31 */
+    vq = (vq > 46340) ? 46340 : (vq < -46340) ? -46340 : vq;
+    return (int32_t)q15_isqrt_u32((uint32_t)(vd * vd) + (uint32_t)(vq * vq));
+}
+
 /* One window of the J fit (note 5): the torque current against the
  * acceleration that acted over the window, in units of ID_A_UNIT per the
  * spin's acceleration, once it has eased to the full acceleration. */
@@ -517,7 +559,17 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             if (id->wins <= ID_SPIN_START) {
                 return; /* the loops take over from the open loop */
             }
-            if ((mag >= ID_E1 && ++id->ok >= ID_SETTLE) || w->step >= id->p->step_max / 2U) {
+            /* a load angle past 45 degrees (the torque current above 0.7 of
+             * the current): more current, up to the measurements' */
+            if (it > (q15_t)(((int32_t)c->i_ref.d * 23170) >> 15) && c->i_ref.d < id->i_dc) {
+                int32_t i = (int32_t)c->i_ref.d + c->i_ref.d / 8;
+                c->i_ref.d = (q15_t)((i > id->i_dc) ? id->i_dc : i);
+            }
+            /* the first speed: where the back-EMF reaches ID_E1, or where
+             * twice the speed would ask 0.8 of the voltage limit (v_max is
+             * 0.7 of it), or half the speed limit */
+            if (((mag >= ID_E1 || id_volts2(id, w) >= (int32_t)id->p->v_max * 8 / 7) && ++id->ok >= ID_SETTLE) ||
+                w->step >= id->p->step_max / 2U) {
                 if (mag < ID_E_MIN) {
                     mc_id_fail(id, MC_ID_ERROR_ROTOR_LOCKED);
                     return;
@@ -543,8 +595,10 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                 int32_t m = id_ratio(id->acc[0], id->acc[1], 4); /* mean |E| x 16 */
                 /* a rotor that follows turns at the forced speed: |E| steady */
                 if ((id->hi - id->lo) * 16 > m / 2 || m < ID_E_MIN * 16) {
-                    mc_id_fail(id, (m < ID_E_MIN * 16) ? MC_ID_ERROR_ROTOR_LOCKED
-                                                               : MC_ID_ERROR_NO_SYNC);
+                    /* no back-EMF at the first speed: the rotor never turned */
+                    mc_id_fail(id, (m < ID_E_MIN * 16 && id->stage == MC_ID_STAGE_HOLD1)
+                                       ? MC_ID_ERROR_ROTOR_LOCKED
+                                       : MC_ID_ERROR_NO_SYNC);
                     return;
                 }
                 if (id->stage == MC_ID_STAGE_HOLD1) {

@@ -17,12 +17,9 @@
  * in docs/identify.md; mc_id.c's notes say why each stage is as it is.
  *
  * Frame. The interrupt's d/q frame is the forced angle (mc_t.ol_angle),
- * standing at 0 or 90 degrees while the rotor stands (cmd.frame90), turning
- * during the spin. At 0 degrees d is the alpha axis: phase A carries the d
- * current, B and C half of it each, and neither a d nor a q injection makes
- * a phase current cross zero (the inductances' stages). At 90 degrees d is
- * beta: B and C carry 0.87 of the d current, A none (the resistance's
- * stage, mc.c note 4's axis). Units: currents Q15 of BOARD_I_FULLSCALE_A, voltages Q15 of
+ * standing at 90 degrees while the rotor stands, turning during the spin.
+ * At 90 degrees d is the beta axis: phases B and C carry 0.87 of the d
+ * current, phase A none (mc.c note 4's axis), and q is -alpha. Units: currents Q15 of BOARD_I_FULLSCALE_A, voltages Q15 of
  * MC_VOLTAGE_FULLSCALE_V (the applied phase amplitude), Z_FS = V_FS / I_FS
  * ohm for their ratio, angles per period in the open loop's 2^32 units.
  */
@@ -59,8 +56,8 @@ enum { MC_ID_ERROR_LIST(MC_ID_ERROR_ENUM_) MC_ID_ERROR_COUNT };
     X(IDLE)     /* not running */                                                                  \
     X(RAMP)     /* d voltage raised in open loop until the current reaches the target */          \
     X(R)        /* open loop at four d voltages: R and the inverter's voltage error */            \
-    X(LD)       /* at 0 degrees, voltage injected on d, the d current held: Ld */                 \
-    X(LQ)       /* injected on q: Lq */                                                            \
+    X(LD)       /* voltage injected on d, the d current held: Ld */                               \
+    X(LQ)       /* injected on q, with a quarter of the current on q: Lq */                        \
     X(SPIN1)    /* the current vector turned faster: to the first speed */                        \
     X(HOLD1)    /* ... held: the back-EMF at it */                                                \
     X(SPIN2)    /* up to twice the first speed (the torque that accelerates) */                   \
@@ -109,13 +106,13 @@ typedef struct {
     uint8_t kp_shift;  /* ... its exponent */
     q15_t ki;          /* ... Ki (and Kc) per period */
     q15_t v_d;         /* open loop: the d voltage (the PI's integral), Q15 V_FS */
+    q15_t v_q;         /* ... and the q voltage */
     q15_t inj;         /* injected voltage's amplitude, Q15 V_FS; 0: none */
     uint8_t inj_q;     /* injected on q (else d) */
     uint8_t inj_half;  /* periods per half cycle of the injected square wave */
     int32_t accel;     /* change of the forced speed per period, 2^32 a turn per period */
     int16_t dt_counts; /* dead-time compensation, duty counts (0 while measuring it) */
-    bool open_loop;    /* the PI integral is set to v_d (and the injection) */
-    bool frame90;      /* the standing frame at 90 degrees (else 0) */
+    bool open_loop;    /* the PI integrals are set to v_d, v_q (and the injection) */
     bool end;          /* the sequence is over: outputs off, STOPPED */
 } mc_id_cmd_t;
 
@@ -139,6 +136,8 @@ typedef struct {
     int32_t l_zm[2];      /* ... of z m (R's term) ... */
     int32_t l_zi[2];      /* ... and of z di */
     q15_t vbus;           /* the bus while R was measured, Q15 of BOARD_VBUS_FULLSCALE_V */
+    int32_t lq_i[2];      /* LQ: sums of the d and q currents (the rotor's angle to d) */
+    q15_t inj_set;        /* the injection's amplitude LD found, LQ's start */
     int32_t r_q16;        /* R, Q16 of Z_FS */
     int32_t l_q12;        /* (Ld + Lq) / 2 over Ts, Q12 of Z_FS */
     int32_t dv, di;       /* R = dv / di (Z_FS); the intercept: */
