@@ -44,14 +44,16 @@
 #define ID_V_SETTLE        32   /* ... a voltage moving less than this (Q15, window mean) */
 #define ID_R_SETTLE_MAX    300U /* windows for a level to settle */
 #define ID_R_WINDOWS       100  /* windows each level is measured over */
-#define ID_MOVING          655  /* the q voltage's window means spread by 2 % of V_FS: turning */
+#define ID_MOVING_TRIES    8    /* levels measured again while the rotor swings */
 #define ID_R_BAND_TOL      20   /* the lower slope 1/20 steeper: the band */
 #define ID_R_MAX_Q16       (16L * 65536L) /* R at most 16 Z_FS */
 #define ID_V_START         ((q15_t)64)    /* the ramp's first voltage: 1/512 of V_FS */
 #define ID_E1              ((q15_t)6554)  /* |E| at the first speed: 0.2 V_FS */
 #define ID_E_MIN           ((q15_t)655)   /* less at the speed limit: no back-EMF */
 #define ID_HOLD_SETTLE     100U /* windows a hold waits before measuring */
-#define ID_HOLD_WINDOWS    200  /* windows it measures */
+#define ID_HOLD_WINDOWS    200  /* windows it measures, at least ... */
+#define ID_HOLD_TURNS      20L  /* ... and electrical turns, ... */
+#define ID_HOLD_WINDOWS_MAX 3000 /* ... but no more windows than this */
 #define ID_SPIN_WINDOWS_MAX 8000U
 #define ID_TWO_PI_Q12      25736L /* 2 pi x 4096 */
 #define ID_SPIN_START      20U  /* windows the loops settle at the spin's start */
@@ -212,6 +214,7 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->cmd.open_loop = true;
     id->cmd.v_q = 0;
     id->inj_set = 0;
+    id->tries = 0U;
     id->cmd.end = false;
     id_stage(id, MC_ID_STAGE_RAMP);
     *cmd = id->cmd;
@@ -410,7 +413,7 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
             id->acc[3] = 0;
             id->lo = INT32_MAX;
             id->hi = INT32_MIN;
-        } else if (id->wins > ID_R_SETTLE_MAX * (uint16_t)(lev + 1U)) {
+        } else if (id->wins > ID_R_SETTLE_MAX * (uint16_t)(lev + 1U + id->tries)) {
             mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
         }
         return;
@@ -423,9 +426,16 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
     if (id->acc[2] < ID_R_WINDOWS) {
         return;
     }
-    /* a rotor that turns drives a current on q through R by its back-EMF */
+    /* a rotor that turns drives a current on q through R by its back-EMF:
+     * still swinging from its alignment (the short circuit of q damps it),
+     * the level is measured again, up to ID_MOVING_TRIES times */
     if (id->hi - id->lo > (int32_t)id->p->i_target / 16 * N_) {
-        mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
+        if (++id->tries > ID_MOVING_TRIES) {
+            mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
+        } else {
+            id->sub--;
+            id->ok = 0U;
+        }
         return;
     }
     /* a d voltage that drives current on q: a phase open (note 6) */
@@ -587,14 +597,19 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             }
             id->acc[0] += mag;
             id->acc[1]++;
+            id->acc[2] += (int32_t)(w->step >> 16) * N_; /* turns x 65536 */
             id_track(id, mag);
-            if (id->acc[1] < ID_HOLD_WINDOWS) {
+            /* ID_HOLD_WINDOWS, and ID_HOLD_TURNS electrical turns: the rotor
+             * swings about the forced angle, its mean speed over the hold is
+             * the forced one within the swing's angle over the turns */
+            if (id->acc[1] < ID_HOLD_WINDOWS ||
+                (id->acc[2] < ID_HOLD_TURNS * 65536L && id->acc[1] < ID_HOLD_WINDOWS_MAX)) {
                 return;
             }
             {
                 int32_t m = id_ratio(id->acc[0], id->acc[1], 4); /* mean |E| x 16 */
                 /* a rotor that follows turns at the forced speed: |E| steady */
-                if ((id->hi - id->lo) * 16 > m / 2 || m < ID_E_MIN * 16) {
+                if ((id->hi - id->lo) * 16 > m + m / 2 || m < ID_E_MIN * 16) {
                     /* no back-EMF at the first speed: the rotor never turned */
                     mc_id_fail(id, (m < ID_E_MIN * 16 && id->stage == MC_ID_STAGE_HOLD1)
                                        ? MC_ID_ERROR_ROTOR_LOCKED

@@ -125,6 +125,7 @@ typedef struct {
     uint16_t wins;      /* windows in this stage */
     uint8_t sub;        /* the stage's step: level, injection setting, ... */
     uint8_t ok;         /* consecutive settled windows */
+    uint8_t tries;      /* R levels measured again (the rotor still swinging) */
     mc_id_cmd_t cmd;    /* what the interrupt does now */
     int32_t last;       /* the previous window's value the stage watches */
     int32_t acc[5];     /* the stage's sums over its measuring windows */
