@@ -47,17 +47,6 @@ static const pi_params_t mc_pi_spd_params = {
     MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
 };
 
-static const mc_id_params_t mc_id_params = {
-    MC_ID_I_Q15,
-    MC_ID_I_MIN_Q15,
-    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */
-    (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */
-    MC_ID_WC_TS,
-    (uint16_t)MC_SLOW_STEP_PERIODS,
-    (int16_t)PWM_DUTY_MAX,
-    MC_ID_ACCEL,
-    MC_ID_STEP_MAX,
-};
 
 static const fieldweak_params_t mc_fw_params = {
     MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM),
@@ -97,6 +86,19 @@ MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0
  * unchanged. */
 #define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
 #define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
+
+static const mc_id_params_t mc_id_params = {
+    MC_ID_I_Q15,
+    MC_ID_I_MIN_Q15,
+    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */
+    (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */
+    MC_ID_WC_TS,
+    (uint16_t)MC_SLOW_STEP_PERIODS,
+    (int16_t)PWM_DUTY_MAX,
+    MC_VEST_W_NEW,
+    MC_ID_ACCEL,
+    MC_ID_STEP_MAX,
+};
 
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
@@ -793,7 +795,8 @@ static void mc_id_stop(mc_t *mc, uint16_t error)
  * one before that: over the interval that ends at this sample they acted
  * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). The
  * injected axis in the stationary frame: d is beta and q -alpha (an axis's
- * sign drops out of its ratio). */
+ * sign drops out of its ratio). The two commands are summed apart: how
+ * much each moves the current depends on L / R (mc_identify_result). */
 Q15_INLINE void mc_id_period(mc_t *mc)
 {
     mc_id_win_t *w = &mc->id_win;
@@ -804,19 +807,32 @@ Q15_INLINE void mc_id_period(mc_t *mc)
     if (mc->id_inj != 0) {
         bool q = mc->id_inj_q != 0U;
         q15_t un = q ? mc->v_hist[1].alpha : mc->v_hist[1].beta;
-        q15_t u = q15_dsp_mac2_r(un, MC_VEST_W_NEW, mc->id_u_prev, MC_VEST_W_OLD);
+        q15_t uo = mc->id_u_prev;
         q15_t i = q ? mc->i_ab.alpha : mc->i_ab.beta;
-        q15_t di = q15_sat((int32_t)i - (int32_t)mc->id_i_prev);
-        q15_t im = (q15_t)(((int32_t)i + (int32_t)mc->id_i_prev) >> 1);
+        q15_t ip = mc->id_i_prev;
         /* z: the injected square wave as it acts over this interval, the
-         * same weights (Q15): +-1, or +-(W_NEW - W_OLD) across a reversal */
+         * same weights (Q15): +-1, or +-(W_NEW - W_OLD) across a reversal;
+         * w: its sign a quarter cycle earlier, in phase with the current */
         q15_t z = (mc->id_z == mc->id_z2) ? (q15_t)(mc->id_z * 32767)
                                           : (q15_t)(mc->id_z * (MC_VEST_W_NEW - MC_VEST_W_OLD));
         mc->id_u_prev = un;
         mc->id_i_prev = i;
-        w->zi += q15_dsp_mulss(z, di) >> 15;
-        w->zu += q15_dsp_mulss(z, u) >> 15;
-        w->zm += q15_dsp_mulss(z, im) >> 15;
+        w->c[0] += q15_dsp_mulss(z, i) >> 15;
+        w->c[1] += q15_dsp_mulss(z, ip) >> 15;
+        w->c[2] += q15_dsp_mulss(z, un) >> 15;
+        w->c[3] += q15_dsp_mulss(z, uo) >> 15;
+        if (((mc->id_zh >> (mc->id_half / 2U)) & 1U) != 0U) {
+            w->c[4] += i;
+            w->c[5] += ip;
+            w->c[6] += un;
+            w->c[7] += uo;
+        } else {
+            w->c[4] -= i;
+            w->c[5] -= ip;
+            w->c[6] -= un;
+            w->c[7] -= uo;
+        }
+        mc->id_zh = (mc->id_zh << 1) | (uint32_t)(mc->id_z > 0);
         mc->id_z2 = mc->id_z;
         mc->id_z = mc->id_sign; /* the sign this period's command carries */
         if (++mc->id_cnt >= mc->id_half) {
@@ -1713,9 +1729,84 @@ void mc_status(const mc_t *mc, mc_status_t *st)
                    (39.47841760435743 * 32768.0) * 1e9 +                                           \
                0.5))
 
+/* The rotor's vibration under the q injection (mc_identify_result), Q16:
+ * 1.5 (60 / (sqrt(3) 2 pi 1e6))^2 Ts^2 / pi^2 x 1e18 (nH ng m^2 per (uV/rpm)^2) */
+#define MC_ID_K_VIB                                                                                \
+    ((int64_t)(1.5 * 60.0 * 60.0 / (3.0 * 39.47841760435743 * 1e12) * MC_TS_S * MC_TS_S /          \
+                   9.869604401089358 * 1e18 * 65536.0 +                                            \
+               0.5))
+
 static uint32_t mc_id_u32(int64_t v)
 {
     return (v <= 0) ? (uint32_t)0 : (v > (int64_t)UINT32_MAX) ? (uint32_t)UINT32_MAX : (uint32_t)v;
+}
+
+/* L of one axis (0 d, 1 q), nH, from the exact discrete model of the RL
+ * circuit under the injection (mc_id.c note 2). Between two samples the
+ * current decays by alpha = exp(-h), h = Ts R / L, towards u / R, the
+ * voltage u_o of the period before acting for the first 1 - a of the
+ * interval and u_n for the last a (a = MC_SAMPLE_AT):
+ *   i_n = alpha i_n-1 + (g_o u_o + g_n u_n) / R,
+ *   g_n = 1 - exp(-a h), g_o = (1 - exp(-(1 - a) h)) exp(-a h).
+ * Correlated with the two instruments z and w (a quarter cycle apart) and
+ * the voltages weighted g_o : g_n, that is two linear equations in alpha
+ * and beta = (g_o + g_n) / R; the weights depend on h, so the solve is
+ * repeated from the difference quotient's weights (a, 1 - a), four times.
+ * L = Ts (g_o + g_n) / (beta h). The R found this way is the axis's own at
+ * the injection's frequency, the apparent resistance of a phase current
+ * inside the dead-time band included; the model holds where L / R is a
+ * period or less, where a difference quotient does not. */
+static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
+{
+    int64_t c[8], big = 1;
+    int64_t wn = MC_VEST_W_NEW, wo = MC_VEST_W_OLD; /* Q15 weights of u_n, u_o */
+    uint32_t nl = 0U, l = 0U;
+    uint8_t k, sh = 0, it;
+    for (k = 0; k < 8U; k++) {
+        c[k] = id->l_c[ax][k];
+        big = (c[k] > big) ? c[k] : (-c[k] > big) ? -c[k] : big;
+    }
+    while ((big >> sh) >= ((int64_t)1 << 20)) { /* products below 2^40 */
+        sh++;
+    }
+    for (k = 0; k < 8U; k++) {
+        c[k] >>= sh;
+    }
+    for (it = 0; it < 4U; it++) {
+        /* the weighted voltage's correlations, then [c0; c4] = [c1 u1; c5 u2] [alpha; beta] */
+        int64_t u1 = (wn * c[2] + wo * c[3]) >> 15, u2 = (wn * c[6] + wo * c[7]) >> 15;
+        int64_t det = c[1] * u2 - c[5] * u1;
+        int64_t an = c[0] * u2 - c[4] * u1; /* alpha det */
+        int64_t bn = c[1] * c[4] - c[5] * c[0]; /* beta det */
+        uint32_t en, eo;
+        if (det < 0) {
+            det = -det;
+            an = -an;
+            bn = -bn;
+        }
+        if (an <= 0 || an >= det || bn <= 0) {
+            return 0U; /* not a decay (0 < alpha < 1, beta > 0): no inductance */
+        }
+        /* alpha in Q22 (an < 2^41): below 2^63 shifted */
+        nl = mc_id_neg_ln_q24((uint32_t)((an * ((int64_t)1 << 22) / det) << 8));
+        if (nl == 0U) {
+            return 0U;
+        }
+        /* the weights at this h: g_n = 1 - e^(-a h), g_o = (1 - e^(-(1-a) h)) e^(-a h),
+         * normalized to a sum of 2^15 */
+        en = mc_id_exp_neg_q30((uint32_t)(((int64_t)nl * MC_VEST_W_NEW) >> 15));
+        eo = mc_id_exp_neg_q30((uint32_t)(((int64_t)nl * MC_VEST_W_OLD) >> 15));
+        {
+            int64_t gn = ((int64_t)1 << 30) - en;
+            int64_t go = ((((int64_t)1 << 30) - eo) * en) >> 30;
+            int64_t gs = gn + go;
+            wn = gn * 32768 / gs;
+            wo = 32768 - wn;
+            /* L / (Ts Z_FS) = (g_o + g_n) / (beta h) = gs det / (bn h), h = nl 2^-24 */
+            l = mc_id_u32(((det * ((int64_t)1 << 24) / bn) * (gs >> 10) >> 20) * MC_ID_K_L / nl);
+        }
+    }
+    return l;
 }
 
 void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
@@ -1731,13 +1822,13 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
     }
     r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
     for (ax = 0; ax < 2U; ax++) {
-        int64_t num = (int64_t)id->l_zu[ax] - (((int64_t)id->l_zm[ax] * id->r_q16) >> 16);
-        uint32_t l = (id->l_zi[ax] > 0) ? mc_id_u32(num * MC_ID_K_L / id->l_zi[ax]) : 0U;
-        if (ax == 0U) {
-            r->ld_nh = l;
-        } else {
-            r->lq_nh = l;
-        }
+        r->lq_nh = r->ld_nh;
+        r->ld_nh = mc_id_inductance(id, ax);
+    }
+    {
+        uint32_t ld = r->lq_nh, lq = r->ld_nh; /* the loop's order */
+        r->ld_nh = ld;
+        r->lq_nh = lq;
     }
     /* LQ's rotor stood at phi = atan(i_q / i_d) to its d axis: the q
      * injection saw Lq cos^2 phi + Ld sin^2 phi (mc_id.c note 2) */
@@ -1748,7 +1839,6 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
             r->lq_nh = mc_id_u32((((int64_t)r->lq_nh * (d2 + q2)) - (int64_t)r->ld_nh * q2) / d2);
         }
     }
-    r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
     if (id->vbus > 0 && id->nwin > 0) {
         uint32_t dt = mc_id_u32((int64_t)id->v0 * MC_ID_K_DT /
                                 ((int64_t)id->nwin * MC_SLOW_STEP_PERIODS * id->vbus));
@@ -1767,6 +1857,17 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
             r->j_ng_m2 = mc_id_u32(a * 64 * k / ((int64_t)id->accel * 65536));
         }
     }
+    /* The q injection's torque shakes the rotor: its back-EMF, in
+     * antiphase, took 1.5 p^2 psi^2 / (w^2 J) off Lq (mc_id.c note 2),
+     * w = pi / (half Ts) the injection's; with psi from Ke:
+     * 1.5 (60 / (sqrt(3) 2 pi 1e6))^2 (half Ts / pi)^2 / J: nH from uV/rpm,
+     * ng m^2 (p cancels) */
+    if (r->j_ng_m2 > 0U) {
+        int64_t ke = r->ke_uv_per_rpm, half = id->lq_half;
+        r->lq_nh = mc_id_u32((int64_t)r->lq_nh + ke * ke * half * half * MC_ID_K_VIB /
+                                                      ((int64_t)r->j_ng_m2 * 65536));
+    }
+    r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
 }
 
 /*

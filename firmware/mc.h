@@ -403,6 +403,7 @@ typedef struct {
     int8_t id_sign;        /* ... its sign in this period's command */
     int8_t id_z;           /* ... in the previous period's */
     int8_t id_z2;          /* ... in the one before */
+    uint32_t id_zh;        /* ... the signs of the commands before, one bit a period (1: +) */
     q15_t id_i_prev;       /* the injected axis's current at the previous sample */
     q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
     bool id_open;          /* the last command was open loop */

@@ -139,6 +139,46 @@ static void id_stage(mc_id_t *id, uint8_t stage)
     id->hi = INT32_MIN;
 }
 
+uint32_t mc_id_neg_ln_q24(uint32_t a_q30)
+{
+    /* -ln a = k ln 2 - ln m, a = m 2^-k with m in [1/2, 1]; -ln m = 2 atanh y,
+     * y = (1 - m) / (1 + m) <= 1/3: the series y + y^3/3 + ... (Q30 terms,
+     * y^2 <= 1/9: twelve terms reach below 2^-30) */
+    int64_t acc = 0, y, y2, t;
+    uint8_t k;
+    if (a_q30 == 0U || a_q30 > ((uint32_t)1 << 30)) {
+        return 0U;
+    }
+    while (a_q30 < ((uint32_t)1 << 29)) {
+        a_q30 <<= 1;
+        acc += 744261118; /* ln 2, Q30 */
+    }
+    y = (((int64_t)1 << 30) - a_q30) * ((int64_t)1 << 30) / (((int64_t)1 << 30) + a_q30);
+    y2 = (y * y) >> 30;
+    t = y;
+    for (k = 1; k < 25U && t != 0; k += 2) {
+        acc += 2 * t / k;
+        t = (t * y2) >> 30;
+    }
+    return (uint32_t)(acc >> 6); /* Q24 */
+}
+
+uint32_t mc_id_exp_neg_q30(uint32_t x_q24)
+{
+    /* e^-x = 2^-k e^-r, r = x - k ln 2 in [0, ln 2): the series 1 - r + r^2/2 - ... */
+    int64_t r = (int64_t)x_q24 << 6, t = (int64_t)1 << 30, acc = 0; /* Q30 */
+    uint8_t k = 0, n;
+    while (r >= 744261118 && k < 30U) { /* ln 2, Q30 */
+        r -= 744261118;
+        k++;
+    }
+    for (n = 1; n < 16U && t != 0; n++) {
+        acc += t;
+        t = -(t * r >> 30) / n;
+    }
+    return (uint32_t)(acc >> k);
+}
+
 void mc_id_fail(mc_id_t *id, uint8_t error)
 {
     if (id->stage != MC_ID_STAGE_DONE && id->stage != MC_ID_STAGE_FAILED) {
@@ -174,6 +214,7 @@ static void id_track(mc_id_t *id, int32_t x)
 
 void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
 {
+    uint8_t k;
     id->p = p;
     id->error = MC_ID_ERROR_NONE;
     id->i_dc = 0;
@@ -196,9 +237,10 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->accel = 0U;
     id->goal = 0;
     id->i_spin = 0;
-    id->l_zu[0] = id->l_zu[1] = 0;
-    id->l_zm[0] = id->l_zm[1] = 0;
-    id->l_zi[0] = id->l_zi[1] = 0;
+    for (k = 0; k < 8U; k++) {
+        id->l_c[0][k] = 0;
+        id->l_c[1][k] = 0;
+    }
     id->vbus = 0;
     id->cmd.i_ref.d = 0;
     id->cmd.i_ref.q = 0;
@@ -268,12 +310,24 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
 
 /* ---- LD, LQ (note 2) ----------------------------------------------------------------------- */
 
+/* L of an axis over Ts, Q12 of Z_FS, by the difference quotient (note 2):
+ * L di = Ts (u - R i), summed with z; for the spin's gains and back-EMF
+ * (mc_identify_result has the exact model). */
+static int32_t id_l_trap(const mc_id_t *id, uint8_t ax)
+{
+    const int32_t *c = id->l_c[ax];
+    int32_t zm = c[0] / 2 + c[1] / 2;
+    /* the interval's voltage: the two commands weighted as they act, 0.54 / 0.46 (Q15) */
+    int32_t zu = (int32_t)(((int64_t)c[2] * id->p->w_new + (int64_t)c[3] * (32768 - id->p->w_new)) >> 15);
+    return id_ratio(zu - (int32_t)(((int64_t)zm * id->r_q16) >> 16), c[0] - c[1], 12);
+}
+
 static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
 {
     mc_id_cmd_t *c = &id->cmd;
-    uint8_t ax = c->inj_q;
-    /* peak-to-peak swing: each half cycle adds about one swing to |zi| */
-    int32_t swing = id_abs(w->zi) * (int32_t)c->inj_half / N_;
+    uint8_t ax = c->inj_q, k;
+    /* peak-to-peak swing: each half cycle adds about one swing to |sum z di| */
+    int32_t swing = id_abs(w->c[0] - w->c[1]) * (int32_t)c->inj_half / N_;
     int32_t target = id->i_dc / 4;
     if (c->inj == 0) { /* the DC currents settled first (LQ: the rotor turns to its bias) */
         if (id_settled(id, ax ? w->i_q : w->i_d, id->p->i_target / 128 * N_)) {
@@ -326,23 +380,20 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         id->sub = 2U; /* in range: measure from the next window */
         return;
     }
-    id->acc[0] += w->zu;
-    id->acc[1] += w->zm;
-    id->acc[2] += w->zi;
+    for (k = 0; k < 8U; k++) {
+        id->l_c[ax][k] += w->c[k];
+    }
     id->acc[3] += w->i_d;
     id->acc[4] += w->i_q;
     if (++id->sub < (uint8_t)(2U + ID_L_WINDOWS)) {
         return;
     }
-    /* q is -alpha, the interrupt sums alpha: one sign for all three */
-    if (id->acc[2] < 0) {
-        id->acc[0] = -id->acc[0];
-        id->acc[1] = -id->acc[1];
-        id->acc[2] = -id->acc[2];
+    /* q is -alpha, the interrupt sums alpha: one sign for all eight */
+    if (id->l_c[ax][2] < 0) {
+        for (k = 0; k < 8U; k++) {
+            id->l_c[ax][k] = -id->l_c[ax][k];
+        }
     }
-    id->l_zu[ax] = id->acc[0];
-    id->l_zm[ax] = id->acc[1];
-    id->l_zi[ax] = id->acc[2];
     if (ax == 0U) {
         /* LQ with a quarter of the current on q as well, so that phase A's
          * current does not cross zero under the injection (note 2): the
@@ -359,11 +410,11 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     }
     id->lq_i[0] = id->acc[3];
     id->lq_i[1] = id->acc[4];
+    id->lq_half = c->inj_half;
     /* both: L for the gains and the spin's back-EMF (note 2): the R term
      * taken off, Lq corrected for the rotor's angle to the current */
     {
-        int32_t ld = id_ratio(id->l_zu[0] - (int32_t)(((int64_t)id->l_zm[0] * id->r_q16) >> 16), id->l_zi[0], 12);
-        int32_t lq = id_ratio(id->l_zu[1] - (int32_t)(((int64_t)id->l_zm[1] * id->r_q16) >> 16), id->l_zi[1], 12);
+        int32_t ld = id_l_trap(id, 0U), lq = id_l_trap(id, 1U);
         {
             /* Lq cos^2 + Ld sin^2 was measured: Lq = (lq (d^2 + q^2) - ld q^2) / d^2 */
             int32_t d = id->lq_i[0] / 256, q = id->lq_i[1] / 256;
@@ -372,7 +423,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
                 lq = (int32_t)((((int64_t)lq * (d2 + q2)) - (int64_t)ld * q2) / d2);
             }
         }
-        if (ld <= 0 || lq <= 0 || id->l_zi[0] <= 0 || id->l_zi[1] <= 0) {
+        if (ld <= 0 || lq <= 0) {
             mc_id_fail(id, MC_ID_ERROR_OUT_OF_RANGE);
             return;
         }

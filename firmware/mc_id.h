@@ -81,6 +81,7 @@ typedef struct {
     q15_t wc_ts;    /* the loops' crossover times Ts (MC_ID_LOOP_BW_RAD_S), Q15 */
     uint16_t n;     /* periods per window (MC_SLOW_STEP_PERIODS) */
     int16_t duty_max;  /* PWM_DUTY_MAX: the dead time in duty counts */
+    q15_t w_new;       /* MC_SAMPLE_AT: the share of a sample interval the last command acts */
     uint32_t accel;    /* the spin's acceleration, 2^32 a turn per period per period */
     uint32_t step_max; /* its speed limit (MC_ID_SPEED_MAX_RPM), 2^32 a turn per period */
 } mc_id_params_t;
@@ -93,9 +94,12 @@ typedef struct {
     int32_t u_d;  /* the current loops' outputs (their voltage in the frame), sums */
     int32_t u_q;  /*  */
     int32_t v_q;  /* applied voltage on q, sum */
-    int32_t zi;   /* injection: sum of z (i_n - i_n-1) on the injected axis, z the injected */
-    int32_t zu;   /* ... wave over the sample interval (+-1, Q15); of z u_n, u the applied */
-    int32_t zm;   /* ... voltage over the interval; of z (i_n + i_n-1) / 2 */
+    /* the injection (mc_id.c note 2), on the injected axis: sums of z i_n,
+     * z i_n-1, z u_n, z u_o (z the injected wave over the sample interval,
+     * +-1 Q15; u_n, u_o the voltages of the last two periods, which act over
+     * it), and the same four with w (the wave's sign a quarter cycle
+     * earlier) */
+    int32_t c[8];
     uint32_t step; /* the forced speed at the window end, angle per period (2^32 a turn) */
 } mc_id_win_t;
 
@@ -133,12 +137,11 @@ typedef struct {
     q15_t i_dc;         /* RAMP, LD, LQ: the d current reached in open loop */
     /* results, internal units (mc_id.c note 1) */
     int32_t lv[3], li[3]; /* R: sums of v and i over the measuring windows of each level */
-    int32_t l_zu[2];      /* Ld, Lq: sums of z u, ... */
-    int32_t l_zm[2];      /* ... of z m (R's term) ... */
-    int32_t l_zi[2];      /* ... and of z di */
+    int32_t l_c[2][8];    /* Ld, Lq: the injection's sums (mc_id_win_t.c) over the measurement */
     q15_t vbus;           /* the bus while R was measured, Q15 of BOARD_VBUS_FULLSCALE_V */
     int32_t lq_i[2];      /* LQ: sums of the d and q currents (the rotor's angle to d) */
     q15_t inj_set;        /* the injection's amplitude LD found, LQ's start */
+    uint8_t lq_half;      /* LQ's half cycle, periods (the rotor's vibration, mc.c) */
     int32_t r_q16;        /* R, Q16 of Z_FS */
     int32_t l_q12;        /* (Ld + Lq) / 2 over Ts, Q12 of Z_FS */
     int32_t dv, di;       /* R = dv / di (Z_FS); the intercept: */
@@ -167,5 +170,13 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
 
 /* Ends the sequence with an error (a fault or a stop of the core). */
 void mc_id_fail(mc_id_t *id, uint8_t error);
+
+/* -ln(a), a = a_q30 / 2^30 in (0, 1], as Q24 (0 for a outside): the
+ * inductance's exact discrete model (mc.c mc_identify_result). 64-bit
+ * integer arithmetic: for the main loop. */
+uint32_t mc_id_neg_ln_q24(uint32_t a_q30);
+
+/* exp(-x), x = x_q24 / 2^24 >= 0, as Q30. */
+uint32_t mc_id_exp_neg_q30(uint32_t x_q24);
 
 #endif /* MC_ID_H */
