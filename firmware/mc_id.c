@@ -281,6 +281,12 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             }
             id->sub = 1U;
             id->ok = 0U;
+        } else if (id_abs(id_mean(id, w->i_q)) > i / 16 + id->p->i_target / 64 ||
+                   i < id->last - id->p->i_target / 64) {
+            /* the rotor turning to the current's axis: its back-EMF pulls
+             * the current off d and down; the voltage held until it rests,
+             * else the current overshoots as it stops (a rotor starting near
+             * 180 degrees swings through at speed) */
         } else {
             /* 1/32 a window, 1/128 past half the target: the current lags by
              * L / R, up to tens of ms, and the target is passed by that lag
@@ -629,8 +635,12 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             /* the first speed: where the back-EMF reaches ID_E1, or where
              * twice the speed would ask 0.8 of the voltage limit (v_max is
              * 0.7 of it), or half the speed limit */
-            if (((mag >= ID_E1 || id_volts2(id, w) >= (int32_t)id->p->v_max * 8 / 7) && ++id->ok >= ID_SETTLE) ||
-                w->step >= id->p->step_max / 2U) {
+            if (mag >= ID_E1 || id_volts2(id, w) >= (int32_t)id->p->v_max * 8 / 7) {
+                id->ok++;
+            } else {
+                id->ok = 0U; /* a swinging rotor's peaks are not its speed */
+            }
+            if (id->ok >= ID_SETTLE || w->step >= id->p->step_max / 2U) {
                 if (mag < ID_E_MIN) {
                     mc_id_fail(id, MC_ID_ERROR_ROTOR_LOCKED);
                     return;
@@ -659,8 +669,18 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             }
             {
                 int32_t m = id_ratio(id->acc[0], id->acc[1], 4); /* mean |E| x 16 */
-                /* a rotor that follows turns at the forced speed: |E| steady */
-                if ((id->hi - id->lo) * 16 > m + m / 2 || m < ID_E_MIN * 16) {
+                int32_t swing = (id->hi - id->lo) * 16;
+                /* a light rotor on a stiff field swings about the forced angle
+                 * undamped (the current loop takes the damping its back-EMF
+                 * would give): still synchronous, its mean speed the forced
+                 * one, so measured over the most windows, the swing's part
+                 * period a small share of them */
+                if (swing > m + m / 2 && swing <= 2 * m && id->acc[1] < ID_HOLD_WINDOWS_MAX) {
+                    return;
+                }
+                /* a rotor that follows turns at the forced speed: |E| never
+                 * falls to zero */
+                if (swing > 2 * m || m < ID_E_MIN * 16) {
                     /* no back-EMF at the first speed: the rotor never turned */
                     mc_id_fail(id, (m < ID_E_MIN * 16 && id->stage == MC_ID_STAGE_HOLD1)
                                        ? MC_ID_ERROR_ROTOR_LOCKED
