@@ -98,6 +98,7 @@ static const mc_id_params_t mc_id_params = {
     MC_VEST_W_NEW,
     MC_ID_ACCEL,
     MC_ID_STEP_MAX,
+    MC_ID_DAMP,
 };
 
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /

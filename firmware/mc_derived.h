@@ -788,6 +788,10 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
 #define MC_ID_ACCEL ((uint32_t)(MC_ID_ACCEL_HZ_S * MC_TS_S * MC_TS_S * 4294967296.0 + 0.5))
 #define MC_ID_STEP_MAX                                                                             \
     ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0))
+/* the spin's damping (mc_id.c note 5): the forced speed moved by
+ * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */
+#define MC_ID_DAMP_HZ 10.0
+#define MC_ID_DAMP    ((uint32_t)(MC_ID_DAMP_HZ * MC_TS_S * 4294967296.0 + 0.5))
 
 /*
  * Notes

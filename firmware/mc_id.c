@@ -59,6 +59,10 @@
 #define ID_SPIN_START      20U  /* windows the loops settle at the spin's start */
 #define ID_JERK            32U  /* windows the spin's acceleration takes to change */
 #define ID_A_UNIT          32   /* the J fit's unit of acceleration: the spin's = 32 */
+#define ID_DAMP_LP         64   /* windows: the low-pass that finds the swing's mean */
+#define ID_DAMP_F          8    /* windows: the damping's own low-pass (a swing of a few
+                                   windows' period would see the loop's delay) */
+#define ID_DAMP_ANGLE_MAX  16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
 
 
 #define N_ ((int32_t)id->p->n)
@@ -236,6 +240,11 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->a_prev = 0;
     id->accel = 0U;
     id->goal = 0;
+    id->ramp = 0;
+    id->damp = 0;
+    id->damp_goal = 0;
+    id->it_lp = 0;
+    id->ang_f = 0;
     id->i_spin = 0;
     for (k = 0; k < 8U; k++) {
         id->l_c[0][k] = 0;
@@ -616,15 +625,47 @@ static void id_j(mc_id_t *id, q15_t it)
     id->j_ia += (int32_t)it * a;
 }
 
+/* The damping (note 5): the rotor pulled by a current at a forced angle
+ * swings about the angle its torque needs, undamped (the current loop
+ * takes away the damping its back-EMF would give). Moving the forced speed
+ * by -k times the swing's angle (the sine of the load angle, the torque
+ * current over the current, less its low-pass) damps it at k = 2 pi
+ * MC_ID_DAMP_HZ rad/s: d'' + k d' + wn^2 d = 0 for the load angle d. Where
+ * the back-EMF is too small to give the angle the damping rests; it never
+ * moves the forced speed by more than half. */
+static void id_damp(mc_id_t *id, const mc_id_win_t *w, q15_t mag, q15_t it, bool on)
+{
+    int32_t i = id_mean(id, w->i_d);
+    int32_t sn = (i > 0) ? id_ratio(it, i, 15) : 0; /* sin(load angle), Q15 */
+    int32_t lim = (int32_t)(w->step / 2U);
+    int32_t ang = 0;
+    sn = (sn > 32767L) ? 32767L : (sn < -32767L) ? -32767L : sn;
+    if (on && mag >= 4 * ID_E_MIN) {
+        int32_t dev = sn * 64 - id->it_lp; /* Q15 x 64 */
+        id->it_lp += dev / ID_DAMP_LP;
+        ang = dev / 64;
+        ang = (ang > ID_DAMP_ANGLE_MAX) ? ID_DAMP_ANGLE_MAX : (ang < -ID_DAMP_ANGLE_MAX) ? -ID_DAMP_ANGLE_MAX : ang;
+        id->ang_f += (ang * 16 - id->ang_f) / ID_DAMP_F;
+        ang = id->ang_f / 16;
+    } else {
+        id->it_lp = sn * 64;
+        id->ang_f = 0;
+    }
+    ang = -(int32_t)(((int64_t)id->p->damp * ang) >> 15);
+    id->damp_goal = (ang > lim) ? lim : (ang < -lim) ? -lim : ang;
+}
+
 static void id_spin(mc_id_t *id, const mc_id_win_t *w)
 {
     mc_id_cmd_t *c = &id->cmd;
     q15_t mag, it;
     id_emf(id, w, &mag, &it);
+    /* the loops take over from the open loop at the spin's start */
+    id_damp(id, w, mag, it, id->stage != MC_ID_STAGE_SPIN1 || id->wins > ID_SPIN_START);
     switch (id->stage) {
         case MC_ID_STAGE_SPIN1:
             if (id->wins <= ID_SPIN_START) {
-                return; /* the loops take over from the open loop */
+                return;
             }
             /* a load angle past 45 degrees (the torque current above 0.7 of
              * the current): more current, up to the measurements' */
@@ -742,9 +783,12 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
 static void id_ease(mc_id_t *id)
 {
     int32_t step = (int32_t)(id->accel / ID_JERK) + 1;
-    int32_t a = id->cmd.accel;
+    int32_t a = id->ramp;
+    int32_t d = (id->damp_goal - id->damp) / N_; /* the damping's offset over the window */
     a += (id->goal > a + step) ? step : (id->goal < a - step) ? -step : id->goal - a;
-    id->cmd.accel = a;
+    id->ramp = a;
+    id->damp += d * N_;
+    id->cmd.accel = a + d;
 }
 
 void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cmd)
@@ -769,7 +813,7 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
                 id_resistance(id, w);
                 break;
             default:
-                id->a_prev = id->cmd.accel; /* what acted over this window */
+                id->a_prev = id->ramp; /* what acted over this window, less the damping */
                 id_spin(id, w);
                 if (!id->cmd.end) {
                     id_ease(id);

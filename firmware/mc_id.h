@@ -84,6 +84,8 @@ typedef struct {
     q15_t w_new;       /* MC_SAMPLE_AT: the share of a sample interval the last command acts */
     uint32_t accel;    /* the spin's acceleration, 2^32 a turn per period per period */
     uint32_t step_max; /* its speed limit (MC_ID_SPEED_MAX_RPM), 2^32 a turn per period */
+    uint32_t damp;     /* the spin's damping: forced speed per radian of the rotor's swing
+                          (MC_ID_DAMP_HZ), 2^32 a turn per period */
 } mc_id_params_t;
 
 /* What the interrupt summed over one window (MC_SLOW_STEP_PERIODS periods). */
@@ -154,7 +156,12 @@ typedef struct {
     int32_t j_n, j_a, j_aa, j_i, j_ia; /* windows, sums of a, a^2, i, i a */
     int32_t a_prev;                    /* the acceleration that acted over the last window */
     uint32_t accel;       /* the spin's acceleration, 2^32 a turn per period per period */
-    int32_t goal;         /* the acceleration cmd.accel eases to */
+    int32_t goal;         /* the acceleration ramp eases to */
+    int32_t ramp;         /* the spin's acceleration without the damping's */
+    int32_t damp;         /* the damping's forced-speed offset now, 2^32 a turn per period */
+    int32_t damp_goal;    /* ... and the one this window's swing asks */
+    int32_t it_lp;        /* sin(load angle)'s low-pass (the swing's mean), Q15 x 64 */
+    int32_t ang_f;        /* the swing's angle, low-passed (ID_DAMP_F), rad Q15 x 16 */
     q15_t i_spin;         /* the spin's d current */
 } mc_id_t;
 
