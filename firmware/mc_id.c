@@ -6,30 +6,39 @@
 
 /*
  * The stages (mc_id.h), each judged on window means (sums over N =
- * MC_SLOW_STEP_PERIODS periods):
+ * MC_SLOW_STEP_PERIODS periods), the frame fixed at 90 degrees (d = beta,
+ * q = -alpha) until the spin:
  *
- *   RAMP  open loop: the d voltage grows by 1/32 a window from
- *         ID_V_START until the d current reaches the target
- *         p->i_target (or the voltage limit: a motor whose R takes more
- *         than the bus, measured at the current it allows); then held,
- *         trimmed once to the target, until the current has settled. The
- *         rotor turns to the current's axis on the way (d = beta).
- *   LD    a square wave on d around that held voltage, its amplitude and
- *         half period set until the current swings a quarter of the DC
- *         current peak to peak; then L from ID_L_WINDOWS windows
- *         (note 2).
- *   LQ    the same on q.
- *   R     the d current loop closed (gains from L, note 3) at the DC
- *         current and at 3/4 and 1/2 of it; each level settled, then its
- *         mean voltage and current over ID_R_WINDOWS windows. R is the
- *         slope, the intercept the inverter's voltage error (note 4).
- *   SPIN1 the current (a third of the target, on d) turned at a constant
- *         acceleration until the back-EMF reaches ID_E1, or the
- *         speed reaches half of p->step_max; HOLD1 holds that speed and averages
- *         the back-EMF's magnitude; SPIN2 accelerates to twice the speed,
- *         HOLD2 averages again; SPIN3 decelerates to the first speed and
- *         SPIN4 to rest. Ke from the two holds, J from the torque current
- *         while accelerating and decelerating over the same speeds (note 5).
+ *   RAMP  open loop: the d voltage grows by 1/32 a window (1/128 past half
+ *         the target) from ID_V_START until the d current reaches the
+ *         target p->i_target (or the voltage limit: a motor whose R takes
+ *         more than the bus is measured at the current it allows); then
+ *         held, trimmed to the target, until the current has settled. The
+ *         rotor turns to the current's axis on the way; while it turns
+ *         the voltage is held (a q current that stays: a cut lead, note 6).
+ *   R     still open loop (no current loop before L is known): four d
+ *         voltages, the ramp's, a probe 1/16 below it (the slope), and
+ *         those for 3/4 and 1/2 of the current; each settled, then its mean
+ *         voltage and current over ID_R_WINDOWS windows. R is the slope,
+ *         the intercept the inverter's voltage error (note 4). A level the
+ *         swinging rotor disturbs is measured again.
+ *   LD    at the 1/2 level's voltage, a square wave on d summed into the
+ *         open loop's voltage, its amplitude and half period set until the
+ *         current swings a quarter of the DC current peak to peak; then L
+ *         from ID_L_WINDOWS windows of correlation (note 2).
+ *   LQ    the same on q, with a quarter of the current on q as a bias.
+ *   SPIN1 the loops closed (gains from L and R, note 3), the dead time
+ *         compensated as measured, a third of the current on d turned at an
+ *         acceleration eased in over ID_JERK windows (more current while
+ *         the load angle passes 45 degrees) until the back-EMF reaches
+ *         ID_E1, twice the speed would ask 0.8 of the voltage limit, or
+ *         the speed reaches half of p->step_max; HOLD1 holds that speed
+ *         and averages the back-EMF's magnitude; SPIN2 accelerates to
+ *         twice the speed, HOLD2 averages again; SPIN3 decelerates to the
+ *         first speed and SPIN4 to rest at four times the rate. Ke from
+ *         the two holds, J from the torque current while accelerating and
+ *         decelerating over the same speeds, the rotor's swing damped
+ *         throughout (note 5).
  *
  * Every stage has a time limit; every check that fails ends the sequence
  * with an error code (mc.h MC_ID_ERROR_*), the outputs off.
@@ -42,7 +51,8 @@
 #define ID_INJ_WINDOWS_MAX 200U /* to set the injection's amplitude */
 #define ID_SETTLE          4U   /* windows in a row within tolerance: settled */
 #define ID_V_SETTLE        32   /* ... a voltage moving less than this (Q15, window mean) */
-#define ID_R_SETTLE_MAX    300U /* windows for a level to settle */
+#define ID_R_SETTLE_MAX    300U /* windows for a level to settle, or the ramp's rotor to rest */
+#define ID_RAMP_WINDOWS_MAX 3000U /* windows the ramp takes at most (some 400 at a steady rotor) */
 #define ID_R_WINDOWS       100  /* windows each level is measured over */
 #define ID_MOVING_TRIES    8    /* levels measured again while the rotor swings */
 #define ID_R_BAND_TOL      20   /* the lower slope 1/20 steeper: the band */
@@ -277,6 +287,11 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
 {
     mc_id_cmd_t *c = &id->cmd;
     q15_t i = id_mean(id, w->i_d);
+    q15_t iq = id_mean(id, w->i_q);
+    if (id->wins > ID_RAMP_WINDOWS_MAX) {
+        mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
+        return;
+    }
     if (id->sub == 0U) { /* raising */
         if (i >= id->p->i_target) {
             id->sub = 1U;
@@ -290,12 +305,18 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             }
             id->sub = 1U;
             id->ok = 0U;
-        } else if (id_abs(id_mean(id, w->i_q)) > i / 16 + id->p->i_target / 64 ||
+        } else if (id_abs(iq) > i / 16 + id->p->i_target / 64 ||
                    i < id->last - id->p->i_target / 64) {
             /* the rotor turning to the current's axis: its back-EMF pulls
              * the current off d and down; the voltage held until it rests,
              * else the current overshoots as it stops (a rotor starting near
-             * 180 degrees swings through at speed) */
+             * 180 degrees swings through at speed). A q current that stays
+             * is no rotor: a lead is cut, the d voltage drives the current
+             * along the two phases left (note 6) */
+            if (++id->acc[0] > (int32_t)ID_R_SETTLE_MAX) {
+                mc_id_fail(id, (id_abs(iq) > i / 4) ? MC_ID_ERROR_OPEN_PHASE : MC_ID_ERROR_ROTOR_MOVING);
+                return;
+            }
         } else {
             /* 1/32 a window, 1/128 past half the target: the current lags by
              * L / R, up to tens of ms, and the target is passed by that lag
@@ -875,5 +896,28 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    which do not change with speed, cancel. The current along E drives
  *    the rotor (torque 3/2 p psi i_t); accelerating and decelerating at the
  *    same rate over the same speeds, friction is the same both ways and
- *    2 J alpha = 3/2 p psi (i_t,up - i_t,down).
+ *    2 J alpha = 3/2 p psi (i_t,up - i_t,down); fitted as a line of i_t
+ *    against the acceleration over every window at the full rate.
+ *    A current at a forced angle holds the rotor like a spring: it swings
+ *    about the angle its torque needs, undamped, since the current loop
+ *    cancels the damping its back-EMF would give (a light rotor on a
+ *    stiff field kept swinging through whole holds and stopped once a
+ *    swing). id_damp moves the forced speed by -k times the load angle's
+ *    departure from its mean, which for the load angle d gives
+ *    d'' + k d' + wn^2 d = 0; k = 2 pi MC_ID_DAMP_HZ (63 /s) damps the
+ *    swings of a few Hz to some tens critically or nearly, the low-pass
+ *    of ID_DAMP_F windows keeps the loop's own delay (two windows) from
+ *    exciting the fast ones. The holds take |E| at the forced speed the
+ *    damping leaves, their mean over many windows.
+ *    What limits Ke: the error of the voltage's angle (the inverter's
+ *    dead time seen a few hundredths of a period off, the sample's
+ *    timing) times the part of u across E, R i, which the two speeds do
+ *    not cancel (it grows with the speed as E does). Small where E is
+ *    large against R i; a motor whose back-EMF at the speed limit is a
+ *    few times its R i reads low by a few per cent (docs/identify.md).
+ *
+ * 6. A cut lead. With one phase open the voltage on d drives the current
+ *    along the two phases left, at 30 or 90 degrees to d: a q current as
+ *    large as a quarter of the d current, steady (a turning rotor's q
+ *    current changes), in the ramp or at an R level.
  */

@@ -42,6 +42,7 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
         r->i_abc[k] = 0.0;
     }
     r->was_on = false;
+    r->open_lead = -1;
     r->amp_tau_s = (prm->amp_tau_s > 0.0) ? prm->amp_tau_s : 0.0;
     r->samples_short = 0;
     r->t_cond_min_s = r->ts;
@@ -126,9 +127,10 @@ static double clamp_rail(double v, double vbus, bool *hit)
 }
 
 /* Forces the floating phases' currents to zero (the other two carry +-i). */
+static void zero_phase(sim_rig_t *r, int fk);
+
 static void project_floating(sim_rig_t *r)
 {
-    double i[3];
     int nf = 0, k, fk = -1;
     for (k = 0; k < 3; k++) {
         if (r->floating[k]) {
@@ -145,6 +147,14 @@ static void project_floating(sim_rig_t *r)
         r->floating[0] = r->floating[1] = r->floating[2] = true;
         return;
     }
+    zero_phase(r, fk);
+}
+
+/* The plant's current of phase fk forced to zero, the other two keeping
+ * their difference: a floating phase (outputs off) or a cut lead. */
+static void zero_phase(sim_rig_t *r, int fk)
+{
+    double i[3];
     sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
     {
         int j = (fk + 1) % 3, l = (fk + 2) % 3;
@@ -222,14 +232,22 @@ static void diode_step(sim_rig_t *r, double vbus, double h)
         }
     }
     project_floating(r);
+    if (r->open_lead >= 0) {
+        zero_phase(r, r->open_lead);
+    }
 }
 
-/* One sub-step of h with the outputs on and the pins at v. */
+/* One sub-step of h with the outputs on and the pins at v. A cut lead
+ * carries no current: the step's current in it is taken away (the
+ * constraint as a projection, like a floating phase's). */
 static void on_step(sim_rig_t *r, const double v[3], double h)
 {
     double va, vb;
     sim_pins_to_ab(v, &va, &vb);
     sim_plant_step(&r->plant, va, vb, h, false);
+    if (r->open_lead >= 0) {
+        zero_phase(r, r->open_lead);
+    }
     r->was_on = true;
 }
 
@@ -355,6 +373,13 @@ bool sim_rig_apply(sim_rig_t *r, const sim_event_t *ev)
         case SIM_EV_LOCK_ROTOR:
             r->plant.s.locked = true;
             r->plant.s.omega_m = 0.0;
+            return true;
+        case SIM_EV_OPEN_LEAD:
+            r->open_lead = (int)ev->v1;
+            zero_phase(r, r->open_lead);
+            return true;
+        case SIM_EV_CLOSE_LEAD:
+            r->open_lead = -1;
             return true;
         case SIM_EV_UNLOCK_ROTOR:
             r->plant.s.locked = false;

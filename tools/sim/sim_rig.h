@@ -65,6 +65,7 @@ typedef struct {
     long spike_left;        /* periods of spike still to come */
     sim_sensor_t sensor[2]; /* the phase-A and phase-B current sensors */
     bool floating[3];       /* outputs off: phase not conducting */
+    int open_lead;          /* a motor lead cut (open_lead event): its phase, 0..2; -1: none */
     bool was_on;
     double fan_rated_w;  /* rad/s */
     double i_abc[3];     /* phase currents at the last sample, A */

@@ -31,6 +31,8 @@ static const ev_desc_t EVENTS[] = {
     {"vbus_ripple", SIM_EV_VBUS_RIPPLE, 2, 2},
     {"lock_rotor", SIM_EV_LOCK_ROTOR, 0, 0},
     {"unlock_rotor", SIM_EV_UNLOCK_ROTOR, 0, 0},
+    {"open_lead", SIM_EV_OPEN_LEAD, 1, 1},
+    {"close_lead", SIM_EV_CLOSE_LEAD, 0, 0},
     {"current_spike", SIM_EV_CURRENT_SPIKE, 1, 2},
     {"hw_fault", SIM_EV_HW_FAULT, 0, 0},
     {"deadtime", SIM_EV_DEADTIME, 1, 1},
@@ -89,6 +91,8 @@ static const sim_word_t SPEED_WORDS[] = {
     {"max", SIM_SPEED_MAX}, {"min", SIM_SPEED_MIN}, {NULL, 0.0}};
 /* The measured phase of a sensor event (0 = A, 1 = B). */
 static const sim_word_t PHASE_WORDS[] = {{"a", 0.0}, {"b", 1.0}, {NULL, 0.0}};
+/* A motor lead (0 = A, 1 = B, 2 = C). */
+static const sim_word_t LEAD_WORDS[] = {{"a", 0.0}, {"b", 1.0}, {"c", 2.0}, {NULL, 0.0}};
 
 typedef struct {
     sim_event_kind_t kind;
@@ -117,6 +121,7 @@ static const value_rule_t RULES[] = {
     {SIM_EV_INVERTER, 0, {"model", "", 0.0, 0.0, 0u}, sim_inverter_models, 1},
     {SIM_EV_DEADTIME_SHAPE, 0, {"shape", "", 0.0, 0.0, 0u}, sim_inverter_shapes, 1},
     {SIM_EV_NOISE, 0, {"sigma", "codes", 0.0, NOISE_MAX, 0u}, NULL, 0},
+    {SIM_EV_OPEN_LEAD, 0, {"lead", "", 0.0, 0.0, 0u}, LEAD_WORDS, 1},
     {SIM_EV_SENSOR_STUCK, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},
     {SIM_EV_SENSOR_STUCK, 1, {"current", "A", -CURRENT_MAX, CURRENT_MAX, 0u}, NULL, 0},
     {SIM_EV_SENSOR_OPEN, 0, {"phase", "", 0.0, 0.0, 0u}, PHASE_WORDS, 1},

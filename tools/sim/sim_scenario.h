@@ -56,6 +56,8 @@ typedef enum {
     SIM_EV_VBUS_RIPPLE,
     SIM_EV_LOCK_ROTOR,
     SIM_EV_UNLOCK_ROTOR,
+    SIM_EV_OPEN_LEAD,  /* v1 phase (0 = A, 1 = B, 2 = C): the motor's lead cut */
+    SIM_EV_CLOSE_LEAD, /* ... connected again */
     SIM_EV_CURRENT_SPIKE,
     SIM_EV_HW_FAULT,
     SIM_EV_DEADTIME,
