@@ -1813,7 +1813,6 @@ static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
 void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
 {
     const mc_id_t *id = &mc->id;
-    uint8_t ax;
     memset(r, 0, sizeof *r);
     r->status = (mc_id_status_t)mc->id_status;
     r->error = mc->id_error;
@@ -1822,15 +1821,8 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
         return;
     }
     r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
-    for (ax = 0; ax < 2U; ax++) {
-        r->lq_nh = r->ld_nh;
-        r->ld_nh = mc_id_inductance(id, ax);
-    }
-    {
-        uint32_t ld = r->lq_nh, lq = r->ld_nh; /* the loop's order */
-        r->ld_nh = ld;
-        r->lq_nh = lq;
-    }
+    r->ld_nh = mc_id_inductance(id, 0U);
+    r->lq_nh = mc_id_inductance(id, 1U);
     /* LQ's rotor stood at phi = atan(i_q / i_d) to its d axis: the q
      * injection saw Lq cos^2 phi + Ld sin^2 phi (mc_id.c note 2) */
     {

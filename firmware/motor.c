@@ -96,6 +96,11 @@ void motor_observe(motor_observer_t fn, void *ctx)
     hal_critical_exit(s);
 }
 
+void motor_identify_result(mc_id_result_t *r)
+{
+    mc_identify_result(&motor, r);
+}
+
 const mc_t *motor_view(void)
 {
     return &motor;

@@ -42,6 +42,14 @@ uint8_t motor_set_reference(int16_t ref);
 int16_t motor_get_gain(mc_gain_t gain);
 bool motor_set_gain(mc_gain_t gain, int16_t value);
 
+/* mc_identify_result() on the motor, unmasked: its 64-bit conversions
+ * take far longer than the interrupts may wait. Safe as it is: the
+ * sequence's state is written by the slow step while the status is
+ * RUNNING, and the status turns final (by the ADC interrupt, after the
+ * last window) only once that state is complete; the main loop, the only
+ * caller, issues the next request itself. */
+void motor_identify_result(mc_id_result_t *r);
+
 /* The running motor, to read (never to write): the X2Cscope target
  * resolves the addresses a client names against it. Its fields change
  * under the interrupt: copy them with motor_copy(). */

@@ -29,6 +29,11 @@ const x2c_row_t x2c_rows[] = {
         X2C_TUNABLES(X2C_TUNE_ROW)
 #undef X2C_TUNE_ROW
             {0U, X2C_SCOPE_BYTES, X2C_OBJ_SCOPE, X2C_ROW_READ},
+#define X2C_ID_ROW(field, type, unit, fs)                                                          \
+    {(uint16_t)offsetof(mc_id_result_t, field), (uint16_t)X2C_MEMBER_SIZE(mc_id_result_t, field),  \
+     X2C_OBJ_ID, X2C_ROW_READ},
+    X2C_ID_VARS(X2C_ID_ROW)
+#undef X2C_ID_ROW
 };
 
 /* The tunables' ranges, in row order. */
@@ -45,7 +50,8 @@ static const int16_t tune_max[] = {
 
 #if UINTPTR_MAX > 0xFFFFU
 /* The PC: every object must fit its part of the window. */
-Q15_STATIC_ASSERT(sizeof(x2c_tune_t) <= X2C_WINDOW_SCOPE - X2C_WINDOW_TUNE, "tunables overlap");
+Q15_STATIC_ASSERT(sizeof(x2c_tune_t) <= X2C_WINDOW_ID - X2C_WINDOW_TUNE, "tunables overlap");
+Q15_STATIC_ASSERT(sizeof(mc_id_result_t) <= X2C_WINDOW_SCOPE - X2C_WINDOW_ID, "result overlaps");
 Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= X2C_WINDOW_MOTOR - X2C_WINDOW_SCOPE, "buffer overlaps");
 Q15_STATIC_ASSERT(sizeof(mc_t) <= 0x10000UL - X2C_WINDOW_MOTOR, "mc_t exceeds the window");
 #endif
@@ -58,6 +64,8 @@ static const volatile uint8_t *obj_base(const x2c_t *x, uint8_t obj)
             return (const volatile uint8_t *)(const volatile void *)motor_view();
         case X2C_OBJ_TUNE:
             return (const volatile uint8_t *)(const volatile void *)&x->tune;
+        case X2C_OBJ_ID:
+            return (const volatile uint8_t *)(const volatile void *)&x->id;
         default:
             return x->scope.buf;
     }
@@ -67,7 +75,7 @@ uint16_t x2c_wire(const x2c_t *x, x2c_obj_t obj)
 {
 #if UINTPTR_MAX > 0xFFFFU
     static const uint16_t window[X2C_OBJ_COUNT] = {X2C_WINDOW_MOTOR, X2C_WINDOW_TUNE,
-                                                   X2C_WINDOW_SCOPE};
+                                                   X2C_WINDOW_SCOPE, X2C_WINDOW_ID};
     (void)x;
     return window[obj];
 #else
@@ -157,6 +165,8 @@ static void tune_refresh(x2c_t *x)
         x->tune.speed_ref_rpm = 0;
     }
     x->tune.run = running(st.state) ? 1 : 0;
+    motor_identify_result(&x->id);
+    x->tune.identify = (x->id.status == MC_ID_RUNNING) ? 1 : 0;
 }
 
 static uint8_t set_gain(mc_gain_t gain, int16_t v)
@@ -201,6 +211,26 @@ static uint8_t set_run(x2c_t *x, int16_t run)
     return X2C_ERR_OK;
 }
 
+/* identify = 1: from STOPPED only (the core refuses any other state, and
+ * so does the target, with its error); 0: a measurement going on stopped. */
+static uint8_t set_identify(x2c_t *x, int16_t on)
+{
+    mc_status_t st;
+    motor_status(&st);
+    if (on == 0) {
+        if (st.state == MC_STATE_IDENTIFY) {
+            motor_request(MC_REQUEST_STOP);
+        }
+        return X2C_ERR_OK;
+    }
+    if (st.state != MC_STATE_STOPPED ||
+        (x->may_start != NULL && !x->may_start(x->may_start_ctx))) {
+        return X2C_ERR_STATE;
+    }
+    motor_request(MC_REQUEST_IDENTIFY);
+    return X2C_ERR_OK;
+}
+
 /* Applies tunable t = v, v in its range; the field keeps v when accepted. */
 static uint8_t tune_apply(x2c_t *x, uint8_t t, int16_t v)
 {
@@ -221,8 +251,11 @@ static uint8_t tune_apply(x2c_t *x, uint8_t t, int16_t v)
         case X2C_TUNE_speed_ref_rpm:
             err = set_speed(x, v);
             break;
-        default: /* X2C_TUNE_run */
+        case X2C_TUNE_run:
             err = set_run(x, v);
+            break;
+        default: /* X2C_TUNE_identify */
+            err = set_identify(x, v);
             break;
     }
     if (err == X2C_ERR_OK) {
@@ -304,7 +337,7 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     if (row == NULL) {
         return X2C_ERR_FORMAT;
     }
-    if (row->obj == X2C_OBJ_TUNE) {
+    if (row->obj == X2C_OBJ_TUNE || row->obj == X2C_OBJ_ID) {
         tune_refresh(x);
     }
     if (row->obj == X2C_OBJ_MOTOR) {

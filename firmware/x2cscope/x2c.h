@@ -77,6 +77,7 @@
  * target) an address is the object's own, as the ELF gives it; a PC's
  * 64-bit addresses are presented in this 16-bit window instead. */
 #define X2C_WINDOW_TUNE  0x0800U
+#define X2C_WINDOW_ID    0x0880U
 #define X2C_WINDOW_SCOPE 0x0900U
 #define X2C_WINDOW_MOTOR 0x1000U
 
@@ -84,6 +85,7 @@ typedef struct {
     lnet_rx_t rx; /* the request, and then the reply built over it */
     lnet_tx_t tx;
     x2c_tune_t tune;
+    mc_id_result_t id; /* the identification's result as last read (X2C_ID_VARS) */
     x2c_scope_t scope;
     /* the motor's side, as the board's controls have it */
     bool (*may_start)(void *ctx); /* run = 1's guard (the board's start rule), NULL: none */

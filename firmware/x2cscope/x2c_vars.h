@@ -72,6 +72,28 @@
 /* clang-format on */
 
 /*
+ * X2C_ID_VARS(X): the identification's result (mc.h mc_id_result_t),
+ * read-only, refreshed from the motor whenever a client reads one of them
+ * (motor_identify_result): status (mc_id_status_t: 0 none, 1 running,
+ * 2 done, 3 failed), the error (mc_id.h MC_ID_ERROR_LIST) and the values
+ * in their integer units. Not scope channels: the values change once a run.
+ *   X(field, type, unit, full_scale) as in X2C_MOTOR_VARS
+ */
+/* clang-format off */
+#define X2C_ID_VARS(X)                                           \
+    X(status,          U, "",    X2C_FS_CODE)                   \
+    X(error,           U, "",    X2C_FS_CODE)                   \
+    X(rs_uohm,         U, "",    X2C_FS_CODE)                   \
+    X(ls_nh,           U, "",    X2C_FS_CODE)                   \
+    X(ke_uv_per_rpm,   U, "",    X2C_FS_CODE)                   \
+    X(j_ng_m2,         U, "",    X2C_FS_CODE)                   \
+    X(deadtime_ns,     U, "",    X2C_FS_CODE)                   \
+    X(ld_nh,           U, "",    X2C_FS_CODE)                   \
+    X(lq_nh,           U, "",    X2C_FS_CODE)                   \
+    X(pole_pairs,      U, "",    X2C_FS_CODE)
+/* clang-format on */
+
+/*
  * X2C_TUNABLES(X): the only variables a client may write, fields of
  * x2c_tune_t (x2c.h). A write is accepted only whole (the row's address,
  * the row's size), only inside [min, max], and is then applied through the
@@ -84,7 +106,9 @@
  * tune, narrow enough that a typo cannot zero a loop. speed_ref_rpm, in
  * rpm, is 0 (the pot again) or the pot's range, X2C_RPM_MIN..X2C_RPM_MAX:
  * the values between are refused (X2C_ERR_LIMIT); run is S2 (1 start,
- * 0 stop).
+ * 0 stop); identify 1 measures the motor (MC_REQUEST_IDENTIFY, only from
+ * STOPPED, refused otherwise), 0 stops a measurement going on, and it
+ * reads 1 while one runs.
  */
 #define X2C_GAIN_MIN(g) ((int16_t)((g) / 8 > 0 ? (g) / 8 : 1))
 #define X2C_GAIN_MAX(g) ((int16_t)((int32_t)(g)*8 > 32767 ? 32767 : (int32_t)(g)*8))
@@ -98,7 +122,8 @@
     X(spd_kp,        X2C_GAIN_MIN(MC_SPD_KP), X2C_GAIN_MAX(MC_SPD_KP), "", X2C_FS_CODE) \
     X(spd_ki,        X2C_GAIN_MIN(MC_SPD_KI), X2C_GAIN_MAX(MC_SPD_KI), "", X2C_FS_CODE) \
     X(speed_ref_rpm, 0,                       X2C_RPM_MAX,             "rpm", X2C_FS_CODE) \
-    X(run,           0,                       1,                       "", X2C_FS_CODE)
+    X(run,           0,                       1,                       "", X2C_FS_CODE) \
+    X(identify,      0,                       1,                       "", X2C_FS_CODE)
 /* clang-format on */
 
 /* The tunables, one int16 each (the target's RAM; x2c.h's x2c_t.tune). */
@@ -108,11 +133,12 @@ typedef struct {
 #undef X2C_TUNE_FIELD
 } x2c_tune_t;
 
-/* Row counts: the motor's, the tunables', and the scope buffer's one. */
+/* Row counts: the motor's, the tunables', the result's, and the scope buffer's one. */
 #define X2C_COUNT_ROW(a, b, c, d)     +1U
 #define X2C_COUNT_TUNE(a, b, c, d, e) +1U
 #define X2C_MOTOR_ROWS                (0U X2C_MOTOR_VARS(X2C_COUNT_ROW))
 #define X2C_TUNE_ROWS                 (0U X2C_TUNABLES(X2C_COUNT_TUNE))
+#define X2C_ID_ROWS                   (0U X2C_ID_VARS(X2C_COUNT_ROW))
 /* X2C_TUNE_<field>: a tunable's number. */
 enum {
 #define X2C_TUNE_INDEX(field, min, max, unit, fs) X2C_TUNE_##field,
@@ -120,10 +146,10 @@ enum {
 #undef X2C_TUNE_INDEX
         X2C_TUNE_COUNT_
 };
-#define X2C_ROWS (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U) /* + the scope buffer */
+#define X2C_ROWS (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U + X2C_ID_ROWS) /* + the scope buffer */
 
 /* The objects the rows lie in, and where each appears on the wire. */
-typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_COUNT } x2c_obj_t;
+typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_ID, X2C_OBJ_COUNT } x2c_obj_t;
 
 /* Row flags. */
 #define X2C_ROW_READ    0x01U /* readable */

@@ -120,6 +120,16 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->ref_seq = 42U;
 }
 
+/* Unmasked: its 64-bit conversions must not hold the interrupts off (motor.h). */
+void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
+{
+    check_same_motor((mc_t *)(uintptr_t)mc);
+    assert_int_equal(SRbits.IPL, 0);
+    memset(r, 0, sizeof *r);
+    r->status = (mc_id_status_t)mock();
+    r->rs_uohm = (uint32_t)mock();
+}
+
 int16_t mc_get_gain(const mc_t *mc, mc_gain_t g)
 {
     int gain = (int)g;
@@ -298,6 +308,19 @@ static void test_motor_mailbox_should_call_the_core_with_interrupts_masked(void 
     assert_int_equal(SRbits.IPL, 0);
 }
 
+static void test_motor_identify_result_should_read_the_core_unmasked(void **state)
+{
+    (void)state;
+    mc_id_result_t r;
+    SRbits.IPL = 0;
+    will_return(mc_identify_result, MC_ID_DONE);
+    will_return(mc_identify_result, 2670000);
+    motor_identify_result(&r);
+    assert_int_equal(r.status, MC_ID_DONE);
+    assert_int_equal(r.rs_uohm, 2670000);
+    assert_int_equal(SRbits.IPL, 0);
+}
+
 static unsigned observed;
 
 static void observer_spy(void *ctx, const mc_t *mc)
@@ -343,6 +366,7 @@ int main(void)
             setup),
         cmocka_unit_test_setup(test_motor_mailbox_should_call_the_core_with_interrupts_masked,
                                setup),
+        cmocka_unit_test_setup(test_motor_identify_result_should_read_the_core_unmasked, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -294,7 +294,7 @@ class A_Services(unittest.TestCase):  # the classes run in name order
     def test_06_every_whitelist_refusal_should_change_nothing(self) -> None:
         r = ST.t.read_once
         end = ST.base + ST.size
-        for addr in (0x0000, 0x07FE, 0x080C, end, 0x1000, 0xFFFF):  # outside every variable
+        for addr in (0x0000, 0x07FE, 0x080E, 0x087E, end, 0x1000, 0xFFFF):  # outside every variable
             self.assertRefused(0x14, functools.partial(r, addr, 1, 1))
         self.assertRefused(0x14, lambda: r(0x0800, 4, 2))  # two tunables
         self.assertRefused(0x14, lambda: r(var("motor.ia").address, 4, 2))  # motor.ia and motor.ib
@@ -308,7 +308,8 @@ class A_Services(unittest.TestCase):  # the classes run in name order
         self.assertRefused(0x15, lambda: r(0x0900, 254, 1))  # more than a reply holds
         self.assertRefused(0x15, lambda: r(0x0900, 255, 1))
         w = ST.t.write
-        for name in ("motor.fault", "motor.state", "motor.smc.omega", "motor.outputs_on"):  # read-only
+        for name in ("motor.fault", "motor.state", "motor.smc.omega", "motor.outputs_on",
+                     "x2c.id.status", "x2c.id.rs_uohm"):  # read-only
             v = var(name)
             self.assertRefused(0x14, functools.partial(w, v.address, v.size, (1).to_bytes(v.size, "little")))
         self.assertRefused(0x14, lambda: w(0x0800, 1, b"\x10"))  # half a tunable
@@ -320,7 +321,7 @@ class A_Services(unittest.TestCase):  # the classes run in name order
         self.assertRefused(0x14, lambda: w(0x0900, 2, b"\x10\x20"))  # the scope buffer
         for name, value in (("x2c.tune.cur_kp", var("x2c.tune.cur_kp").min - 1),
                             ("x2c.tune.cur_ki", var("x2c.tune.cur_ki").max + 1),
-                            ("x2c.tune.run", 2), ("x2c.tune.run", -1),
+                            ("x2c.tune.run", 2), ("x2c.tune.run", -1), ("x2c.tune.identify", 2),
                             ("x2c.tune.speed_ref_rpm", var("x2c.tune.speed_ref_rpm").max + 1),
                             ("x2c.tune.speed_ref_rpm", -100)):
             self.assertRefused(0x42, functools.partial(write_var, ST.t, name, value))
@@ -331,6 +332,7 @@ class A_Services(unittest.TestCase):  # the classes run in name order
             return lambda: ST.t.scope_save(x2c.ScopeConfig(chans, 0, trig))
 
         self.assertRefused(0x14, save(x2c.Channel(0x0700, 2)))  # a channel outside
+        self.assertRefused(0x14, save(x2c.Channel(var("x2c.id.ls_nh").address, 4)))  # the result: no channel
         self.assertRefused(0x14, save(timer, x2c.Channel(0x0801, 2)))  # odd
         self.assertRefused(0x14, save(x2c.Channel(0x0800, 4)))  # straddling two tunables
         self.assertRefused(0x14, save(x2c.Channel(0x0800, 3)))  # width 3

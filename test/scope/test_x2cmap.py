@@ -1,6 +1,6 @@
 """an1078-x2cmap on the built simulator: the map holds exactly the whitelist's rows
-(firmware/x2cscope/x2c_vars.h: motor.<path> read-only, x2c.tune.<field> tunable) in the
-target's 16-bit window, with the XC16 type of each width; it loads as pyx2cscope loads it
+(firmware/x2cscope/x2c_vars.h: motor.<path> read-only, x2c.tune.<field> tunable, x2c.id.<field>
+the identification's result, read-only) in the target's 16-bit window, with the XC16 type of each width; it loads as pyx2cscope loads it
 (PyYAML's FullLoader and a !VariableInfo constructor; pyx2cscope itself is not imported); and
 the tool refuses, in one line, an ELF without the table, a table whose rows are not 80 bytes,
 and an existing output without --force.
@@ -49,8 +49,8 @@ PYX2CSCOPE_TYPES = {"bool", "char", "double", "float", "int", "long", "long doub
                     "unsigned char", "unsigned int", "unsigned long", "unsigned long long", "enum"}
 
 
-def whitelist() -> tuple[list[str], list[str]]:
-    """The motor paths and tunable fields of x2c_vars.h's two X-macro tables."""
+def whitelist() -> tuple[list[str], list[str], list[str]]:
+    """The motor paths, tunable fields and result fields of x2c_vars.h's three X-macro tables."""
     with open(os.path.join(ROOT, "firmware", "x2cscope", "x2c_vars.h"), encoding="utf-8") as f:
         text = f.read()
 
@@ -63,7 +63,7 @@ def whitelist() -> tuple[list[str], list[str]]:
                 break
         return re.findall(r"\bX\(\s*([\w.\[\]]+)\s*,", " ".join(lines))
 
-    return table("X2C_MOTOR_VARS"), table("X2C_TUNABLES")
+    return table("X2C_MOTOR_VARS"), table("X2C_TUNABLES"), table("X2C_ID_VARS")
 
 
 def run(*argv: str) -> tuple[int, str, str]:
@@ -95,11 +95,14 @@ class X2cMap(unittest.TestCase):
         rc, _, err = run(SIM, "-o", self.out)
         self.assertEqual(rc, 0, err)
         vm = varmap.load_map(self.out)
-        motor, tune = whitelist()
-        self.assertEqual(list(vm.vars), [f"motor.{p}" for p in motor] + [f"x2c.tune.{f}" for f in tune])
+        motor, tune, ident = whitelist()
+        self.assertEqual(list(vm.vars), [f"motor.{p}" for p in motor] + [f"x2c.tune.{f}" for f in tune]
+                         + [f"x2c.id.{f}" for f in ident])
         for v in vm.vars.values():
             if v.name.startswith("motor."):
                 self.assertTrue(0x1000 <= v.address < 0x10000 and not v.tunable, v)
+            elif v.name.startswith("x2c.id."):
+                self.assertTrue(0x0880 <= v.address < 0x0900 and not v.tunable, v)
             else:
                 self.assertTrue(0x0800 <= v.address < 0x0900 and v.tunable and v.size == 2, v)
                 self.assertLessEqual(v.min, v.max)

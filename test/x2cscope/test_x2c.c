@@ -331,6 +331,88 @@ static void test_run_should_start_and_stop_like_s2_and_follow_its_guard(void **s
     assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 1U);
 }
 
+/* identify: 1 from STOPPED only (and under the start guard), 0 stops a
+ * measurement going on and nothing else; it reads 1 while one runs. */
+static void test_identify_should_request_a_measurement_from_stopped_only(void **state)
+{
+    (void)state;
+    uint16_t addr = RIG_TUNE(&rig, identify);
+    x2c_set_start_guard(&rig.x, guard, NULL);
+    guard_says = true;
+    {
+        rig_snap_t before;
+        rig.mc.state = MC_STATE_CLOSED_LOOP; /* running: refused */
+        rig_snap(&rig, &before);
+        assert_int_equal(write_i16(addr, 1), X2C_ERR_STATE);
+        assert_int_equal(write_i16(addr, 2), X2C_ERR_LIMIT);
+        assert_true(rig_same(&rig, &before));
+        assert_int_equal(write_i16(addr, 0), X2C_ERR_OK); /* not measuring: nothing to stop */
+        assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 0U);
+        rig.mc.state = MC_STATE_STOPPED;
+        guard_says = false; /* the fault pin still set */
+        rig_snap(&rig, &before);
+        assert_int_equal(write_i16(addr, 1), X2C_ERR_STATE);
+        assert_true(rig_same(&rig, &before));
+    }
+    guard_says = true;
+    assert_int_equal(write_i16(addr, 1), X2C_ERR_OK);
+    assert_int_equal(rig.mc.req_posted[MC_REQUEST_IDENTIFY], 1U);
+    assert_int_equal(rig.mc.req_posted[MC_REQUEST_START], 0U);
+    rig.mc.state = MC_STATE_IDENTIFY; /* as the core would be, measuring */
+    rig.mc.id_status = MC_ID_RUNNING;
+    assert_int_equal(read_i16(addr), 1);
+    assert_int_equal(write_i16(addr, 0), X2C_ERR_OK);
+    assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 1U);
+    rig.mc.state = MC_STATE_STOPPED;
+    rig.mc.id_status = MC_ID_FAILED;
+    assert_int_equal(read_i16(addr), 0);
+}
+
+/* Every row of the result reads what mc_identify_result gives at that
+ * moment: a failure's code, then a finished run's values. */
+static void test_the_identification_result_should_read_as_the_core_reports_it(void **state)
+{
+    (void)state;
+    for (unsigned pass = 0; pass < 2U; pass++) {
+        mc_id_result_t want;
+        unsigned i, rows = 0;
+        if (pass == 0U) {
+            rig.mc.id_status = MC_ID_FAILED;
+            rig.mc.id_error = MC_ID_ERROR_ROTOR_LOCKED;
+        } else {
+            rig.mc.id_status = MC_ID_DONE;
+            rig.mc.id_error = MC_ID_ERROR_NONE;
+            rig.mc.id.dv = 123456; /* R = dv / di Z_FS */
+            rig.mc.id.di = 654321;
+            rig.mc.id.x1 = 1000000UL; /* Ke from m1, m2 at x1, x2 */
+            rig.mc.id.x2 = 2000000UL;
+            rig.mc.id.m1 = 50000;
+            rig.mc.id.m2 = 100000;
+        }
+        mc_identify_result(&rig.mc, &want);
+        for (i = 0; i < X2C_ID_ROWS; i++) {
+            const x2c_row_t *row = &x2c_rows[X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U + i];
+            uint16_t addr = (uint16_t)(x2c_wire(&rig.x, X2C_OBJ_ID) + row->offset);
+            uint8_t got[4], err;
+            uint8_t w = (row->size == 1U) ? 1U : (row->size == 2U ? 2U : 4U);
+            assert_int_equal(row->obj, X2C_OBJ_ID);
+            assert_int_equal(read_ram(addr, (uint8_t)row->size, w, got, &err), row->size);
+            assert_int_equal(err, X2C_ERR_OK);
+            assert_memory_equal(got, (const uint8_t *)&want + row->offset, row->size);
+            rows++;
+        }
+        assert_int_equal(rows, X2C_ID_ROWS);
+        if (pass == 0U) {
+            assert_int_equal(want.status, MC_ID_FAILED);
+            assert_int_equal(want.error, MC_ID_ERROR_ROTOR_LOCKED);
+        } else {
+            assert_int_equal(want.status, MC_ID_DONE);
+            assert_true(want.rs_uohm > 0U && want.ke_uv_per_rpm > 0U);
+        }
+        assert_int_equal(want.pole_pairs, MOTOR_POLE_PAIRS);
+    }
+}
+
 static void test_writes_other_than_a_whole_tunable_should_be_refused(void **state)
 {
     (void)state;
@@ -351,7 +433,9 @@ static void test_writes_other_than_a_whole_tunable_should_be_refused(void **stat
         {RIG_TUNE(&rig, cur_kp), 3, four, 3},                 /* width 3 */
         {RIG_TUNE(&rig, cur_kp), 4, two, 2},                  /* not whole longs */
         {RIG_SCOPE(&rig), 1, two, 1},                         /* the scope's buffer */
-        {(uint16_t)(RIG_TUNE(&rig, run) + 2U), 2, two, 2},    /* past the tunables */
+        {(uint16_t)(RIG_TUNE(&rig, identify) + 2U), 2, two, 2}, /* past the tunables */
+        {RIG_ID(&rig, status), 1, two, 1},                    /* the result: read-only */
+        {RIG_ID(&rig, rs_uohm), 4, four, 4},                  /* the result: read-only */
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rig_snap_t before;
@@ -610,6 +694,8 @@ int main(void)
         cmocka_unit_test_setup(test_speed_reference_should_be_remote_until_zero_gives_the_pot_back,
                                setup),
         cmocka_unit_test_setup(test_run_should_start_and_stop_like_s2_and_follow_its_guard, setup),
+        cmocka_unit_test_setup(test_identify_should_request_a_measurement_from_stopped_only, setup),
+        cmocka_unit_test_setup(test_the_identification_result_should_read_as_the_core_reports_it, setup),
         cmocka_unit_test_setup(test_writes_other_than_a_whole_tunable_should_be_refused, setup),
         cmocka_unit_test_setup(test_scope_should_sample_until_full_and_report_its_state, setup),
         cmocka_unit_test_setup(test_scope_configurations_outside_the_rules_should_be_refused,

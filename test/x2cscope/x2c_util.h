@@ -126,5 +126,7 @@ static inline bool rig_same(const rig_t *r, const rig_snap_t *s)
 #define RIG_TUNE(r, field)                                                                         \
     ((uint16_t)(x2c_wire(&(r)->x, X2C_OBJ_TUNE) + offsetof(x2c_tune_t, field)))
 #define RIG_SCOPE(r) (x2c_wire(&(r)->x, X2C_OBJ_SCOPE))
+#define RIG_ID(r, field)                                                                           \
+    ((uint16_t)(x2c_wire(&(r)->x, X2C_OBJ_ID) + offsetof(mc_id_result_t, field)))
 
 #endif /* X2C_UTIL_H */

@@ -34,6 +34,11 @@ void motor_status(mc_status_t *status)
     mc_status(the_motor(), status);
 }
 
+void motor_identify_result(mc_id_result_t *r)
+{
+    mc_identify_result(the_motor(), r);
+}
+
 uint8_t motor_set_reference(int16_t ref)
 {
     return mc_set_reference(the_motor(), ref);

@@ -47,6 +47,19 @@ const sim_x2c_map_row_t sim_x2c_map[] = {
      {0}},
         X2C_TUNABLES(TUNE_ROW)
 #undef TUNE_ROW
+#define ID_ROW(field, kind, unit, fs)                                                              \
+    {"x2c.id." #field,                                                                             \
+     unit,                                                                                         \
+     (double)(fs),                                                                                 \
+     0,                                                                                            \
+     0,                                                                                            \
+     (uint16_t)(X2C_WINDOW_ID + offsetof(mc_id_result_t, field)),                                  \
+     (uint16_t)MEMBER_SIZE(mc_id_result_t, field),                                                 \
+     0U,                                                                                           \
+     (uint8_t)KIND_##kind,                                                                         \
+     {0}},
+            X2C_ID_VARS(ID_ROW)
+#undef ID_ROW
 };
 
 const uint16_t sim_x2c_map_rows = (uint16_t)(sizeof sim_x2c_map / sizeof sim_x2c_map[0]);
