@@ -463,10 +463,42 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
     simcore_print_identify(s, f);
 }
 
+void simcore_identify_truth(const simcore_t *s, simcore_id_truth_t *t)
+{
+    const sim_motor_params_t *m = &s->rig.plant.m;
+    t->rs_ohm = m->rs_ohm;
+    t->ld_h = m->ld_h;
+    t->lq_h = m->lq_h;
+    t->ls_h = 0.5 * (m->ld_h + m->lq_h);
+    /* peak line-to-line volts per 1000 mechanical rpm: sqrt(3) psi p 2 pi / 60 x 1000 */
+    t->ke_v_per_krpm = sqrt(3.0) * m->psi_vs * m->pole_pairs * 2.0 * M_PI / 60.0 * 1e3;
+    t->j_kgm2 = m->j_kgm2;
+    t->deadtime_s = s->rig.inv.prm.deadtime_s;
+}
+
+static double rel_pct(double measured, double truth)
+{
+    return (truth > 0.0) ? 100.0 * (measured / truth - 1.0) : 0.0;
+}
+
+void simcore_identify_errors(const simcore_t *s, const mc_id_result_t *r, simcore_id_err_t *e)
+{
+    simcore_id_truth_t t;
+    simcore_identify_truth(s, &t);
+    e->rs = rel_pct(r->rs_uohm * 1e-6, t.rs_ohm);
+    e->ld = rel_pct(r->ld_nh * 1e-9, t.ld_h);
+    e->lq = rel_pct(r->lq_nh * 1e-9, t.lq_h);
+    e->ls = rel_pct(r->ls_nh * 1e-9, t.ls_h);
+    e->ke = rel_pct(r->ke_uv_per_rpm * 1e-6, t.ke_v_per_krpm * 1e-3);
+    e->j = rel_pct(r->j_ng_m2 * 1e-9, t.j_kgm2);
+    e->deadtime = rel_pct(r->deadtime_ns * 1e-9, t.deadtime_s);
+}
+
 void simcore_print_identify(const simcore_t *s, FILE *f)
 {
     mc_id_result_t r;
-    const sim_motor_params_t *m = &s->rig.plant.m;
+    simcore_id_truth_t t;
+    simcore_id_err_t e;
     mc_identify_result(&s->mc, &r);
     if (r.status == MC_ID_NONE) {
         return;
@@ -483,19 +515,14 @@ void simcore_print_identify(const simcore_t *s, FILE *f)
     if (r.status != MC_ID_DONE) {
         return;
     }
-    /* peak line-to-line microvolts per mechanical rpm: sqrt(3) psi p 2 pi / 60 x 1e6 */
-    double ke_true = sqrt(3.0) * m->psi_vs * m->pole_pairs * 2.0 * M_PI / 60.0 * 1e6;
-    fprintf(f, "     R   %9.4f / %9.4f ohm   %+6.2f %%\n", r.rs_uohm * 1e-6, m->rs_ohm,
-            100.0 * (r.rs_uohm * 1e-6 / m->rs_ohm - 1.0));
-    fprintf(f, "     Ld  %9.4f / %9.4f mH    %+6.2f %%\n", r.ld_nh * 1e-6, m->ld_h * 1e3,
-            100.0 * (r.ld_nh * 1e-9 / m->ld_h - 1.0));
-    fprintf(f, "     Lq  %9.4f / %9.4f mH    %+6.2f %%\n", r.lq_nh * 1e-6, m->lq_h * 1e3,
-            100.0 * (r.lq_nh * 1e-9 / m->lq_h - 1.0));
-    fprintf(f, "     Ke  %9.3f / %9.3f V/krpm %+6.2f %%\n", r.ke_uv_per_rpm * 1e-3, ke_true * 1e-3,
-            100.0 * (r.ke_uv_per_rpm / ke_true - 1.0));
-    fprintf(f, "     J   %9.3g / %9.3g kg m^2 %+6.2f %%\n", r.j_ng_m2 * 1e-9, m->j_kgm2,
-            100.0 * (r.j_ng_m2 * 1e-9 / m->j_kgm2 - 1.0));
+    simcore_identify_truth(s, &t);
+    simcore_identify_errors(s, &r, &e);
+    fprintf(f, "     R   %9.4f / %9.4f ohm   %+6.2f %%\n", r.rs_uohm * 1e-6, t.rs_ohm, e.rs);
+    fprintf(f, "     Ld  %9.4f / %9.4f mH    %+6.2f %%\n", r.ld_nh * 1e-6, t.ld_h * 1e3, e.ld);
+    fprintf(f, "     Lq  %9.4f / %9.4f mH    %+6.2f %%\n", r.lq_nh * 1e-6, t.lq_h * 1e3, e.lq);
+    fprintf(f, "     Ke  %9.3f / %9.3f V/krpm %+6.2f %%\n", r.ke_uv_per_rpm * 1e-3, t.ke_v_per_krpm,
+            e.ke);
+    fprintf(f, "     J   %9.3g / %9.3g kg m^2 %+6.2f %%\n", r.j_ng_m2 * 1e-9, t.j_kgm2, e.j);
     fprintf(f, "     dead time %u ns / %.0f ns   %+6.2f %%\n", (unsigned)r.deadtime_ns,
-            s->rig.inv.prm.deadtime_s * 1e9,
-            100.0 * (r.deadtime_ns * 1e-9 / s->rig.inv.prm.deadtime_s - 1.0));
+            t.deadtime_s * 1e9, e.deadtime);
 }

@@ -126,6 +126,19 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name);
  * when none was requested). */
 void simcore_print_identify(const simcore_t *s, FILE *f);
 
+/* What the identification should have found: the plant's parameters in
+ * mc_id_result_t's terms (R per phase, Ld, Lq and their mean, the peak
+ * line-to-line back-EMF per mechanical rpm, the inertia, the inverter's
+ * dead time), and the result's errors against them, per cent. */
+typedef struct {
+    double rs_ohm, ld_h, lq_h, ls_h, ke_v_per_krpm, j_kgm2, deadtime_s;
+} simcore_id_truth_t;
+typedef struct {
+    double rs, ld, lq, ls, ke, j, deadtime; /* (measured / true - 1) x 100 */
+} simcore_id_err_t;
+void simcore_identify_truth(const simcore_t *s, simcore_id_truth_t *t);
+void simcore_identify_errors(const simcore_t *s, const mc_id_result_t *r, simcore_id_err_t *e);
+
 /* Helpers for tests and the program. */
 void simcore_set_speed(simcore_t *s, double rpm); /* pot position for this reference */
 void simcore_request(simcore_t *s, mc_request_t r);
