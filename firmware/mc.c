@@ -1823,6 +1823,15 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
     r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
     r->ld_nh = mc_id_inductance(id, 0U);
     r->lq_nh = mc_id_inductance(id, 1U);
+    /* where L / R is hundreds of periods the decay per period is too
+     * close to 1 for the exact model's solve, and the difference quotient
+     * (the sequence's own) is as good as exact */
+    if (r->ld_nh == 0U) {
+        r->ld_nh = mc_id_u32((int64_t)id->l_dq[0] * MC_ID_K_L / 4096);
+    }
+    if (r->lq_nh == 0U) {
+        r->lq_nh = mc_id_u32((int64_t)id->l_dq[1] * MC_ID_K_L / 4096);
+    }
     /* LQ's rotor stood at phi = atan(i_q / i_d) to its d axis: the q
      * injection saw Lq cos^2 phi + Ld sin^2 phi (mc_id.c note 2) */
     {

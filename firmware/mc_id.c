@@ -15,7 +15,7 @@
  *         more than the bus is measured at the current it allows); then
  *         held, trimmed to the target, until the current has settled. The
  *         rotor turns to the current's axis on the way; while it turns
- *         the voltage is held (a q current that stays: a cut lead, note 6).
+ *         (the d current falls or the q current moves) the voltage is held.
  *   R     still open loop (no current loop before L is known): four d
  *         voltages, the ramp's, a probe 1/16 below it (the slope), and
  *         those for 3/4 and 1/2 of the current; each settled, then its mean
@@ -234,6 +234,8 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->i_dc = 0;
     id->r_q16 = -1;
     id->l_q12 = 0;
+    id->l_dq[0] = 0;
+    id->l_dq[1] = 0;
     id->dv = 0;
     id->di = 0;
     id->v0 = 0;
@@ -288,49 +290,52 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
     mc_id_cmd_t *c = &id->cmd;
     q15_t i = id_mean(id, w->i_d);
     q15_t iq = id_mean(id, w->i_q);
+    /* the current's magnitude is what the target limits: with a lead cut
+     * the d current is half of it (note 6) */
+    uint32_t m = q15_isqrt_u32((uint32_t)((int32_t)i * i) + (uint32_t)((int32_t)iq * iq));
+    q15_t im = (q15_t)((m > 32767U) ? 32767U : m);
     if (id->wins > ID_RAMP_WINDOWS_MAX) {
         mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
         return;
     }
     if (id->sub == 0U) { /* raising */
-        if (i >= id->p->i_target) {
+        if (im >= id->p->i_target) {
             id->sub = 1U;
             id->ok = 0U;
         } else if (c->v_d >= id->p->v_max) {
             /* the most the bus gives: measure at the current it drives */
-            if (i < id->p->i_min) {
-                mc_id_fail(id, (i < id->p->i_min / 4) ? MC_ID_ERROR_OPEN_CIRCUIT
-                                                          : MC_ID_ERROR_TOO_SMALL);
+            if (im < id->p->i_min) {
+                mc_id_fail(id, (im < id->p->i_min / 4) ? MC_ID_ERROR_OPEN_CIRCUIT
+                                                           : MC_ID_ERROR_TOO_SMALL);
                 return;
             }
             id->sub = 1U;
             id->ok = 0U;
-        } else if (id_abs(iq) > i / 16 + id->p->i_target / 64 ||
-                   i < id->last - id->p->i_target / 64) {
+        } else if (i < id->last - id->p->i_target / 64 ||
+                   id_abs(iq - id->acc[1]) > i / 32 + id->p->i_target / 64) {
             /* the rotor turning to the current's axis: its back-EMF pulls
-             * the current off d and down; the voltage held until it rests,
-             * else the current overshoots as it stops (a rotor starting near
-             * 180 degrees swings through at speed). A q current that stays
-             * is no rotor: a lead is cut, the d voltage drives the current
-             * along the two phases left (note 6) */
+             * the current off d and down and moves it on q; the voltage
+             * held until it rests, else the current overshoots as it stops
+             * (a rotor starting near 180 degrees swings through at speed) */
             if (++id->acc[0] > (int32_t)ID_R_SETTLE_MAX) {
-                mc_id_fail(id, (id_abs(iq) > i / 4) ? MC_ID_ERROR_OPEN_PHASE : MC_ID_ERROR_ROTOR_MOVING);
+                mc_id_fail(id, MC_ID_ERROR_ROTOR_MOVING);
                 return;
             }
         } else {
             /* 1/32 a window, 1/128 past half the target: the current lags by
              * L / R, up to tens of ms, and the target is passed by that lag
              * times the rate */
-            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / ((i < id->p->i_target / 2) ? 32 : 128) + 1;
+            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / ((im < id->p->i_target / 2) ? 32 : 128) + 1;
             c->v_d = (q15_t)((v > id->p->v_max) ? id->p->v_max : v);
         }
         id->last = i;
+        id->acc[1] = iq;
         return;
     }
     if (id_settled(id, i, id->p->i_target / 64)) {
-        if (id->sub < 3U && i > id->p->i_target + id->p->i_target / 8) {
+        if (id->sub < 3U && im > id->p->i_target + id->p->i_target / 8) {
             /* overshot while the current lagged the voltage: trimmed */
-            c->v_d = (q15_t)id_ratio((int32_t)c->v_d * (int32_t)id->p->i_target, i, 0);
+            c->v_d = (q15_t)id_ratio((int32_t)c->v_d * (int32_t)id->p->i_target, im, 0);
             id->sub++;
             id->ok = 0U;
             return;
@@ -367,6 +372,12 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     int32_t target = id->i_dc / 4;
     if (c->inj == 0) { /* the DC currents settled first (LQ: the rotor turns to its bias) */
         if (id_settled(id, ax ? w->i_q : w->i_d, id->p->i_target / 128 * N_)) {
+            /* LQ's bias drives a quarter of the current on q (alpha): with
+             * phase A cut, none flows (note 6) */
+            if (ax != 0U && 16 * id_abs(id_mean(id, w->i_q)) < id->i_dc) {
+                mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
+                return;
+            }
             c->inj = (id->inj_set != 0) ? id->inj_set : (q15_t)(c->v_d / 4 + 1);
         } else if (id->wins > ID_R_SETTLE_MAX) {
             mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
@@ -451,6 +462,8 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
      * taken off, Lq corrected for the rotor's angle to the current */
     {
         int32_t ld = id_l_trap(id, 0U), lq = id_l_trap(id, 1U);
+        id->l_dq[0] = ld;
+        id->l_dq[1] = lq;
         {
             /* Lq cos^2 + Ld sin^2 was measured: Lq = (lq (d^2 + q^2) - ld q^2) / d^2 */
             int32_t d = id->lq_i[0] / 256, q = id->lq_i[1] / 256;
@@ -525,16 +538,12 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         }
         return;
     }
-    /* a d voltage that drives current on q: a phase open (note 6) */
-    if (id_abs(id->acc[3]) > id_abs(id->acc[1]) / 4) {
-        mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
-        return;
-    }
     id->lv[lev < 2U ? 0U : lev - 1U] = id->acc[0];
     id->li[lev < 2U ? 0U : lev - 1U] = id->acc[1];
     if (lev == 0U) { /* the top level, kept in [1] while the probe runs */
         id->lv[1] = id->acc[0];
         id->li[1] = id->acc[1];
+        id->iq_top = id->acc[3];
         c->v_d = (q15_t)(c->v_d - c->v_d / 16);
         id->sub++;
         id->ok = 0U;
@@ -568,6 +577,11 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         int32_t dvu = id->lv[0] - id->lv[1], diu = id->li[0] - id->li[1];
         if (di < id->p->i_min * N_ * ID_R_WINDOWS / 4 || dv <= 0 || dim <= 0 || diu <= 0) {
             mc_id_fail(id, (dv <= 0) ? MC_ID_ERROR_OUT_OF_RANGE : MC_ID_ERROR_TOO_SMALL);
+            return;
+        }
+        /* a d voltage that drives current on q in proportion: a cut lead (note 6) */
+        if (2 * id_abs(id->iq_top - id->acc[3]) > di) {
+            mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
             return;
         }
         if (id_ratio(dvm, dim, 16) - id_ratio(dvu, diu, 16) > id_ratio(dvu, diu, 16) / ID_R_BAND_TOL) {
@@ -916,8 +930,15 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    large against R i; a motor whose back-EMF at the speed limit is a
  *    few times its R i reads low by a few per cent (docs/identify.md).
  *
- * 6. A cut lead. With one phase open the voltage on d drives the current
- *    along the two phases left, at 30 or 90 degrees to d: a q current as
- *    large as a quarter of the d current, steady (a turning rotor's q
- *    current changes), in the ramp or at an R level.
+ * 6. A cut lead. With phase B or C open the voltage on d (beta) drives
+ *    the current along the two phases left, A and the other, 60 degrees
+ *    off d: a q current sqrt(3) times the d current, at every level. A
+ *    sound motor has a q current too, phase A's own (A carries none of
+ *    the d current, so its dead-time error, a full +-Vd on the smallest
+ *    current of either sign, drives alpha up to Vd / R), but one that
+ *    hardly changes with the d voltage: the q current's change from the
+ *    top R level to the lowest is set against the d current's, and above
+ *    half of it is a cut lead. With A open d still conducts (B and C), but
+ *    LQ's bias on q (alpha: phase A's current), set for a quarter of the
+ *    d current, drives none.
  */

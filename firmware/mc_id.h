@@ -139,6 +139,7 @@ typedef struct {
     q15_t i_dc;         /* RAMP, LD, LQ: the d current reached in open loop */
     /* results, internal units (mc_id.c note 1) */
     int32_t lv[3], li[3]; /* R: sums of v and i over the measuring windows of each level */
+    int32_t iq_top;       /* R: the q current's sum at the top level (a cut lead, mc_id.c note 6) */
     int32_t l_c[2][8];    /* Ld, Lq: the injection's sums (mc_id_win_t.c) over the measurement */
     q15_t vbus;           /* the bus while R was measured, Q15 of BOARD_VBUS_FULLSCALE_V */
     int32_t lq_i[2];      /* LQ: sums of the d and q currents (the rotor's angle to d) */
@@ -146,6 +147,9 @@ typedef struct {
     uint8_t lq_half;      /* LQ's half cycle, periods (the rotor's vibration, mc.c) */
     int32_t r_q16;        /* R, Q16 of Z_FS */
     int32_t l_q12;        /* (Ld + Lq) / 2 over Ts, Q12 of Z_FS */
+    int32_t l_dq[2];      /* Ld, Lq (the q one as measured, at the rotor's angle) by the
+                             difference quotient, the same units (mc_identify_result's
+                             fallback where the exact model's solve fails) */
     int32_t dv, di;       /* R = dv / di (Z_FS); the intercept: */
     int32_t v0;           /* the d voltage at zero current, sum over the windows, Q15 V_FS */
     int32_t nwin;         /* windows in each level's sums (the same for all) */
