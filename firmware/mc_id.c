@@ -372,12 +372,6 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     int32_t target = id->i_dc / 4;
     if (c->inj == 0) { /* the DC currents settled first (LQ: the rotor turns to its bias) */
         if (id_settled(id, ax ? w->i_q : w->i_d, id->p->i_target / 128 * N_)) {
-            /* LQ's bias drives a quarter of the current on q (alpha): with
-             * phase A cut, none flows (note 6) */
-            if (ax != 0U && 16 * id_abs(id_mean(id, w->i_q)) < id->i_dc) {
-                mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
-                return;
-            }
             c->inj = (id->inj_set != 0) ? id->inj_set : (q15_t)(c->v_d / 4 + 1);
         } else if (id->wins > ID_R_SETTLE_MAX) {
             mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
@@ -410,8 +404,10 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
                             id->sub = 2U;
                             return;
                         }
-                        mc_id_fail(id, (swing < target / 16) ? MC_ID_ERROR_OPEN_PHASE
-                                                              : MC_ID_ERROR_OUT_OF_RANGE);
+                        /* LQ, where LD reached its aim: q (alpha, phase A's
+                         * current) is no inductance but a cut lead (note 6) */
+                        mc_id_fail(id, (swing < target / 16 || ax != 0U) ? MC_ID_ERROR_OPEN_PHASE
+                                                                         : MC_ID_ERROR_OUT_OF_RANGE);
                         return;
                     }
                     c->inj_half = (uint8_t)(c->inj_half * 2U);
@@ -939,6 +935,9 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    hardly changes with the d voltage: the q current's change from the
  *    top R level to the lowest is set against the d current's, and above
  *    half of it is a cut lead. With A open d still conducts (B and C), but
- *    LQ's bias on q (alpha: phase A's current), set for a quarter of the
- *    d current, drives none.
+ *    LQ's injection on q (alpha: phase A's current) drives nothing: where
+ *    LD reached its swing, LQ at its largest amplitude and period does not
+ *    reach a quarter of it. (LQ's q bias is no test: on a small R it is
+ *    mostly the dead-time voltage phase A's current, in the band, does not
+ *    see in full.)
  */
