@@ -274,6 +274,19 @@
 #endif
 
 /* ---- self-commissioning (MC_REQUEST_IDENTIFY, mc.h; docs/identify.md) ------------ */
+/* 1: the build can identify the motor; 0: it cannot (MC_REQUEST_IDENTIFY
+ * ends at once, FAILED, MC_ID_ERROR_UNAVAILABLE). The sequence and its unit
+ * conversions take about 6,000 instruction words of flash and 600 bytes of
+ * RAM with XC16 (docs/performance.md): more than the dsPIC33FJ32MC204 has
+ * left beside the drive and the X2Cscope target, so that chip's image
+ * leaves it out by default. */
+#ifndef MC_IDENTIFY
+#if defined(__dsPIC33FJ32MC204__)
+#define MC_IDENTIFY 0
+#else
+#define MC_IDENTIFY 1
+#endif
+#endif
 /* The largest current the measurement drives (A, peak phase): the DC level
  * at which R, the inverter's error and L are measured (1.5 times it may flow
  * for a moment while the voltage is found), a third of it turns the rotor

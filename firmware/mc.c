@@ -87,6 +87,7 @@ MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0
 #define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
 #define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
 
+#if MC_IDENTIFY
 static const mc_id_params_t mc_id_params = {
     MC_ID_I_Q15,
     MC_ID_I_MIN_Q15,
@@ -100,6 +101,7 @@ static const mc_id_params_t mc_id_params = {
     MC_ID_STEP_MAX,
     MC_ID_DAMP,
 };
+#endif
 
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
@@ -306,8 +308,10 @@ static void mc_outputs_off(mc_t *mc)
     pi_reset(&mc->pi_q);
     mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
     mc->preset_pending = false;
+#if MC_IDENTIFY
     mc->id_inj = 0;
     mc->ol_inc = 0U;
+#endif
 }
 
 static void mc_id_stop(mc_t *mc, uint16_t error);
@@ -688,8 +692,10 @@ static void mc_prepare(mc_t *mc)
         mc->scv_next = mc_advance(sc, mc->adv_sc);
     } else if (mc->state == MC_STATE_OPEN_LOOP) {
         th = mc_forced_angle(mc, MC_RAMP_STEP_INC, &sc);
+#if MC_IDENTIFY
     } else if (mc->state == MC_STATE_IDENTIFY) {
         th = mc_forced_angle(mc, mc->ol_inc, &sc);
+#endif
     } else { /* LOCK */
         th = 0;
         sc = sincos_compute(th);
@@ -703,6 +709,8 @@ static void mc_prepare(mc_t *mc)
 }
 
 /* ---- identification (mc_id.h) ----------------------------------------------------------- */
+
+#if MC_IDENTIFY
 
 /* The sequence's command (mc_id_cmd_t) into the interrupt's loops: at
  * IDENTIFY's entry and MC_SLOW_APPLY_PERIODS after each window end. An open
@@ -845,6 +853,14 @@ Q15_INLINE void mc_id_period(mc_t *mc)
         }
     }
 }
+#else
+/* No identification in this build: nothing ever runs to stop. */
+static void mc_id_stop(mc_t *mc, uint16_t error)
+{
+    (void)mc;
+    (void)error;
+}
+#endif /* MC_IDENTIFY */
 
 /* CALIBRATE: after calib_wait periods of coasting, sum the two current
  * readings over MC_CALIB_PERIODS (mc_calibrate, before the duties); the
@@ -875,11 +891,13 @@ static void mc_calibrate_end(mc_t *mc)
         mc_fault(mc, MC_FAULT_OFFSET);
         return;
     }
+#if MC_IDENTIFY
     if (mc->id_pending) {
         mc_enter_identify(mc);
-    } else {
-        mc_enter_lock(mc);
+        return;
     }
+#endif
+    mc_enter_lock(mc);
 }
 
 int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
@@ -1252,6 +1270,7 @@ static void mc_slow_apply(mc_t *mc)
         }
     }
 #endif
+#if MC_IDENTIFY
     if (mc->state == MC_STATE_IDENTIFY && so->epoch == mc->epoch) {
         mc_id_apply(mc, &mc->id.cmd);
         if (mc->id.cmd.end) {
@@ -1261,6 +1280,7 @@ static void mc_slow_apply(mc_t *mc)
             return;
         }
     }
+#endif
     if (so->sensor_fault && so->epoch == mc->epoch && mc->outputs_on) {
         mc_fault(mc, MC_FAULT_CURRENT_SENSOR);
         return;
@@ -1305,6 +1325,7 @@ static void mc_window_end(mc_t *mc)
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
+#if MC_IDENTIFY
     if (mc->state == MC_STATE_IDENTIFY) {
         /* the applied voltage on the standing frame's axes: d is beta, q -alpha */
         mc->id_win.v_d = mc->lock_vb;
@@ -1316,6 +1337,7 @@ static void mc_window_end(mc_t *mc)
         mc->lock_va = 0;
         mc->lock_vb = 0;
     }
+#endif
 #if MC_DTM_ON
     si->lock_va = mc->lock_va;
     si->lock_vb = mc->lock_vb;
@@ -1393,9 +1415,12 @@ void mc_slow_step(mc_t *mc)
 #endif
     if (si->state == MC_STATE_CLOSED_LOOP) {
         mc_slow_speed_loop(mc, &mc->smc.res, so);
-    } else if (si->state == MC_STATE_IDENTIFY) {
+    }
+#if MC_IDENTIFY
+    else if (si->state == MC_STATE_IDENTIFY) {
         mc_id_window(&mc->id, &si->id, si->vbus, &mc->id.cmd);
     }
+#endif
     so->epoch = si->epoch;
     MC_BARRIER(); /* the results are written before the flag hands them back */
     mc->slow_busy = false;
@@ -1445,6 +1470,7 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
         ev->start = mc_take(mc, MC_REQUEST_START);
         ev->stop = mc_take(mc, MC_REQUEST_STOP);
         ev->identify = mc_take(mc, MC_REQUEST_IDENTIFY);
+#if MC_IDENTIFY
         if (ev->identify && mc->state != MC_STATE_STOPPED) {
             ev->identify = false;
             if (mc->state != MC_STATE_IDENTIFY && !mc->id_pending) {
@@ -1452,6 +1478,13 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
                 mc->id_error = MC_ID_ERROR_NOT_STOPPED;
             }
         }
+#else
+        if (ev->identify) {
+            ev->identify = false;
+            mc->id_status = MC_ID_FAILED; /* not in this build: nothing else changes */
+            mc->id_error = MC_ID_ERROR_UNAVAILABLE;
+        }
+#endif
         uint8_t gseq = mc->gain_seq;
         if (gseq != mc->gain_seen) {
             mc->gain_seen = gseq;
@@ -1521,7 +1554,9 @@ static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t 
 {
     if (ev->toggle || ev->start) {
         mc_start(mc, in);
-    } else if (ev->identify) {
+    }
+#if MC_IDENTIFY
+    else if (ev->identify) {
         mc->id_status = MC_ID_RUNNING;
         mc->id_error = MC_ID_ERROR_NONE;
         mc_start(mc, in);
@@ -1531,6 +1566,7 @@ static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t 
             mc->id_error = MC_ID_ERROR_FAULT;
         }
     }
+#endif
     return false;
 }
 
@@ -1630,9 +1666,11 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         if (mc->sums_on) { /* the dead-time measurement's (note 4), the identification's */
             mc->lock_va += mc->v_hist[0].alpha;
             mc->lock_vb += mc->v_hist[0].beta;
+#if MC_IDENTIFY
             if (mc->state == MC_STATE_IDENTIFY) {
                 mc_id_period(mc);
             }
+#endif
         }
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
@@ -1705,6 +1743,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->ref_seq = seq;
 }
 
+#if MC_IDENTIFY
 /* The identification's results in engineering units (mc_id.c note 1): each
  * a ratio of the sequence's sums times one constant, rounded once here. */
 #define MC_ID_Z_FS_ (MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A) /* ohm */
@@ -1871,6 +1910,15 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
     }
     r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
 }
+#else
+void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
+{
+    memset(r, 0, sizeof *r);
+    r->status = (mc_id_status_t)mc->id_status;
+    r->error = mc->id_error;
+    r->pole_pairs = (uint8_t)MOTOR_POLE_PAIRS;
+}
+#endif /* MC_IDENTIFY */
 
 /*
  * Notes

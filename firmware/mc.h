@@ -259,7 +259,9 @@ typedef struct {
     bool est_valid;         /* ... whether the estimator vouches for its estimate ... */
     q15_t emf_ratio;        /* ... its back-EMF against the speed's, Q12 (smc.h) ... */
     q15_t speed_est;        /* ... and its speed, Q15 */
+#if MC_IDENTIFY
     mc_id_win_t id;         /* IDENTIFY: the window's sums (mc_id.h) */
+#endif
 } mc_slow_in_t;
 
 /* What the slow step hands back; applied at the next window end. */
@@ -393,9 +395,13 @@ typedef struct {
     bool dtm_pos;       /* the alpha sum was above its mean last window */
     bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
 
+    bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
+    uint8_t id_status;     /* mc_id_status_t, the interrupt's view */
+    uint16_t id_error;     /* MC_ID_ERROR_* of a run the interrupt ended */
+#if MC_IDENTIFY
     /* IDENTIFY (mc_id.h): the interrupt's side ... */
     mc_id_win_t id_win;    /* this window's sums */
-    uint32_t ol_inc;       /* the forced speed's change per period (OPEN_LOOP's ramp, the spin's) */
+    uint32_t ol_inc;       /* the forced speed's change per period (the spin's) */
     q15_t id_inj;          /* the injected square wave's amplitude, Q15 V_FS (0: none) */
     uint8_t id_inj_q;      /* ... on q (else d) */
     uint8_t id_half;       /* ... periods per half cycle */
@@ -408,11 +414,9 @@ typedef struct {
     q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
     bool id_open;          /* the last command was open loop */
     bool id_pending;       /* CALIBRATE before IDENTIFY */
-    bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
-    uint8_t id_status;     /* mc_id_status_t, the interrupt's view */
-    uint16_t id_error;     /* MC_ID_ERROR_* of a run the interrupt ended */
     /* ... and the slow step's: the sequence and its results */
     mc_id_t id;
+#endif
 } mc_t;
 
 /* The names of a state and of a fault code, as MC_STATE_LIST and

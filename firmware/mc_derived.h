@@ -764,6 +764,8 @@ MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_REA
 
 /* ---- self-commissioning (mc_id.c) -------------------------------------------------- */
 
+MC_CHECK(MC_IDENTIFY, MC_IDENTIFY == 0 || MC_IDENTIFY == 1, "must be 0 or 1");
+
 MC_CHECK(MC_ID_CURRENT_A, MC_ID_CURRENT_A > 0.0, "must be > 0");
 /* the ramp may overshoot to 1.45 times the target before it is trimmed,
  * and the injection swings a quarter of it on top: room below the trip */
@@ -786,12 +788,14 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
              "must be at least 32 ADC codes of current");
 #define MC_ID_WC_TS Q15(MC_ID_LOOP_BW_RAD_S *MC_TS_S)
 #define MC_ID_ACCEL ((uint32_t)(MC_ID_ACCEL_HZ_S * MC_TS_S * MC_TS_S * 4294967296.0 + 0.5))
+/* (the angle steps in 2^8 units before the shift: a 32-bit double holds them exactly, note 1) */
 #define MC_ID_STEP_MAX                                                                             \
-    ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 4294967296.0))
+    ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 16777216.0)      \
+     << 8)
 /* the spin's damping (mc_id.c note 5): the forced speed moved by
  * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */
 #define MC_ID_DAMP_HZ 10.0
-#define MC_ID_DAMP    ((uint32_t)(MC_ID_DAMP_HZ * MC_TS_S * 4294967296.0 + 0.5))
+#define MC_ID_DAMP    ((uint32_t)(MC_ID_DAMP_HZ * MC_TS_S * 16777216.0 + 0.5) << 8)
 
 /*
  * Notes

@@ -1,8 +1,11 @@
 /* mc_id.c - self-commissioning's sequence, one speed-loop window at a time (see mc_id.h). */
 #include "mc_id.h"
 
+#include "UserParms.h" /* MC_IDENTIFY alone: the sequence reads no profile */
 #include "q15_dsp.h"
 #include "q15_sqrt.h"
+
+#if MC_IDENTIFY
 
 /*
  * The stages (mc_id.h), each judged on window means (sums over N =
@@ -170,7 +173,7 @@ uint32_t mc_id_neg_ln_q24(uint32_t a_q30)
     y = (((int64_t)1 << 30) - a_q30) * ((int64_t)1 << 30) / (((int64_t)1 << 30) + a_q30);
     y2 = (y * y) >> 30;
     t = y;
-    for (k = 1; k < 25U && t != 0; k += 2) {
+    for (k = 1; k < 25U && t != 0; k = (uint8_t)(k + 2U)) {
         acc += 2 * t / k;
         t = (t * y2) >> 30;
     }
@@ -620,11 +623,16 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
     ed = (ed > 32767L) ? 32767L : (ed < -32767L) ? -32767L : ed;
     eq = (eq > 32767L) ? 32767L : (eq < -32767L) ? -32767L : eq;
     m2 = (uint32_t)(ed * ed) + (uint32_t)(eq * eq);
-    *mag = (q15_t)q15_isqrt_u32(m2);
+    m2 = q15_isqrt_u32(m2); /* up to 46341: past Q15 where both axes are near full scale */
+    *mag = (q15_t)((m2 > 32767U) ? 32767U : m2);
     if (*mag < 64) {
         *it = 0;
     } else {
-        *it = q15_dsp_divsd((int32_t)id_ * ed + (int32_t)iq * eq, *mag);
+        /* the projection of i on E: the two products of values within
+         * +-32768 sum below 2^31; the quotient is below |i| < 46341, more
+         * than Q15 where both axes are near full scale (and mag clamped) */
+        int32_t t = ((int32_t)id_ * ed + (int32_t)iq * eq) / (int32_t)*mag;
+        *it = (q15_t)((t > 32767L) ? 32767L : (t < -32767L) ? -32767L : t);
     }
 }
 
@@ -941,3 +949,9 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    mostly the dead-time voltage phase A's current, in the band, does not
  *    see in full.)
  */
+
+#else
+/* UserParms.h MC_IDENTIFY 0: no sequence in this build (ISO C wants a
+ * translation unit to declare something). */
+extern const mc_id_params_t mc_id_absent;
+#endif /* MC_IDENTIFY */

@@ -45,7 +45,8 @@
     X(ROTOR_MOVING, 8) /* the rotor turned while it should stand still */                        \
     X(ROTOR_LOCKED, 9) /* no back-EMF while the current turned: rotor locked (or Ke too small) */ \
     X(NO_SYNC, 10)     /* the rotor did not follow the turning current (or slipped poles) */       \
-    X(TIMEOUT, 11)     /* a stage did not settle within its time */
+    X(TIMEOUT, 11)     /* a stage did not settle within its time */                               \
+    X(UNAVAILABLE, 12) /* the build has no identification (UserParms.h MC_IDENTIFY 0) */
 
 #define MC_ID_ERROR_ENUM_(name, code) MC_ID_ERROR_##name = code,
 enum { MC_ID_ERROR_LIST(MC_ID_ERROR_ENUM_) MC_ID_ERROR_COUNT };

@@ -1,5 +1,5 @@
 /* vec_mc.c - 16-bit check vectors for the motor-control core: mc_step over a recorded start. */
-/* check16-requires: firmware/mc.c smc_estimator/smc.c */
+/* check16-requires: firmware/mc.c firmware/mc_id.c smc_estimator/smc.c */
 /* check16-cflags: -DMOTOR_LOCK_TIME_S=0.02 -DMOTOR_RAMP_TIME_S=0.15 -DMC_HANDOFF_WAIT_S=0.05 */
 /* check16-cflags: -DMC_HANDOFF_AGREE_S=0.005 */
 #include "emit.h"

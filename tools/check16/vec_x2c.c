@@ -2,7 +2,7 @@
  */
 /* (tools/check16/run reads the first directive line only: kept whole) */
 /* clang-format off */
-/* check16-requires: firmware/mc.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
+/* check16-requires: firmware/mc.c firmware/mc_id.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
 /* clang-format on */
 #include "emit.h"
 
