@@ -185,9 +185,11 @@ uint32_t mc_id_exp_neg_q30(uint32_t x_q24)
     /* e^-x = 2^-k e^-r, r = x - k ln 2 in [0, ln 2): the series 1 - r + r^2/2 - ... */
     int64_t r = (int64_t)x_q24 << 6, t = (int64_t)1 << 30, acc = 0; /* Q30 */
     uint8_t k = 0, n;
-    while (r >= 744261118 && k < 30U) { /* ln 2, Q30 */
+    while (r >= 744261118) { /* ln 2, Q30 */
+        if (++k > 30U) {
+            return 0U; /* below 2^-30 */
+        }
         r -= 744261118;
-        k++;
     }
     for (n = 1; n < 16U && t != 0; n++) {
         acc += t;

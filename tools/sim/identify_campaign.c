@@ -203,7 +203,7 @@ static void summary_line(const char *name, double *v, int n, double lim)
     free(a);
 }
 
-enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_SEED, OPT_FROM, OPT_COUNT };
+enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_SEED, OPT_FROM, OPT_COUNT, OPT_PASS_MIN };
 
 /* clang-format off */
 static const sim_opt_t OPTS[] = {
@@ -219,6 +219,10 @@ static const sim_opt_t OPTS[] = {
     {.id = OPT_COUNT, .name = "--count", .type = SIM_OPT_NUMBER, .value = "N",
      .range = {"count", "motors", 1.0, (double)COUNT_MAX, SIM_RANGE_INTEGER},
      .help = "with --from: how many seeds"},
+    {.id = OPT_PASS_MIN, .name = "--pass-min", .type = SIM_OPT_NUMBER, .value = "PCT",
+     .range = {"pass-min", "%", 0.0, 100.0, 0u},
+     .help = "with --from: exit 1 only below this share of motors inside the envelope (default "
+             "100), or when one was not identified"},
 };
 /* clang-format on */
 
@@ -227,9 +231,11 @@ static const sim_opt_t OPTS[] = {
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: identify_campaign [--motor NAME] [--board NAME] (--seed N | --from N --count N)\n"
+    fprintf(f, "usage: identify_campaign [--motor NAME] [--board NAME] (--seed N | --from N --count N\n"
+               "                         [--pass-min PCT])\n"
                "  one CSV row per motor on stdout, the distribution on stderr (docs/identify.md);\n"
-               "  exit status 1 if a motor failed\n");
+               "  exit status 1 if a motor failed (--pass-min: if fewer passed, or one was not\n"
+               "  identified)\n");
     sim_opt_usage(f, OPTS, N_OPTS);
 }
 
@@ -237,6 +243,7 @@ int main(int argc, char **argv)
 {
     const char *motor = "hurst", *board = "mclv";
     long long from = -1, count = 0, one = -1;
+    double pass_min = 100.0;
     double *e[7];
     int i, k, failed = 0, done = 0;
     for (i = 1; i < argc; i++) {
@@ -267,8 +274,11 @@ int main(int argc, char **argv)
             case OPT_FROM:
                 from = (long long)x;
                 break;
-            default:
+            case OPT_COUNT:
                 count = (long long)x;
+                break;
+            default:
+                pass_min = x;
                 break;
         }
     }
@@ -339,6 +349,12 @@ int main(int argc, char **argv)
     summary_line("dead time", e[6], done, ENV_DT);
     for (k = 0; k < 7; k++) {
         free(e[k]);
+    }
+    if (pass_min < 100.0) {
+        double pct = 100.0 * (double)(count - failed) / (double)count;
+        fprintf(stderr, "identify_campaign: %.1f %% inside the envelope (--pass-min %g %%)%s\n", pct, pass_min,
+                (done < (int)count) ? "; a motor was not identified" : "");
+        return (pct < pass_min || done < (int)count) ? 1 : 0;
     }
     return (failed > 0) ? 1 : 0;
 }

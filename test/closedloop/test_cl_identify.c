@@ -1,0 +1,219 @@
+/* test_cl_identify.c - self-commissioning against the simulated motor: its figures, and every
+ * way it ends without numbers. */
+#include "cl_helpers.h"
+
+#include <string.h>
+
+#if MC_IDENTIFY
+
+/* Requests IDENTIFY and runs until the core is back in STOPPED or FAULT with
+ * a final status, or max_s; returns the time it took. */
+static double identify(simcore_t *s, double max_s)
+{
+    double t0 = s->rig.t, t_end = t0 + max_s;
+    simcore_request(s, MC_REQUEST_IDENTIFY);
+    do {
+        simcore_step(s);
+    } while (s->rig.t < t_end &&
+             !((s->now.state == MC_STATE_STOPPED || s->now.state == MC_STATE_FAULT) &&
+               (s->mc.id_status == MC_ID_DONE || s->mc.id_status == MC_ID_FAILED)));
+    return s->rig.t - t0;
+}
+
+static void setup_motor(simcore_t *s, double rs, double l, double ke, double j)
+{
+    simcore_cfg_t cfg;
+    simcore_cfg_default(&cfg);
+    cfg.rs_scale = rs;
+    cfg.l_scale = l;
+    cfg.ke_scale = ke;
+    cfg.j_scale = j;
+    cl_setup(s, &cfg, "hurst", "mclv");
+    cl_run(s, 0.02);
+}
+
+/* A failed run: the state expected (STOPPED; FAULT for a fault; running on
+ * for a refused request), the outputs off unless running, the status FAILED
+ * with the code, no numbers. */
+static void expect_failure(simcore_t *s, unsigned error, mc_state_t state, const char *what)
+{
+    mc_id_result_t r;
+    mc_identify_result(&s->mc, &r);
+    printf("measured: %s: %s, error %s, state %s\n", what, (r.status == MC_ID_FAILED) ? "FAILED" : "not failed",
+           mc_id_error_name(r.error), mc_state_name(s->now.state));
+    assert_int_equal(r.status, MC_ID_FAILED);
+    assert_int_equal(r.error, error);
+    assert_int_equal(s->now.state, state);
+    assert_int_equal(s->now.outputs_on, state == MC_STATE_CLOSED_LOOP);
+    assert_int_equal(r.rs_uohm, 0);
+    assert_int_equal(r.ls_nh, 0);
+    assert_int_equal(r.ke_uv_per_rpm, 0);
+}
+
+static void test_hurst_should_be_measured_within_its_figures_in_under_10_s(void **state)
+{
+    static simcore_t s;
+    mc_id_result_t r;
+    simcore_id_err_t e;
+    double t;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    t = identify(&s, 30.0);
+    mc_identify_result(&s.mc, &r);
+    simcore_identify_errors(&s, &r, &e);
+    printf("measured: Hurst: %.2f s; R %+.2f %%, Ld %+.2f %%, Lq %+.2f %%, L %+.2f %%, Ke %+.2f %%, J %+.2f %%, "
+           "dead time %+.2f %%; peak phase current %.2f A (MC_ID_CURRENT_A %.2f A)\n",
+           t, e.rs, e.ld, e.lq, e.ls, e.ke, e.j, e.deadtime, s.log.i_peak_a, (double)MC_ID_CURRENT_A);
+    assert_int_equal(r.status, MC_ID_DONE);
+    assert_int_equal(s.now.state, MC_STATE_STOPPED);
+    assert_false(s.now.outputs_on);
+    assert_true(t < 10.0);
+    assert_true(fabs(e.rs) < 1.0);
+    assert_true(fabs(e.ld) < 2.0 && fabs(e.lq) < 2.0 && fabs(e.ls) < 2.0);
+    assert_true(fabs(e.ke) < 1.0);
+    assert_true(fabs(e.j) < 10.0);
+    assert_true(fabs(e.deadtime) < 5.0);
+    assert_true(s.log.i_peak_a < 1.6 * (double)MC_ID_CURRENT_A);
+    assert_int_equal(r.pole_pairs, MOTOR_POLE_PAIRS);
+    /* and the motor then starts as usual */
+    cl_start_and_reach(&s, 1500.0, 8.0);
+}
+
+static void test_a_cut_lead_should_end_in_open_phase(void **state)
+{
+    static simcore_t s;
+    int lead;
+    (void)state;
+    for (lead = 0; lead < 3; lead++) {
+        char what[32];
+        setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+        cl_event(&s, SIM_EV_OPEN_LEAD, (double)lead, 0.0);
+        identify(&s, 30.0);
+        snprintf(what, sizeof what, "lead %c cut", 'A' + lead);
+        expect_failure(&s, MC_ID_ERROR_OPEN_PHASE, MC_STATE_STOPPED, what);
+    }
+}
+
+static void test_a_locked_rotor_should_end_in_rotor_locked(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    cl_event(&s, SIM_EV_LOCK_ROTOR, 0.0, 0.0);
+    identify(&s, 30.0);
+    expect_failure(&s, MC_ID_ERROR_ROTOR_LOCKED, MC_STATE_STOPPED, "locked rotor");
+}
+
+static void test_a_motor_too_small_for_the_current_resolution_should_end_in_too_small(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    /* R x60: at the largest voltage the measurement allows, under 16 ADC codes of current */
+    setup_motor(&s, 60.0, 1.0, 1.0, 1.0);
+    identify(&s, 30.0);
+    expect_failure(&s, MC_ID_ERROR_TOO_SMALL, MC_STATE_STOPPED, "R x60");
+    /* nothing that conducts: R and L x1000 (the same L / R, a current under 4 codes) */
+    setup_motor(&s, 1000.0, 1000.0, 1.0, 1.0);
+    identify(&s, 30.0);
+    expect_failure(&s, MC_ID_ERROR_OPEN_CIRCUIT, MC_STATE_STOPPED, "no motor");
+}
+
+static void test_a_stop_during_identification_should_end_it_at_once(void **state)
+{
+    static simcore_t s;
+    double t_stop;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    simcore_request(&s, MC_REQUEST_IDENTIFY);
+    cl_run(&s, 1.5); /* into the spin */
+    assert_int_equal(s.now.state, MC_STATE_IDENTIFY);
+    t_stop = s.rig.t;
+    simcore_request(&s, MC_REQUEST_STOP);
+    simcore_step(&s);
+    simcore_step(&s);
+    printf("measured: STOP in IDENTIFY: outputs off %.0f us after the request\n", (s.rig.t - t_stop) * 1e6);
+    expect_failure(&s, MC_ID_ERROR_ABORTED, MC_STATE_STOPPED, "stop at 1.5 s");
+}
+
+static void test_a_fault_during_identification_should_end_in_fault(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    simcore_request(&s, MC_REQUEST_IDENTIFY);
+    cl_run(&s, 0.5);
+    assert_int_equal(s.now.state, MC_STATE_IDENTIFY);
+    cl_event(&s, SIM_EV_CURRENT_SPIKE, 6.0, 1.0);
+    cl_run(&s, 0.01);
+    expect_failure(&s, MC_ID_ERROR_FAULT, MC_STATE_FAULT, "current spike");
+    assert_int_equal(s.now.fault, MC_FAULT_OVERCURRENT);
+}
+
+static void test_a_request_while_running_should_be_refused_and_change_nothing(void **state)
+{
+    static simcore_t s;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    cl_start_and_reach(&s, 1500.0, 8.0);
+    simcore_request(&s, MC_REQUEST_IDENTIFY);
+    cl_run(&s, 0.2);
+    expect_failure(&s, MC_ID_ERROR_NOT_STOPPED, MC_STATE_CLOSED_LOOP, "request at 1500 rpm");
+}
+
+static void test_a_failed_identification_should_not_keep_the_next_from_working(void **state)
+{
+    static simcore_t s;
+    mc_id_result_t r;
+    (void)state;
+    setup_motor(&s, 1.0, 1.0, 1.0, 1.0);
+    cl_event(&s, SIM_EV_LOCK_ROTOR, 0.0, 0.0);
+    identify(&s, 30.0);
+    cl_event(&s, SIM_EV_UNLOCK_ROTOR, 0.0, 0.0);
+    cl_run(&s, 0.2);
+    identify(&s, 30.0);
+    mc_identify_result(&s.mc, &r);
+    assert_int_equal(r.status, MC_ID_DONE);
+    assert_true(r.rs_uohm > 0U && r.ke_uv_per_rpm > 0U);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hurst_should_be_measured_within_its_figures_in_under_10_s),
+        cmocka_unit_test(test_a_cut_lead_should_end_in_open_phase),
+        cmocka_unit_test(test_a_locked_rotor_should_end_in_rotor_locked),
+        cmocka_unit_test(test_a_motor_too_small_for_the_current_resolution_should_end_in_too_small),
+        cmocka_unit_test(test_a_stop_during_identification_should_end_it_at_once),
+        cmocka_unit_test(test_a_fault_during_identification_should_end_in_fault),
+        cmocka_unit_test(test_a_request_while_running_should_be_refused_and_change_nothing),
+        cmocka_unit_test(test_a_failed_identification_should_not_keep_the_next_from_working),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+
+#else
+/* MC_IDENTIFY 0: the request fails at once, UNAVAILABLE, and nothing else changes. */
+static void test_identify_should_be_unavailable_in_this_build(void **state)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    mc_id_result_t r;
+    (void)state;
+    simcore_cfg_default(&cfg);
+    cl_setup(&s, &cfg, "hurst", "mclv");
+    simcore_request(&s, MC_REQUEST_IDENTIFY);
+    cl_run(&s, 0.1);
+    mc_identify_result(&s.mc, &r);
+    assert_int_equal(r.status, MC_ID_FAILED);
+    assert_int_equal(r.error, MC_ID_ERROR_UNAVAILABLE);
+    assert_int_equal(s.now.state, MC_STATE_STOPPED);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_identify_should_be_unavailable_in_this_build),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+#endif

@@ -1,0 +1,200 @@
+/* test_mc_id.c - the identification's sequence alone (mc_id.h): its math against double
+ * precision, and its stages fed synthetic windows. */
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mc.h"
+#include "mc_id.h"
+
+#if MC_IDENTIFY
+
+/* ---- the math -------------------------------------------------------------- */
+
+/* -ln(a), a in (0, 1] Q30, into Q24: within 2^-22 (4 counts) of the double. */
+static void test_neg_ln_should_match_double_over_its_range(void **state)
+{
+    (void)state;
+    double worst = 0.0;
+    uint32_t k, n = 0;
+    for (k = 1; k <= 200000U; k++) {
+        /* a dense log sweep from 2^-30 to 1, and the edges */
+        uint32_t a = (k == 200000U) ? (1UL << 30)
+                                    : (uint32_t)ldexp(1.0, 30 - (int)(30.0 * (double)(200000U - k) / 200000.0)) +
+                                          (k % 977U);
+        double want, got, err;
+        if (a > (1UL << 30)) {
+            a = 1UL << 30;
+        }
+        want = -log((double)a / 1073741824.0) * 16777216.0;
+        got = (double)mc_id_neg_ln_q24(a);
+        err = fabs(got - want);
+        worst = (err > worst) ? err : worst;
+        n++;
+    }
+    printf("measured: -ln Q24 over %u inputs: worst %.2f counts (2^-24)\n", (unsigned)n, worst);
+    assert_true(worst <= 4.0);
+    assert_int_equal(mc_id_neg_ln_q24(0U), 0U);               /* outside: 0 */
+    assert_int_equal(mc_id_neg_ln_q24((1UL << 30) + 1U), 0U); /* above 1 */
+    assert_int_equal(mc_id_neg_ln_q24(1UL << 30), 0U);        /* -ln 1 */
+}
+
+/* e^-x, x >= 0 Q24, into Q30: within 2^-28 (4 counts) plus 1e-7 relative. */
+static void test_exp_neg_should_match_double_over_its_range(void **state)
+{
+    (void)state;
+    double worst = 0.0;
+    uint32_t k;
+    for (k = 0; k <= 400000U; k++) {
+        uint32_t x = k * 1000U; /* 0 .. 23.8 */
+        double want = exp(-(double)x / 16777216.0) * 1073741824.0;
+        double err = fabs((double)mc_id_exp_neg_q30(x) - want) - 1e-7 * want;
+        worst = (err > worst) ? err : worst;
+    }
+    printf("measured: e^-x Q30 over 0..23.8: worst %.2f counts (2^-30) beyond 1e-7 relative\n", worst);
+    assert_true(worst <= 4.0);
+    assert_int_equal(mc_id_exp_neg_q30(0U), 1UL << 30);
+}
+
+/* ---- the stages fed windows of a resistive motor at rest -------------------- */
+
+static const mc_id_params_t params = {
+    MC_ID_I_Q15,
+    MC_ID_I_MIN_Q15,
+    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L),
+    (q15_t)(MC_VMAX_Q15 / 4),
+    MC_ID_WC_TS,
+    (uint16_t)MC_SLOW_STEP_PERIODS,
+    (int16_t)PWM_DUTY_MAX,
+    Q15(MC_SAMPLE_AT),
+    MC_ID_ACCEL,
+    MC_ID_STEP_MAX,
+    MC_ID_DAMP,
+};
+
+/* One window at the command's open-loop voltage on a motor of R (Z_FS
+ * units) at rest: i = v / R on d, iq on q; returns the stage after it. */
+static uint8_t feed(mc_id_t *id, mc_id_cmd_t *cmd, double r, double iq)
+{
+    mc_id_win_t w;
+    int32_t n = (int32_t)params.n;
+    double i = (double)cmd->v_d / r;
+    memset(&w, 0, sizeof w);
+    i = (i > 32767.0) ? 32767.0 : i;
+    w.i_d = (int32_t)i * n;
+    w.i_q = (int32_t)iq * n;
+    w.u_d = (int32_t)cmd->v_d * n;
+    w.v_d = w.u_d;
+    mc_id_window(id, &w, 30000, cmd);
+    return id->stage;
+}
+
+static void test_the_ramp_should_raise_the_voltage_until_the_target_current(void **state)
+{
+    static mc_id_t id;
+    mc_id_cmd_t cmd;
+    uint16_t k;
+    (void)state;
+    mc_id_begin(&id, &params, &cmd);
+    assert_int_equal(id.stage, MC_ID_STAGE_RAMP);
+    assert_true(cmd.open_loop);
+    assert_int_equal(cmd.dt_counts, 0); /* the dead time measured, not compensated */
+    for (k = 0; k < 1000U && id.stage == MC_ID_STAGE_RAMP; k++) {
+        (void)feed(&id, &cmd, 0.5, 0.0);
+    }
+    printf("measured: R = 0.5 Z_FS: ramp to %d (target %d) in %u windows\n", id.i_dc, params.i_target, k);
+    assert_int_equal(id.stage, MC_ID_STAGE_R);
+    assert_true(id.i_dc >= params.i_target - params.i_target / 8 &&
+                id.i_dc <= params.i_target + params.i_target / 8);
+}
+
+static void test_no_current_at_the_largest_voltage_should_be_an_open_circuit(void **state)
+{
+    static mc_id_t id;
+    mc_id_cmd_t cmd;
+    uint16_t k;
+    (void)state;
+    mc_id_begin(&id, &params, &cmd);
+    for (k = 0; k < 3000U && id.stage == MC_ID_STAGE_RAMP; k++) {
+        (void)feed(&id, &cmd, 1e9, 0.0);
+    }
+    assert_int_equal(id.stage, MC_ID_STAGE_FAILED);
+    assert_int_equal(id.error, MC_ID_ERROR_OPEN_CIRCUIT);
+    assert_true(cmd.end);
+    assert_true(cmd.v_d <= params.v_max); /* never past the limit */
+}
+
+static void test_a_small_current_at_the_largest_voltage_should_be_too_small(void **state)
+{
+    static mc_id_t id;
+    mc_id_cmd_t cmd;
+    uint16_t k;
+    double r = (double)params.v_max / ((double)params.i_min * 0.6); /* 0.6 of the least current */
+    (void)state;
+    mc_id_begin(&id, &params, &cmd);
+    for (k = 0; k < 3000U && id.stage == MC_ID_STAGE_RAMP; k++) {
+        (void)feed(&id, &cmd, r, 0.0);
+    }
+    assert_int_equal(id.error, MC_ID_ERROR_TOO_SMALL);
+}
+
+static void test_a_rotor_that_keeps_moving_should_hold_the_ramp_then_fail(void **state)
+{
+    static mc_id_t id;
+    mc_id_cmd_t cmd;
+    uint16_t k;
+    q15_t v_held = 0;
+    (void)state;
+    mc_id_begin(&id, &params, &cmd);
+    for (k = 0; k < 60U; k++) {
+        (void)feed(&id, &cmd, 0.5, 0.0);
+    }
+    v_held = cmd.v_d;
+    for (k = 0; k < 2000U && id.stage == MC_ID_STAGE_RAMP; k++) {
+        /* a q current that swings window to window: a turning rotor */
+        (void)feed(&id, &cmd, 0.5, (k % 2U) ? 2000.0 : -2000.0);
+        if (id.stage == MC_ID_STAGE_RAMP) {
+            assert_int_equal(cmd.v_d, v_held); /* held while it turns */
+        }
+    }
+    assert_int_equal(id.error, MC_ID_ERROR_ROTOR_MOVING);
+}
+
+static void test_a_failure_should_end_the_sequence_once(void **state)
+{
+    static mc_id_t id;
+    mc_id_cmd_t cmd;
+    (void)state;
+    mc_id_begin(&id, &params, &cmd);
+    mc_id_fail(&id, MC_ID_ERROR_TIMEOUT);
+    mc_id_fail(&id, MC_ID_ERROR_OPEN_PHASE); /* the first cause stays */
+    assert_int_equal(id.stage, MC_ID_STAGE_FAILED);
+    assert_int_equal(id.error, MC_ID_ERROR_TIMEOUT);
+    (void)feed(&id, &cmd, 0.5, 0.0); /* a window after it changes nothing */
+    assert_int_equal(id.stage, MC_ID_STAGE_FAILED);
+    assert_true(cmd.end);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_neg_ln_should_match_double_over_its_range),
+        cmocka_unit_test(test_exp_neg_should_match_double_over_its_range),
+        cmocka_unit_test(test_the_ramp_should_raise_the_voltage_until_the_target_current),
+        cmocka_unit_test(test_no_current_at_the_largest_voltage_should_be_an_open_circuit),
+        cmocka_unit_test(test_a_small_current_at_the_largest_voltage_should_be_too_small),
+        cmocka_unit_test(test_a_rotor_that_keeps_moving_should_hold_the_ramp_then_fail),
+        cmocka_unit_test(test_a_failure_should_end_the_sequence_once),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+
+#else
+int main(void)
+{
+    printf("MC_IDENTIFY 0: no sequence to test\n");
+    return 0;
+}
+#endif
