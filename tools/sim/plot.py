@@ -77,9 +77,15 @@ def zoom_window(d: Trace) -> tuple[Any, bool]:
     return np.flatnonzero(t >= t[-1] - 0.02), False
 
 
+# Background per state, by the core's names (firmware/mc.h MC_STATE_LIST).
+STATE_COLOURS = {"LOCK": "#fff2cc", "OPEN_LOOP": "#fde0c5", "CLOSED_LOOP": "#e2f0d9", "IDENTIFY": "#e4dcf2",
+                 "FAULT": "#f8cbcb"}
+
+
 def shade_states(ax: Axes, t: Any, state: Any) -> None:
-    """Light background per start-up / closed-loop / fault interval."""
-    colours = {2: "#fff2cc", 3: "#fde0c5", 4: "#e2f0d9", 5: "#f8cbcb"}
+    """Light background per start-up / closed-loop / identification / fault interval."""
+    names = mc_names.read()
+    colours = {names.states.index(n): c for n, c in STATE_COLOURS.items() if n in names.states}
     if t.size < 2:
         return
     change = np.flatnonzero(np.diff(state) != 0) + 1
@@ -126,7 +132,7 @@ def main(argv: list[str] | None = None) -> int:
     ax.set_ylim(lo - pad, hi + pad)
     ax.set_ylabel("speed [rpm]")
     ax.set_title("mechanical speed (background: yellow LOCK, orange OPEN_LOOP, "
-                 "green CLOSED_LOOP, red FAULT)", fontsize=9)
+                 "green CLOSED_LOOP, purple IDENTIFY, red FAULT)", fontsize=9)
     ax.legend(loc="upper left", fontsize=8, ncol=4)
     ax.grid(alpha=0.3)
 
