@@ -47,7 +47,6 @@ static const pi_params_t mc_pi_spd_params = {
     MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
 };
 
-
 static const fieldweak_params_t mc_fw_params = {
     MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM),
     MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM),
@@ -1753,7 +1752,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
 #define MC_ID_K_L ((int64_t)(MC_ID_Z_FS_ * MC_TS_S * 1e9 + 0.5))
 /* Td = sqrt(3)/2 v0 / vbus (V_FS / VBUS_FS) Ts: ns (v0, vbus in Q15) */
 #define MC_ID_K_DT                                                                                 \
-    ((int64_t)(0.8660254037844386 * MC_VOLTAGE_FULLSCALE_V / BOARD_VBUS_FULLSCALE_V * MC_TS_S *  \
+    ((int64_t)(0.8660254037844386 * MC_VOLTAGE_FULLSCALE_V / BOARD_VBUS_FULLSCALE_V * MC_TS_S *    \
                    1e9 +                                                                           \
                0.5))
 /* Ke = sqrt(3) E_phase / rpm: E = m / 2^19 V_FS, rpm = x 60 / (2^32 Ts p): microvolts per rpm */
@@ -1765,7 +1764,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
  * di = t / 32768 I_FS, alpha_e = accel 2 pi / (2^32 Ts^2): 1e-9 kg m^2 */
 #define MC_ID_K_J                                                                                  \
     ((int64_t)(0.75 * MOTOR_POLE_PAIRS * MOTOR_POLE_PAIRS * MC_VOLTAGE_FULLSCALE_V *               \
-                   BOARD_I_FULLSCALE_A * MC_TS_S * MC_TS_S * MC_TS_S * 35184372088832.0 /           \
+                   BOARD_I_FULLSCALE_A * MC_TS_S * MC_TS_S * MC_TS_S * 35184372088832.0 /          \
                    (39.47841760435743 * 32768.0) * 1e9 +                                           \
                0.5))
 
@@ -1800,7 +1799,7 @@ static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
 {
     int64_t c[8], big = 1;
     int64_t wn = MC_VEST_W_NEW, wo = MC_VEST_W_OLD; /* Q15 weights of u_n, u_o */
-    uint32_t nl = 0U, l = 0U;
+    uint32_t l = 0U;
     uint8_t k, sh = 0, it;
     for (k = 0; k < 8U; k++) {
         c[k] = id->l_c[ax][k];
@@ -1816,7 +1815,7 @@ static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
         /* the weighted voltage's correlations, then [c0; c4] = [c1 u1; c5 u2] [alpha; beta] */
         int64_t u1 = (wn * c[2] + wo * c[3]) >> 15, u2 = (wn * c[6] + wo * c[7]) >> 15;
         int64_t det = c[1] * u2 - c[5] * u1;
-        int64_t an = c[0] * u2 - c[4] * u1; /* alpha det */
+        int64_t an = c[0] * u2 - c[4] * u1;     /* alpha det */
         int64_t bn = c[1] * c[4] - c[5] * c[0]; /* beta det */
         uint32_t en, eo;
         if (det < 0) {
@@ -1828,7 +1827,7 @@ static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
             return 0U; /* not a decay (0 < alpha < 1, beta > 0): no inductance */
         }
         /* alpha in Q22 (an < 2^41): below 2^63 shifted */
-        nl = mc_id_neg_ln_q24((uint32_t)((an * ((int64_t)1 << 22) / det) << 8));
+        uint32_t nl = mc_id_neg_ln_q24((uint32_t)((an * ((int64_t)1 << 22) / det) << 8));
         if (nl == 0U) {
             return 0U;
         }
@@ -1905,8 +1904,8 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
      * ng m^2 (p cancels) */
     if (r->j_ng_m2 > 0U) {
         int64_t ke = r->ke_uv_per_rpm, half = id->lq_half;
-        r->lq_nh = mc_id_u32((int64_t)r->lq_nh + ke * ke * half * half * MC_ID_K_VIB /
-                                                      ((int64_t)r->j_ng_m2 * 65536));
+        r->lq_nh = mc_id_u32((int64_t)r->lq_nh +
+                             ke * ke * half * half * MC_ID_K_VIB / ((int64_t)r->j_ng_m2 * 65536));
     }
     r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
 }

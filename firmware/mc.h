@@ -106,7 +106,7 @@ typedef enum {
     X(LOCK)        /* outputs on, rotor aligned at a fixed angle with controlled current */        \
     X(OPEN_LOOP)   /* forced angle at constant acceleration, d/q current loops running */          \
     X(CLOSED_LOOP) /* sensorless: angle and speed from the estimator, speed loop running */        \
-    X(IDENTIFY)    /* outputs on, measuring the motor (MC_REQUEST_IDENTIFY); then STOPPED */      \
+    X(IDENTIFY)    /* outputs on, measuring the motor (MC_REQUEST_IDENTIFY); then STOPPED */       \
     X(FAULT)       /* outputs off, duties 50 %; left only by a START once the cause is gone */
 
 #define MC_STATE_ENUM_(name) MC_STATE_##name,
@@ -204,8 +204,8 @@ typedef struct {
     uint32_t j_ng_m2;       /* rotor + load inertia, 1e-9 kg m^2 (0 = not measured) */
     uint16_t deadtime_ns;   /* the inverter's effective dead-time voltage, as ns of the bus */
     /* additions */
-    uint32_t ld_nh, lq_nh;  /* d and q inductance, nH (the rotor aligned on d) */
-    uint8_t pole_pairs;     /* the pole pairs Ke and J were computed with (MOTOR_POLE_PAIRS) */
+    uint32_t ld_nh, lq_nh; /* d and q inductance, nH (the rotor aligned on d) */
+    uint8_t pole_pairs;    /* the pole pairs Ke and J were computed with (MOTOR_POLE_PAIRS) */
 } mc_id_result_t;
 
 /* ---- run-time gains -------------------------------------------------------- *
@@ -260,7 +260,7 @@ typedef struct {
     q15_t emf_ratio;        /* ... its back-EMF against the speed's, Q12 (smc.h) ... */
     q15_t speed_est;        /* ... and its speed, Q15 */
 #if MC_IDENTIFY
-    mc_id_win_t id;         /* IDENTIFY: the window's sums (mc_id.h) */
+    mc_id_win_t id; /* IDENTIFY: the window's sums (mc_id.h) */
 #endif
 } mc_slow_in_t;
 
@@ -395,25 +395,25 @@ typedef struct {
     bool dtm_pos;       /* the alpha sum was above its mean last window */
     bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
 
-    bool sums_on;          /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
-    uint8_t id_status;     /* mc_id_status_t, the interrupt's view */
-    uint16_t id_error;     /* MC_ID_ERROR_* of a run the interrupt ended */
+    bool sums_on;      /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
+    uint8_t id_status; /* mc_id_status_t, the interrupt's view */
+    uint16_t id_error; /* MC_ID_ERROR_* of a run the interrupt ended */
 #if MC_IDENTIFY
     /* IDENTIFY (mc_id.h): the interrupt's side ... */
-    mc_id_win_t id_win;    /* this window's sums */
-    uint32_t ol_inc;       /* the forced speed's change per period (the spin's) */
-    q15_t id_inj;          /* the injected square wave's amplitude, Q15 V_FS (0: none) */
-    uint8_t id_inj_q;      /* ... on q (else d) */
-    uint8_t id_half;       /* ... periods per half cycle */
-    uint8_t id_cnt;        /* ... periods into this half */
-    int8_t id_sign;        /* ... its sign in this period's command */
-    int8_t id_z;           /* ... in the previous period's */
-    int8_t id_z2;          /* ... in the one before */
-    uint32_t id_zh;        /* ... the signs of the commands before, one bit a period (1: +) */
-    q15_t id_i_prev;       /* the injected axis's current at the previous sample */
-    q15_t id_u_prev;       /* ... and the voltage commanded two periods ago */
-    bool id_open;          /* the last command was open loop */
-    bool id_pending;       /* CALIBRATE before IDENTIFY */
+    mc_id_win_t id_win; /* this window's sums */
+    uint32_t ol_inc;    /* the forced speed's change per period (the spin's) */
+    q15_t id_inj;       /* the injected square wave's amplitude, Q15 V_FS (0: none) */
+    uint8_t id_inj_q;   /* ... on q (else d) */
+    uint8_t id_half;    /* ... periods per half cycle */
+    uint8_t id_cnt;     /* ... periods into this half */
+    int8_t id_sign;     /* ... its sign in this period's command */
+    int8_t id_z;        /* ... in the previous period's */
+    int8_t id_z2;       /* ... in the one before */
+    uint32_t id_zh;     /* ... the signs of the commands before, one bit a period (1: +) */
+    q15_t id_i_prev;    /* the injected axis's current at the previous sample */
+    q15_t id_u_prev;    /* ... and the voltage commanded two periods ago */
+    bool id_open;       /* the last command was open loop */
+    bool id_pending;    /* CALIBRATE before IDENTIFY */
     /* ... and the slow step's: the sequence and its results */
     mc_id_t id;
 #endif

@@ -771,8 +771,7 @@ MC_CHECK(MC_ID_CURRENT_A, MC_ID_CURRENT_A > 0.0, "must be > 0");
  * and the injection swings a quarter of it on top: room below the trip */
 MC_CHECK_FOR(MC_ID_CURRENT_A, MC_OVERCURRENT_A, 1.6 * MC_ID_CURRENT_A < MC_OVERCURRENT_A,
              "1.6 x MC_ID_CURRENT_A must stay below the overcurrent trip");
-MC_CHECK(MC_ID_LOOP_BW_RAD_S,
-         MC_ID_LOOP_BW_RAD_S >= 200.0 && MC_ID_LOOP_BW_RAD_S * MC_TS_S <= 0.15,
+MC_CHECK(MC_ID_LOOP_BW_RAD_S, MC_ID_LOOP_BW_RAD_S >= 200.0 && MC_ID_LOOP_BW_RAD_S * MC_TS_S <= 0.15,
          "must be in 200 rad/s .. 0.15 x PWM_FREQUENCY_HZ");
 MC_CHECK(MC_ID_ACCEL_HZ_S, MC_ID_ACCEL_HZ_S >= 1.0 && MC_ID_ACCEL_HZ_S <= 10000.0,
          "must be in 1..10000 Hz/s (electrical)");
@@ -790,8 +789,7 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
 #define MC_ID_ACCEL ((uint32_t)(MC_ID_ACCEL_HZ_S * MC_TS_S * MC_TS_S * 4294967296.0 + 0.5))
 /* (the angle steps in 2^8 units before the shift: a 32-bit double holds them exactly, note 1) */
 #define MC_ID_STEP_MAX                                                                             \
-    ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 16777216.0)      \
-     << 8)
+    ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 16777216.0) << 8)
 /* the spin's damping (mc_id.c note 5): the forced speed moved by
  * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */
 #define MC_ID_DAMP_HZ 10.0

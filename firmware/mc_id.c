@@ -48,35 +48,37 @@
  */
 
 /* The sequence's own timing, in windows (1 ms at the default speed-loop rate). */
-#define ID_HALF_MIN        4U   /* periods per half of the injected square wave: 2.5 kHz at 20 kHz */
-#define ID_HALF_MAX        32U  /* ... at the longest */
-#define ID_L_WINDOWS       32U  /* windows of correlation for each L */
+#define ID_HALF_MIN        4U  /* periods per half of the injected square wave: 2.5 kHz at 20 kHz */
+#define ID_HALF_MAX        32U /* ... at the longest */
+#define ID_L_WINDOWS       32U /* windows of correlation for each L */
 #define ID_INJ_WINDOWS_MAX 200U /* to set the injection's amplitude */
 #define ID_SETTLE          4U   /* windows in a row within tolerance: settled */
 #define ID_V_SETTLE        32   /* ... a voltage moving less than this (Q15, window mean) */
 #define ID_R_SETTLE_MAX    300U /* windows for a level to settle, or the ramp's rotor to rest */
-#define ID_RAMP_WINDOWS_MAX 3000U /* windows the ramp takes at most (some 400 at a steady rotor) */
-#define ID_R_WINDOWS       100  /* windows each level is measured over */
-#define ID_MOVING_TRIES    8    /* levels measured again while the rotor swings */
-#define ID_R_BAND_TOL      20   /* the lower slope 1/20 steeper: the band */
-#define ID_R_MAX_Q16       (16L * 65536L) /* R at most 16 Z_FS */
-#define ID_V_START         ((q15_t)64)    /* the ramp's first voltage: 1/512 of V_FS */
-#define ID_E1              ((q15_t)6554)  /* |E| at the first speed: 0.2 V_FS */
-#define ID_E_MIN           ((q15_t)655)   /* less at the speed limit: no back-EMF */
-#define ID_HOLD_SETTLE     100U /* windows a hold waits before measuring */
-#define ID_HOLD_WINDOWS    200  /* windows it measures, at least ... */
-#define ID_HOLD_TURNS      20L  /* ... and electrical turns, ... */
-#define ID_HOLD_WINDOWS_MAX 3000 /* ... but no more windows than this */
+#define ID_RAMP_WINDOWS_MAX                                                                        \
+    3000U                       /* windows the ramp takes at most (some 400 at a steady rotor)     \
+                                 */
+#define ID_R_WINDOWS        100 /* windows each level is measured over */
+#define ID_MOVING_TRIES     8   /* levels measured again while the rotor swings */
+#define ID_R_BAND_TOL       20  /* the lower slope 1/20 steeper: the band */
+#define ID_R_MAX_Q16        (16L * 65536L) /* R at most 16 Z_FS */
+#define ID_V_START          ((q15_t)64)    /* the ramp's first voltage: 1/512 of V_FS */
+#define ID_E1               ((q15_t)6554)  /* |E| at the first speed: 0.2 V_FS */
+#define ID_E_MIN            ((q15_t)655)   /* less at the speed limit: no back-EMF */
+#define ID_HOLD_SETTLE      100U           /* windows a hold waits before measuring */
+#define ID_HOLD_WINDOWS     200            /* windows it measures, at least ... */
+#define ID_HOLD_TURNS       20L            /* ... and electrical turns, ... */
+#define ID_HOLD_WINDOWS_MAX 3000           /* ... but no more windows than this */
 #define ID_SPIN_WINDOWS_MAX 8000U
-#define ID_TWO_PI_Q12      25736L /* 2 pi x 4096 */
-#define ID_SPIN_START      20U  /* windows the loops settle at the spin's start */
-#define ID_JERK            32U  /* windows the spin's acceleration takes to change */
-#define ID_A_UNIT          32   /* the J fit's unit of acceleration: the spin's = 32 */
-#define ID_DAMP_LP         64   /* windows: the low-pass that finds the swing's mean */
-#define ID_DAMP_F          8    /* windows: the damping's own low-pass (a swing of a few
+#define ID_TWO_PI_Q12       25736L /* 2 pi x 4096 */
+#define ID_SPIN_START       20U    /* windows the loops settle at the spin's start */
+#define ID_JERK             32U    /* windows the spin's acceleration takes to change */
+#define ID_A_UNIT           32     /* the J fit's unit of acceleration: the spin's = 32 */
+#define ID_DAMP_LP          64     /* windows: the low-pass that finds the swing's mean */
+#define ID_DAMP_F                                                                                  \
+    8                           /* windows: the damping's own low-pass (a swing of a few           \
                                    windows' period would see the loop's delay) */
-#define ID_DAMP_ANGLE_MAX  16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
-
+#define ID_DAMP_ANGLE_MAX 16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
 
 #define N_ ((int32_t)id->p->n)
 
@@ -311,7 +313,7 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             /* the most the bus gives: measure at the current it drives */
             if (im < id->p->i_min) {
                 mc_id_fail(id, (im < id->p->i_min / 4) ? MC_ID_ERROR_OPEN_CIRCUIT
-                                                           : MC_ID_ERROR_TOO_SMALL);
+                                                       : MC_ID_ERROR_TOO_SMALL);
                 return;
             }
             id->sub = 1U;
@@ -330,7 +332,8 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
             /* 1/32 a window, 1/128 past half the target: the current lags by
              * L / R, up to tens of ms, and the target is passed by that lag
              * times the rate */
-            int32_t v = (int32_t)c->v_d + (int32_t)c->v_d / ((im < id->p->i_target / 2) ? 32 : 128) + 1;
+            int32_t v =
+                (int32_t)c->v_d + (int32_t)c->v_d / ((im < id->p->i_target / 2) ? 32 : 128) + 1;
             c->v_d = (q15_t)((v > id->p->v_max) ? id->p->v_max : v);
         }
         id->last = i;
@@ -364,7 +367,8 @@ static int32_t id_l_trap(const mc_id_t *id, uint8_t ax)
     const int32_t *c = id->l_c[ax];
     int32_t zm = c[0] / 2 + c[1] / 2;
     /* the interval's voltage: the two commands weighted as they act, 0.54 / 0.46 (Q15) */
-    int32_t zu = (int32_t)(((int64_t)c[2] * id->p->w_new + (int64_t)c[3] * (32768 - id->p->w_new)) >> 15);
+    int32_t zu =
+        (int32_t)(((int64_t)c[2] * id->p->w_new + (int64_t)c[3] * (32768 - id->p->w_new)) >> 15);
     return id_ratio(zu - (int32_t)(((int64_t)zm * id->r_q16) >> 16), c[0] - c[1], 12);
 }
 
@@ -411,8 +415,9 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
                         }
                         /* LQ, where LD reached its aim: q (alpha, phase A's
                          * current) is no inductance but a cut lead (note 6) */
-                        mc_id_fail(id, (swing < target / 16 || ax != 0U) ? MC_ID_ERROR_OPEN_PHASE
-                                                                         : MC_ID_ERROR_OUT_OF_RANGE);
+                        mc_id_fail(id, (swing < target / 16 || ax != 0U)
+                                           ? MC_ID_ERROR_OPEN_PHASE
+                                           : MC_ID_ERROR_OUT_OF_RANGE);
                         return;
                     }
                     c->inj_half = (uint8_t)(c->inj_half * 2U);
@@ -452,7 +457,8 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         id->inj_set = c->inj;
         c->inj = 0;
         c->inj_q = 1U;
-        c->v_q = q15_sat((int32_t)(((int64_t)id->r_q16 * (id->i_dc / 4)) >> 16) + (int32_t)((v0 * 18919L) >> 15));
+        c->v_q = q15_sat((int32_t)(((int64_t)id->r_q16 * (id->i_dc / 4)) >> 16) +
+                         (int32_t)((v0 * 18919L) >> 15));
         id_stage(id, MC_ID_STAGE_LQ);
         return;
     }
@@ -485,7 +491,8 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         c->v_q = 0;
         id_gains(id, c, id->l_q12, id->r_q16);
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
-        c->dt_counts = (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
+        c->dt_counts =
+            (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
         id->i_spin = (q15_t)(id->i_dc / 3);
         c->i_ref.d = id->i_spin;
         c->i_ref.q = 0;
@@ -495,7 +502,8 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     }
 }
 
-/* ---- R (note 4) -------------------------------------------------------------------------------- */
+/* ---- R (note 4) --------------------------------------------------------------------------------
+ */
 
 /* Open loop at 90 degrees, four levels of d voltage, each settled and then
  * measured over ID_R_WINDOWS windows: the ramp's (the target current), a
@@ -585,7 +593,8 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
             mc_id_fail(id, MC_ID_ERROR_OPEN_PHASE);
             return;
         }
-        if (id_ratio(dvm, dim, 16) - id_ratio(dvu, diu, 16) > id_ratio(dvu, diu, 16) / ID_R_BAND_TOL) {
+        if (id_ratio(dvm, dim, 16) - id_ratio(dvu, diu, 16) >
+            id_ratio(dvu, diu, 16) / ID_R_BAND_TOL) {
             dv = dvu; /* the lower half steeper: its lowest level in the band */
             di = diu;
         }
@@ -627,6 +636,7 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
     m2 = (uint32_t)(ed * ed) + (uint32_t)(eq * eq);
     m2 = q15_isqrt_u32(m2); /* up to 46341: past Q15 where both axes are near full scale */
     *mag = (q15_t)((m2 > 32767U) ? 32767U : m2);
+    /* cppcheck-suppress knownConditionTrueFalse ; it takes q15_isqrt_u32's result as 0 */
     if (*mag < 64) {
         *it = 0;
     } else {
@@ -685,7 +695,9 @@ static void id_damp(mc_id_t *id, const mc_id_win_t *w, q15_t mag, q15_t it, bool
         int32_t dev = sn * 64 - id->it_lp; /* Q15 x 64 */
         id->it_lp += dev / ID_DAMP_LP;
         ang = dev / 64;
-        ang = (ang > ID_DAMP_ANGLE_MAX) ? ID_DAMP_ANGLE_MAX : (ang < -ID_DAMP_ANGLE_MAX) ? -ID_DAMP_ANGLE_MAX : ang;
+        ang = (ang > ID_DAMP_ANGLE_MAX)    ? ID_DAMP_ANGLE_MAX
+              : (ang < -ID_DAMP_ANGLE_MAX) ? -ID_DAMP_ANGLE_MAX
+                                           : ang;
         id->ang_f += (ang * 16 - id->ang_f) / ID_DAMP_F;
         ang = id->ang_f / 16;
     } else {
@@ -778,7 +790,8 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                     id->m2 = m;
                     id->x2 = w->step;
                     /* |E| / speed at both speeds must agree (note 5) */
-                    if (id_abs((int32_t)(((int64_t)id->m1 * (int64_t)(id->x2 >> 8)) / (int64_t)(id->x1 >> 8)) -
+                    if (id_abs((int32_t)(((int64_t)id->m1 * (int64_t)(id->x2 >> 8)) /
+                                         (int64_t)(id->x1 >> 8)) -
                                id->m2) > id->m2 / 8) {
                         mc_id_fail(id, MC_ID_ERROR_NO_SYNC);
                         return;

@@ -19,9 +19,9 @@
  * Frame. The interrupt's d/q frame is the forced angle (mc_t.ol_angle),
  * standing at 90 degrees while the rotor stands, turning during the spin.
  * At 90 degrees d is the beta axis: phases B and C carry 0.87 of the d
- * current, phase A none (mc.c note 4's axis), and q is -alpha. Units: currents Q15 of BOARD_I_FULLSCALE_A, voltages Q15 of
- * MC_VOLTAGE_FULLSCALE_V (the applied phase amplitude), Z_FS = V_FS / I_FS
- * ohm for their ratio, angles per period in the open loop's 2^32 units.
+ * current, phase A none (mc.c note 4's axis), and q is -alpha. Units: currents Q15 of
+ * BOARD_I_FULLSCALE_A, voltages Q15 of MC_VOLTAGE_FULLSCALE_V (the applied phase amplitude), Z_FS =
+ * V_FS / I_FS ohm for their ratio, angles per period in the open loop's 2^32 units.
  */
 
 #include <stdbool.h>
@@ -33,19 +33,19 @@
 /* Why an identification failed (mc.h mc_id_result_t.error): */
 #define MC_ID_ERROR_LIST(X)                                                                        \
     X(NONE, 0)         /* none */                                                                  \
-    X(NOT_STOPPED, 1)  /* requested while not STOPPED: nothing done */                            \
+    X(NOT_STOPPED, 1)  /* requested while not STOPPED: nothing done */                             \
     X(ABORTED, 2)      /* a stop request (S2, STOP) ended it */                                    \
     X(FAULT, 3)        /* a fault of the core ended it (mc_status_t.fault says which) */           \
-    X(OPEN_CIRCUIT, 4) /* no current at the largest voltage: no motor, or its wires open */       \
+    X(OPEN_CIRCUIT, 4) /* no current at the largest voltage: no motor, or its wires open */        \
     X(OPEN_PHASE, 5)   /* current on one axis but not as commanded on the other: a phase open */   \
-    X(TOO_SMALL, 6)    /* the current reached is under 16 ADC codes: motor too small for the      \
-                          board's resolution (or MC_ID_CURRENT_A too low) */                      \
-    X(OUT_OF_RANGE, 7) /* R or L outside what the board can measure (R above 16 V_FS/I_FS, L      \
-                          beyond the injection's reach, a non-physical reading) */                \
-    X(ROTOR_MOVING, 8) /* the rotor turned while it should stand still */                        \
-    X(ROTOR_LOCKED, 9) /* no back-EMF while the current turned: rotor locked (or Ke too small) */ \
+    X(TOO_SMALL, 6)    /* the current reached is under 16 ADC codes: motor too small for the       \
+                          board's resolution (or MC_ID_CURRENT_A too low) */                       \
+    X(OUT_OF_RANGE, 7) /* R or L outside what the board can measure (R above 16 V_FS/I_FS, L       \
+                          beyond the injection's reach, a non-physical reading) */                 \
+    X(ROTOR_MOVING, 8) /* the rotor turned while it should stand still */                          \
+    X(ROTOR_LOCKED, 9) /* no back-EMF while the current turned: rotor locked (or Ke too small) */  \
     X(NO_SYNC, 10)     /* the rotor did not follow the turning current (or slipped poles) */       \
-    X(TIMEOUT, 11)     /* a stage did not settle within its time */                               \
+    X(TIMEOUT, 11)     /* a stage did not settle within its time */                                \
     X(UNAVAILABLE, 12) /* the build has no identification (UserParms.h MC_IDENTIFY 0) */
 
 #define MC_ID_ERROR_ENUM_(name, code) MC_ID_ERROR_##name = code,
@@ -54,19 +54,19 @@ enum { MC_ID_ERROR_LIST(MC_ID_ERROR_ENUM_) MC_ID_ERROR_COUNT };
 
 /* The sequence's stages (mc_id_t.stage), in order. */
 #define MC_ID_STAGE_LIST(X)                                                                        \
-    X(IDLE)     /* not running */                                                                  \
-    X(RAMP)     /* d voltage raised in open loop until the current reaches the target */          \
-    X(R)        /* open loop at four d voltages: R and the inverter's voltage error */            \
-    X(LD)       /* voltage injected on d, the d current held: Ld */                               \
-    X(LQ)       /* injected on q, with a quarter of the current on q: Lq */                        \
-    X(SPIN1)    /* the current vector turned faster: to the first speed */                        \
-    X(HOLD1)    /* ... held: the back-EMF at it */                                                \
-    X(SPIN2)    /* up to twice the first speed (the torque that accelerates) */                   \
-    X(HOLD2)    /* ... held: the back-EMF at it */                                                \
-    X(SPIN3)    /* back down to the first speed (the torque that decelerates) */                  \
-    X(SPIN4)    /* down to rest */                                                                 \
-    X(DONE)     /* finished: results valid */                                                      \
-    X(FAILED)   /* stopped with an error */
+    X(IDLE)   /* not running */                                                                    \
+    X(RAMP)   /* d voltage raised in open loop until the current reaches the target */             \
+    X(R)      /* open loop at four d voltages: R and the inverter's voltage error */               \
+    X(LD)     /* voltage injected on d, the d current held: Ld */                                  \
+    X(LQ)     /* injected on q, with a quarter of the current on q: Lq */                          \
+    X(SPIN1)  /* the current vector turned faster: to the first speed */                           \
+    X(HOLD1)  /* ... held: the back-EMF at it */                                                   \
+    X(SPIN2)  /* up to twice the first speed (the torque that accelerates) */                      \
+    X(HOLD2)  /* ... held: the back-EMF at it */                                                   \
+    X(SPIN3)  /* back down to the first speed (the torque that decelerates) */                     \
+    X(SPIN4)  /* down to rest */                                                                   \
+    X(DONE)   /* finished: results valid */                                                        \
+    X(FAILED) /* stopped with an error */
 
 #define MC_ID_STAGE_ENUM_(name) MC_ID_STAGE_##name,
 enum { MC_ID_STAGE_LIST(MC_ID_STAGE_ENUM_) MC_ID_STAGE_COUNT };
@@ -75,12 +75,12 @@ enum { MC_ID_STAGE_LIST(MC_ID_STAGE_ENUM_) MC_ID_STAGE_COUNT };
 /* What the sequence needs of the build (mc.c fills it from UserParms.h, the
  * board and the core's scales; mc_derived.h checks the settings). */
 typedef struct {
-    q15_t i_target; /* the DC current measured at (MC_ID_CURRENT_A) */
-    q15_t i_min;    /* the least it may be: 16 ADC codes */
-    q15_t v_max;    /* the largest DC voltage (70 % of the voltage limit) */
-    q15_t inj_max;  /* the largest injected amplitude (a quarter of it) */
-    q15_t wc_ts;    /* the loops' crossover times Ts (MC_ID_LOOP_BW_RAD_S), Q15 */
-    uint16_t n;     /* periods per window (MC_SLOW_STEP_PERIODS) */
+    q15_t i_target;    /* the DC current measured at (MC_ID_CURRENT_A) */
+    q15_t i_min;       /* the least it may be: 16 ADC codes */
+    q15_t v_max;       /* the largest DC voltage (70 % of the voltage limit) */
+    q15_t inj_max;     /* the largest injected amplitude (a quarter of it) */
+    q15_t wc_ts;       /* the loops' crossover times Ts (MC_ID_LOOP_BW_RAD_S), Q15 */
+    uint16_t n;        /* periods per window (MC_SLOW_STEP_PERIODS) */
     int16_t duty_max;  /* PWM_DUTY_MAX: the dead time in duty counts */
     q15_t w_new;       /* MC_SAMPLE_AT: the share of a sample interval the last command acts */
     uint32_t accel;    /* the spin's acceleration, 2^32 a turn per period per period */
@@ -91,12 +91,12 @@ typedef struct {
 
 /* What the interrupt summed over one window (MC_SLOW_STEP_PERIODS periods). */
 typedef struct {
-    int32_t v_d;  /* applied voltage on d (the modelled one, mc.c v_hist), sum, Q15 V_FS */
-    int32_t i_d;  /* measured current on d, sum, Q15 I_FS */
-    int32_t i_q;  /* ... on q */
-    int32_t u_d;  /* the current loops' outputs (their voltage in the frame), sums */
-    int32_t u_q;  /*  */
-    int32_t v_q;  /* applied voltage on q, sum */
+    int32_t v_d; /* applied voltage on d (the modelled one, mc.c v_hist), sum, Q15 V_FS */
+    int32_t i_d; /* measured current on d, sum, Q15 I_FS */
+    int32_t i_q; /* ... on q */
+    int32_t u_d; /* the current loops' outputs (their voltage in the frame), sums */
+    int32_t u_q; /*  */
+    int32_t v_q; /* applied voltage on q, sum */
     /* the injection (mc_id.c note 2), on the injected axis: sums of z i_n,
      * z i_n-1, z u_n, z u_o (z the injected wave over the sample interval,
      * +-1 Q15; u_n, u_o the voltages of the last two periods, which act over
@@ -127,17 +127,17 @@ typedef struct {
  * mc_identify_result from the main loop once status is final). */
 typedef struct {
     const mc_id_params_t *p;
-    uint8_t stage;      /* MC_ID_STAGE_* */
-    uint8_t error;      /* MC_ID_ERROR_* (mc.h) */
-    uint16_t wins;      /* windows in this stage */
-    uint8_t sub;        /* the stage's step: level, injection setting, ... */
-    uint8_t ok;         /* consecutive settled windows */
-    uint8_t tries;      /* R levels measured again (the rotor still swinging) */
-    mc_id_cmd_t cmd;    /* what the interrupt does now */
-    int32_t last;       /* the previous window's value the stage watches */
-    int32_t acc[5];     /* the stage's sums over its measuring windows */
-    int32_t lo, hi;     /* smallest and largest window value in the measurement */
-    q15_t i_dc;         /* RAMP, LD, LQ: the d current reached in open loop */
+    uint8_t stage;   /* MC_ID_STAGE_* */
+    uint8_t error;   /* MC_ID_ERROR_* (mc.h) */
+    uint16_t wins;   /* windows in this stage */
+    uint8_t sub;     /* the stage's step: level, injection setting, ... */
+    uint8_t ok;      /* consecutive settled windows */
+    uint8_t tries;   /* R levels measured again (the rotor still swinging) */
+    mc_id_cmd_t cmd; /* what the interrupt does now */
+    int32_t last;    /* the previous window's value the stage watches */
+    int32_t acc[5];  /* the stage's sums over its measuring windows */
+    int32_t lo, hi;  /* smallest and largest window value in the measurement */
+    q15_t i_dc;      /* RAMP, LD, LQ: the d current reached in open loop */
     /* results, internal units (mc_id.c note 1) */
     int32_t lv[3], li[3]; /* R: sums of v and i over the measuring windows of each level */
     int32_t iq_top;       /* R: the q current's sum at the top level (a cut lead, mc_id.c note 6) */
@@ -160,14 +160,14 @@ typedef struct {
      * (ID_A_UNIT = the spin's), fitted over the ramps between the speeds */
     int32_t j_n, j_a, j_aa, j_i, j_ia; /* windows, sums of a, a^2, i, i a */
     int32_t a_prev;                    /* the acceleration that acted over the last window */
-    uint32_t accel;       /* the spin's acceleration, 2^32 a turn per period per period */
-    int32_t goal;         /* the acceleration ramp eases to */
-    int32_t ramp;         /* the spin's acceleration without the damping's */
-    int32_t damp;         /* the damping's forced-speed offset now, 2^32 a turn per period */
-    int32_t damp_goal;    /* ... and the one this window's swing asks */
-    int32_t it_lp;        /* sin(load angle)'s low-pass (the swing's mean), Q15 x 64 */
-    int32_t ang_f;        /* the swing's angle, low-passed (ID_DAMP_F), rad Q15 x 16 */
-    q15_t i_spin;         /* the spin's d current */
+    uint32_t accel;    /* the spin's acceleration, 2^32 a turn per period per period */
+    int32_t goal;      /* the acceleration ramp eases to */
+    int32_t ramp;      /* the spin's acceleration without the damping's */
+    int32_t damp;      /* the damping's forced-speed offset now, 2^32 a turn per period */
+    int32_t damp_goal; /* ... and the one this window's swing asks */
+    int32_t it_lp;     /* sin(load angle)'s low-pass (the swing's mean), Q15 x 64 */
+    int32_t ang_f;     /* the swing's angle, low-passed (ID_DAMP_F), rad Q15 x 16 */
+    q15_t i_spin;      /* the spin's d current */
 } mc_id_t;
 
 /* Starts the sequence (the core is entering MC_STATE_IDENTIFY, offsets

@@ -223,8 +223,7 @@ static uint8_t set_identify(x2c_t *x, int16_t on)
         }
         return X2C_ERR_OK;
     }
-    if (st.state != MC_STATE_STOPPED ||
-        (x->may_start != NULL && !x->may_start(x->may_start_ctx))) {
+    if (st.state != MC_STATE_STOPPED || (x->may_start != NULL && !x->may_start(x->may_start_ctx))) {
         return X2C_ERR_STATE;
     }
     motor_request(MC_REQUEST_IDENTIFY);

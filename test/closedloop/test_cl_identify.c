@@ -39,8 +39,9 @@ static void expect_failure(simcore_t *s, unsigned error, mc_state_t state, const
 {
     mc_id_result_t r;
     mc_identify_result(&s->mc, &r);
-    printf("measured: %s: %s, error %s, state %s\n", what, (r.status == MC_ID_FAILED) ? "FAILED" : "not failed",
-           mc_id_error_name(r.error), mc_state_name(s->now.state));
+    printf("measured: %s: %s, error %s, state %s\n", what,
+           (r.status == MC_ID_FAILED) ? "FAILED" : "not failed", mc_id_error_name(r.error),
+           mc_state_name(s->now.state));
     assert_int_equal(r.status, MC_ID_FAILED);
     assert_int_equal(r.error, error);
     assert_int_equal(s->now.state, state);
@@ -61,9 +62,11 @@ static void test_hurst_should_be_measured_within_its_figures_in_under_10_s(void 
     t = identify(&s, 30.0);
     mc_identify_result(&s.mc, &r);
     simcore_identify_errors(&s, &r, &e);
-    printf("measured: Hurst: %.2f s; R %+.2f %%, Ld %+.2f %%, Lq %+.2f %%, L %+.2f %%, Ke %+.2f %%, J %+.2f %%, "
+    printf("measured: Hurst: %.2f s; R %+.2f %%, Ld %+.2f %%, Lq %+.2f %%, L %+.2f %%, Ke %+.2f "
+           "%%, J %+.2f %%, "
            "dead time %+.2f %%; peak phase current %.2f A (MC_ID_CURRENT_A %.2f A)\n",
-           t, e.rs, e.ld, e.lq, e.ls, e.ke, e.j, e.deadtime, s.log.i_peak_a, (double)MC_ID_CURRENT_A);
+           t, e.rs, e.ld, e.lq, e.ls, e.ke, e.j, e.deadtime, s.log.i_peak_a,
+           (double)MC_ID_CURRENT_A);
     assert_int_equal(r.status, MC_ID_DONE);
     assert_int_equal(s.now.state, MC_STATE_STOPPED);
     assert_false(s.now.outputs_on);
@@ -131,7 +134,8 @@ static void test_a_stop_during_identification_should_end_it_at_once(void **state
     simcore_request(&s, MC_REQUEST_STOP);
     simcore_step(&s);
     simcore_step(&s);
-    printf("measured: STOP in IDENTIFY: outputs off %.0f us after the request\n", (s.rig.t - t_stop) * 1e6);
+    printf("measured: STOP in IDENTIFY: outputs off %.0f us after the request\n",
+           (s.rig.t - t_stop) * 1e6);
     expect_failure(&s, MC_ID_ERROR_ABORTED, MC_STATE_STOPPED, "stop at 1.5 s");
 }
 

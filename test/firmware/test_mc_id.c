@@ -21,9 +21,11 @@ static void test_neg_ln_should_match_double_over_its_range(void **state)
     uint32_t k, n = 0;
     for (k = 1; k <= 200000U; k++) {
         /* a dense log sweep from 2^-30 to 1, and the edges */
-        uint32_t a = (k == 200000U) ? (1UL << 30)
-                                    : (uint32_t)ldexp(1.0, 30 - (int)(30.0 * (double)(200000U - k) / 200000.0)) +
-                                          (k % 977U);
+        uint32_t a =
+            (k == 200000U)
+                ? (1UL << 30)
+                : (uint32_t)ldexp(1.0, 30 - (int)(30.0 * (double)(200000U - k) / 200000.0)) +
+                      (k % 977U);
         double want, got, err;
         if (a > (1UL << 30)) {
             a = 1UL << 30;
@@ -53,7 +55,8 @@ static void test_exp_neg_should_match_double_over_its_range(void **state)
         double err = fabs((double)mc_id_exp_neg_q30(x) - want) - 1e-7 * want;
         worst = (err > worst) ? err : worst;
     }
-    printf("measured: e^-x Q30 over 0..23.8: worst %.2f counts (2^-30) beyond 1e-7 relative\n", worst);
+    printf("measured: e^-x Q30 over 0..23.8: worst %.2f counts (2^-30) beyond 1e-7 relative\n",
+           worst);
     assert_true(worst <= 4.0);
     assert_int_equal(mc_id_exp_neg_q30(0U), 1UL << 30);
 }
@@ -104,7 +107,8 @@ static void test_the_ramp_should_raise_the_voltage_until_the_target_current(void
     for (k = 0; k < 1000U && id.stage == MC_ID_STAGE_RAMP; k++) {
         (void)feed(&id, &cmd, 0.5, 0.0);
     }
-    printf("measured: R = 0.5 Z_FS: ramp to %d (target %d) in %u windows\n", id.i_dc, params.i_target, k);
+    printf("measured: R = 0.5 Z_FS: ramp to %d (target %d) in %u windows\n", id.i_dc,
+           params.i_target, k);
     assert_int_equal(id.stage, MC_ID_STAGE_R);
     assert_true(id.i_dc >= params.i_target - params.i_target / 8 &&
                 id.i_dc <= params.i_target + params.i_target / 8);

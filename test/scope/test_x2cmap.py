@@ -1,6 +1,7 @@
 """an1078-x2cmap on the built simulator: the map holds exactly the whitelist's rows
 (firmware/x2cscope/x2c_vars.h: motor.<path> read-only, x2c.tune.<field> tunable, x2c.id.<field>
-the identification's result, read-only) in the target's 16-bit window, with the XC16 type of each width; it loads as pyx2cscope loads it
+the identification's result, read-only) in the target's 16-bit window, with the XC16 type of
+each width; it loads as pyx2cscope loads it
 (PyYAML's FullLoader and a !VariableInfo constructor; pyx2cscope itself is not imported); and
 the tool refuses, in one line, an ELF without the table, a table whose rows are not 80 bytes,
 and an existing output without --force.

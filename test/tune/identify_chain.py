@@ -109,7 +109,8 @@ def identify(conf: dict[str, Any], m: Motor, out: str) -> str:
 
 def profile(conf: dict[str, Any], toml: str, header: str) -> float:
     """Step 2: tools/tune; the rated speed the profile was made for."""
-    text = open(toml, encoding="utf-8").read()
+    with open(toml, encoding="utf-8") as f:
+        text = f.read()
     rated = float(re.search(r'rated_speed = "([\d.]+) rpm"', text).group(1))  # type: ignore[union-attr]
     for _ in range(2):
         p = subprocess.run([conf["tune"], "--no-compile", "-o", header, toml], capture_output=True, text=True,
@@ -177,7 +178,8 @@ def chain(conf: dict[str, Any], m: Motor, out: str) -> None:
     toml = identify(conf, m, out)
     header = os.path.join(out, f"motor_{m.name}.h")
     rated = profile(conf, toml, header)
-    text = open(toml, encoding="utf-8").read()
+    with open(toml, encoding="utf-8") as f:
+        text = f.read()
     ke = float(re.search(r'back_emf = "([\d.e+-]+) V/krpm"', text).group(1))  # type: ignore[union-attr]
     exe = os.path.join(out, f"sim_{m.name}")
     build(conf, header, exe)

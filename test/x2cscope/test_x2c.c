@@ -423,19 +423,19 @@ static void test_writes_other_than_a_whole_tunable_should_be_refused(void **stat
         const uint8_t *data;
         uint8_t n;
     } cases[] = {
-        {RIG_MOTOR(&rig, i_ref.q), 2, two, 2},                /* read-only */
-        {RIG_MOTOR(&rig, state), 2, two, 2},                  /* read-only */
-        {RIG_MOTOR(&rig, req_posted[0]), 1, two, 1},          /* not exported */
-        {RIG_TUNE(&rig, cur_kp), 1, two, 1},                  /* half of it */
-        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 1, two, 1}, /* its other half */
-        {RIG_TUNE(&rig, cur_kp), 2, four, 4},                 /* two tunables */
-        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 2, two, 2}, /* odd address */
-        {RIG_TUNE(&rig, cur_kp), 3, four, 3},                 /* width 3 */
-        {RIG_TUNE(&rig, cur_kp), 4, two, 2},                  /* not whole longs */
-        {RIG_SCOPE(&rig), 1, two, 1},                         /* the scope's buffer */
+        {RIG_MOTOR(&rig, i_ref.q), 2, two, 2},                  /* read-only */
+        {RIG_MOTOR(&rig, state), 2, two, 2},                    /* read-only */
+        {RIG_MOTOR(&rig, req_posted[0]), 1, two, 1},            /* not exported */
+        {RIG_TUNE(&rig, cur_kp), 1, two, 1},                    /* half of it */
+        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 1, two, 1},   /* its other half */
+        {RIG_TUNE(&rig, cur_kp), 2, four, 4},                   /* two tunables */
+        {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 2, two, 2},   /* odd address */
+        {RIG_TUNE(&rig, cur_kp), 3, four, 3},                   /* width 3 */
+        {RIG_TUNE(&rig, cur_kp), 4, two, 2},                    /* not whole longs */
+        {RIG_SCOPE(&rig), 1, two, 1},                           /* the scope's buffer */
         {(uint16_t)(RIG_TUNE(&rig, identify) + 2U), 2, two, 2}, /* past the tunables */
-        {RIG_ID(&rig, status), 1, two, 1},                    /* the result: read-only */
-        {RIG_ID(&rig, rs_uohm), 4, four, 4},                  /* the result: read-only */
+        {RIG_ID(&rig, status), 1, two, 1},                      /* the result: read-only */
+        {RIG_ID(&rig, rs_uohm), 4, four, 4},                    /* the result: read-only */
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rig_snap_t before;
@@ -695,7 +695,8 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(test_run_should_start_and_stop_like_s2_and_follow_its_guard, setup),
         cmocka_unit_test_setup(test_identify_should_request_a_measurement_from_stopped_only, setup),
-        cmocka_unit_test_setup(test_the_identification_result_should_read_as_the_core_reports_it, setup),
+        cmocka_unit_test_setup(test_the_identification_result_should_read_as_the_core_reports_it,
+                               setup),
         cmocka_unit_test_setup(test_writes_other_than_a_whole_tunable_should_be_refused, setup),
         cmocka_unit_test_setup(test_scope_should_sample_until_full_and_report_its_state, setup),
         cmocka_unit_test_setup(test_scope_configurations_outside_the_rules_should_be_refused,

@@ -57,8 +57,9 @@ static void vec_math(void)
         if (k < 32U) {
             x = (uint32_t)1 << k; /* every power of two, 1 .. 2^31 */
         } else if (k < 40U) {
-            static const uint32_t edges[8] = {0UL, 1UL, 0xFFFFFFUL, 0x1000000UL, 0x1000001UL,
-                                              0x7FFFFFFFUL, 0xFFFFFFFEUL, 0xFFFFFFFFUL};
+            static const uint32_t edges[8] = {0UL,          1UL,         0xFFFFFFUL,
+                                              0x1000000UL,  0x1000001UL, 0x7FFFFFFFUL,
+                                              0xFFFFFFFEUL, 0xFFFFFFFFUL};
             x = edges[k - 32U];
         } else {
             x = vec_rand_u32() >> (vec_rand_u16() % 24U);

@@ -138,7 +138,8 @@ def read_result(t: x2c.Target, vs: dict[str, Var]) -> Result:
 
 
 def run_identification(t: x2c.Target, vs: dict[str, Var], names: mc_names.McNames, timeout: float,
-                       clock: Callable[[], float] = time.monotonic, sleep: Callable[[float], None] = time.sleep) -> None:
+                       clock: Callable[[], float] = time.monotonic,
+                       sleep: Callable[[float], None] = time.sleep) -> None:
     """Starts one identification and waits until the core is back in STOPPED (or FAULT) with a
     final status."""
     stopped, fault = names.states.index("STOPPED"), names.states.index("FAULT")

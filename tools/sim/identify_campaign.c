@@ -34,8 +34,8 @@
 #define SPAN        20.0
 #define T_REQUEST   0.05
 #define T_LIMIT     40.0
-#define ENV_R       5.0  /* per cent */
-#define ENV_L       5.0  /* Ld, Lq and their mean */
+#define ENV_R       5.0 /* per cent */
+#define ENV_L       5.0 /* Ld, Lq and their mean */
 #define ENV_KE      3.0
 #define ENV_J       20.0
 #define ENV_DT      15.0
@@ -138,7 +138,8 @@ static int run_one(const draw_t *d, outcome_t *o, bool verbose)
     } else if (outside(o->e.rs, ENV_R)) {
         snprintf(o->why, sizeof(o->why), "R %+.2f %%", o->e.rs);
     } else if (outside(o->e.ld, ENV_L) || outside(o->e.lq, ENV_L) || outside(o->e.ls, ENV_L)) {
-        snprintf(o->why, sizeof(o->why), "L %+.2f %% (Ld %+.2f, Lq %+.2f)", o->e.ls, o->e.ld, o->e.lq);
+        snprintf(o->why, sizeof(o->why), "L %+.2f %% (Ld %+.2f, Lq %+.2f)", o->e.ls, o->e.ld,
+                 o->e.lq);
     } else if (outside(o->e.ke, ENV_KE)) {
         snprintf(o->why, sizeof(o->why), "Ke %+.2f %%", o->e.ke);
     } else if (outside(o->e.j, ENV_J)) {
@@ -152,28 +153,32 @@ static int run_one(const draw_t *d, outcome_t *o, bool verbose)
     }
     if (verbose) {
         simcore_print_identify(&s, stdout);
-        printf("   time %.2f s, peak phase current %.2f A (MC_ID_CURRENT_A %.2f A)\n", o->t_s, o->i_peak,
-               (double)MC_ID_CURRENT_A);
+        printf("   time %.2f s, peak phase current %.2f A (MC_ID_CURRENT_A %.2f A)\n", o->t_s,
+               o->i_peak, (double)MC_ID_CURRENT_A);
     }
     return 0;
 }
 
 static void print_header(void)
 {
-    printf("seed,rs_scale,l_scale,ke_scale,j_scale,deadtime_us,inverter,status,error,e_rs_pct,e_ld_pct,"
+    printf("seed,rs_scale,l_scale,ke_scale,j_scale,deadtime_us,inverter,status,error,e_rs_pct,e_ld_"
+           "pct,"
            "e_lq_pct,e_ls_pct,e_ke_pct,e_j_pct,e_dt_pct,t_s,i_peak_a,result,why\n");
 }
 
 static void print_row(const draw_t *d, const outcome_t *o)
 {
     static const char *const SHAPES[] = {"linear", "hard", "ripple"};
-    printf("%lu,%.4f,%.4f,%.4f,%.4f,%.3f,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s,%s\n",
+    printf("%lu,%.4f,%.4f,%.4f,%.4f,%.3f,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s,%"
+           "s\n",
            (unsigned long)d->seed, d->cfg.rs_scale, d->cfg.l_scale, d->cfg.ke_scale, d->cfg.j_scale,
            d->cfg.deadtime_s * 1e6,
            (d->cfg.inv.model == SIM_INV_SWITCHING) ? "switching" : SHAPES[d->cfg.inv.dt_shape % 3],
-           (o->r.status == MC_ID_DONE) ? "done" : (o->r.status == MC_ID_FAILED) ? "failed" : "none",
-           mc_id_error_name(o->r.error), o->e.rs, o->e.ld, o->e.lq, o->e.ls, o->e.ke, o->e.j, o->e.deadtime,
-           o->t_s, o->i_peak, o->result, o->why);
+           (o->r.status == MC_ID_DONE)     ? "done"
+           : (o->r.status == MC_ID_FAILED) ? "failed"
+                                           : "none",
+           mc_id_error_name(o->r.error), o->e.rs, o->e.ld, o->e.lq, o->e.ls, o->e.ke, o->e.j,
+           o->e.deadtime, o->t_s, o->i_peak, o->result, o->why);
 }
 
 /* The distribution of one error over the motors that finished: max |e|,
@@ -198,7 +203,9 @@ static void summary_line(const char *name, double *v, int n, double lim)
     }
     qsort(a, (size_t)n, sizeof(double), cmp_double);
     qsort(v, (size_t)n, sizeof(double), cmp_double);
-    fprintf(stderr, "identify_campaign:   %-9s |e| max %6.2f %%, p95 %6.2f %%, median e %+6.2f %%; outside +-%g %%: %d\n",
+    fprintf(stderr,
+            "identify_campaign:   %-9s |e| max %6.2f %%, p95 %6.2f %%, median e %+6.2f %%; outside "
+            "+-%g %%: %d\n",
             name, a[n - 1], a[(int)ceil(0.95 * n) - 1], v[n / 2], lim, out);
     free(a);
 }
@@ -231,11 +238,12 @@ static const sim_opt_t OPTS[] = {
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: identify_campaign [--motor NAME] [--board NAME] (--seed N | --from N --count N\n"
-               "                         [--pass-min PCT])\n"
-               "  one CSV row per motor on stdout, the distribution on stderr (docs/identify.md);\n"
-               "  exit status 1 if a motor failed (--pass-min: if fewer passed, or one was not\n"
-               "  identified)\n");
+    fprintf(
+        f, "usage: identify_campaign [--motor NAME] [--board NAME] (--seed N | --from N --count N\n"
+           "                         [--pass-min PCT])\n"
+           "  one CSV row per motor on stdout, the distribution on stderr (docs/identify.md);\n"
+           "  exit status 1 if a motor failed (--pass-min: if fewer passed, or one was not\n"
+           "  identified)\n");
     sim_opt_usage(f, OPTS, N_OPTS);
 }
 
@@ -337,8 +345,10 @@ int main(int argc, char **argv)
             done++;
         }
     }
-    fprintf(stderr, "identify_campaign: %lld motors, %d identified, %d passed, %d failed (envelope: R, L %g %%, "
-                    "Ke %g %%, J %g %%, dead time %g %%)\n",
+    fprintf(stderr,
+            "identify_campaign: %lld motors, %d identified, %d passed, %d failed (envelope: R, L "
+            "%g %%, "
+            "Ke %g %%, J %g %%, dead time %g %%)\n",
             count, done, (int)count - failed, failed, ENV_R, ENV_KE, ENV_J, ENV_DT);
     summary_line("R", e[0], done, ENV_R);
     summary_line("L", e[1], done, ENV_L);
@@ -352,8 +362,8 @@ int main(int argc, char **argv)
     }
     if (pass_min < 100.0) {
         double pct = 100.0 * (double)(count - failed) / (double)count;
-        fprintf(stderr, "identify_campaign: %.1f %% inside the envelope (--pass-min %g %%)%s\n", pct, pass_min,
-                (done < (int)count) ? "; a motor was not identified" : "");
+        fprintf(stderr, "identify_campaign: %.1f %% inside the envelope (--pass-min %g %%)%s\n",
+                pct, pass_min, (done < (int)count) ? "; a motor was not identified" : "");
         return (pct < pass_min || done < (int)count) ? 1 : 0;
     }
     return (failed > 0) ? 1 : 0;

@@ -3,8 +3,8 @@
  * has no use for the strings. */
 #include "mc.h"
 
-#define MC_STATE_NAME_(name)       #name,
-#define MC_FAULT_NAME_(name, code) #name,
+#define MC_STATE_NAME_(name)          #name,
+#define MC_FAULT_NAME_(name, code)    #name,
 #define MC_ID_ERROR_NAME_(name, code) #name,
 
 const char *mc_state_name(int state)

@@ -504,9 +504,9 @@ void simcore_print_identify(const simcore_t *s, FILE *f)
         return;
     }
     fprintf(f, "   identification            %s",
-            (r.status == MC_ID_DONE)      ? "done"
-            : (r.status == MC_ID_FAILED)  ? "FAILED"
-                                          : "running");
+            (r.status == MC_ID_DONE)     ? "done"
+            : (r.status == MC_ID_FAILED) ? "FAILED"
+                                         : "running");
     if (r.status == MC_ID_FAILED) {
         fprintf(f, ", error %u (%s)\n", (unsigned)r.error, mc_id_error_name(r.error));
         return;
