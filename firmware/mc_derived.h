@@ -783,8 +783,12 @@ MC_CHECK_FOR(MC_ID_SPEED_MAX_RPM, MC_SPEED_FULLSCALE_RPM,
 /* the sequence's parameters (mc.c mc_id_params, mc_id.h) */
 #define MC_ID_I_Q15     MC_Q15_AMPS(MC_ID_CURRENT_A)
 #define MC_ID_I_MIN_Q15 ((q15_t)(16L << (16 - BOARD_ADC_BITS))) /* 16 ADC codes */
+/* a current set too small is a mistake; the profile's, when the motor is small for the
+ * board, only makes the identification end TOO_SMALL (the profile itself is sound) */
+#if MC_IDENTIFY && !defined(MC_ID_CURRENT_DEFAULT)
 MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - BOARD_ADC_BITS)),
              "must be at least 32 ADC codes of current");
+#endif
 #define MC_ID_WC_TS Q15(MC_ID_LOOP_BW_RAD_S *MC_TS_S)
 #define MC_ID_ACCEL ((uint32_t)(MC_ID_ACCEL_HZ_S * MC_TS_S * MC_TS_S * 4294967296.0 + 0.5))
 /* (the angle steps in 2^8 units before the shift: a 32-bit double holds them exactly, note 1) */

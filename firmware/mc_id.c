@@ -691,7 +691,7 @@ static void id_damp(mc_id_t *id, const mc_id_win_t *w, q15_t mag, q15_t it, bool
     int32_t lim = (int32_t)(w->step / 2U);
     int32_t ang = 0;
     sn = (sn > 32767L) ? 32767L : (sn < -32767L) ? -32767L : sn;
-    if (on && mag >= 4 * ID_E_MIN) {
+    if (on && mag >= ID_E_MIN) {
         int32_t dev = sn * 64 - id->it_lp; /* Q15 x 64 */
         id->it_lp += dev / ID_DAMP_LP;
         ang = dev / 64;
