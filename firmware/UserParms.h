@@ -296,7 +296,8 @@
  * profile's MOTOR_CURRENT_MAX_A, or less where 1.6 times that would come
  * within 5 % of the trip. */
 #ifndef MC_ID_CURRENT_A
-#define MC_ID_CURRENT_DEFAULT 1 /* the profile's, not set: a small motor fails TOO_SMALL at run time */
+#define MC_ID_CURRENT_DEFAULT                                                                      \
+    1 /* the profile's, not set: a small motor fails TOO_SMALL at run time */
 #define MC_ID_CURRENT_A                                                                            \
     ((1.6 * MOTOR_CURRENT_MAX_A < 0.95 * MC_OVERCURRENT_A) ? MOTOR_CURRENT_MAX_A                   \
                                                            : 0.95 * MC_OVERCURRENT_A / 1.6)

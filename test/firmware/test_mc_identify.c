@@ -46,7 +46,8 @@ static void cl_start_and_reach(simcore_t *s, double rpm, double max_s)
             t_in = -1.0;
         }
     }
-    fail_msg("%.0f rpm not reached within %.1f s: state %s", rpm, max_s, mc_state_name(s->now.state));
+    fail_msg("%.0f rpm not reached within %.1f s: state %s", rpm, max_s,
+             mc_state_name(s->now.state));
 }
 
 #if MC_IDENTIFY
@@ -109,7 +110,8 @@ static void test_the_motor_should_be_measured_within_its_figures_in_under_10_s(v
     t = identify(&s, 30.0);
     mc_identify_result(&s.mc, &r);
     simcore_identify_errors(&s, &r, &e);
-    printf("measured: the profile's motor: %.2f s; R %+.2f %%, Ld %+.2f %%, Lq %+.2f %%, L %+.2f %%, Ke %+.2f "
+    printf("measured: the profile's motor: %.2f s; R %+.2f %%, Ld %+.2f %%, Lq %+.2f %%, L %+.2f "
+           "%%, Ke %+.2f "
            "%%, J %+.2f %%, "
            "dead time %+.2f %%; peak phase current %.2f A (MC_ID_CURRENT_A %.2f A)\n",
            t, e.rs, e.ld, e.lq, e.ls, e.ke, e.j, e.deadtime, s.log.i_peak_a,
@@ -240,10 +242,11 @@ static void test_motors_far_from_the_profile_should_be_identified(void **state)
         {4.1, 0.3, 3.7, 2.2, 1.8, SIM_INV_SWITCHING, 0},  /* L / R near a period, switching */
         {3.2, 0.26, 3.2, 0.67, 1.8, SIM_INV_AVERAGED, 0}, /* light rotor on a stiff field: swings */
         {1.4, 2.3, 0.24, 1.1, 1.5, SIM_INV_AVERAGED, 2},  /* weak magnet: the speed limit */
-        {0.26, 1.34, 2.4, 1.5, 1.8, SIM_INV_AVERAGED, 0}, /* rotor near 180 degrees: the ramp waits */
-        {0.35, 4.4, 0.3, 1.0, 0.9, SIM_INV_SWITCHING, 0}, /* L / R hundreds of periods */
+        {0.26, 1.34, 2.4, 1.5, 1.8, SIM_INV_AVERAGED,
+         0}, /* rotor near 180 degrees: the ramp waits */
+        {0.35, 4.4, 0.3, 1.0, 0.9, SIM_INV_SWITCHING, 0},  /* L / R hundreds of periods */
         {2.3, 0.24, 4.35, 2.1, 3.0, SIM_INV_SWITCHING, 0}, /* phase A's current in the band */
-        {1.0, 1.0, 1.0, 3.0, 2.0, SIM_INV_AVERAGED, 0},   /* heavy rotor */
+        {1.0, 1.0, 1.0, 3.0, 2.0, SIM_INV_AVERAGED, 0},    /* heavy rotor */
     };
     static simcore_t s;
     unsigned k;
@@ -268,12 +271,13 @@ static void test_motors_far_from_the_profile_should_be_identified(void **state)
         t = identify(&s, 40.0);
         mc_identify_result(&s.mc, &r);
         simcore_identify_errors(&s, &r, &e);
-        printf("measured: R x%.2f L x%.2f Ke x%.2f J x%.1f, %.1f us %s: %s %s, %.2f s; R %+.2f %%, L %+.2f %%, "
+        printf("measured: R x%.2f L x%.2f Ke x%.2f J x%.1f, %.1f us %s: %s %s, %.2f s; R %+.2f %%, "
+               "L %+.2f %%, "
                "Ke %+.2f %%, J %+.1f %%, dead time %+.2f %%\n",
                m[k].rs, m[k].l, m[k].ke, m[k].j, m[k].dt_us,
                (m[k].model == SIM_INV_SWITCHING) ? "switching" : "averaged",
-               (r.status == MC_ID_DONE) ? "done" : "FAILED", mc_id_error_name(r.error), t, e.rs, e.ls, e.ke, e.j,
-               e.deadtime);
+               (r.status == MC_ID_DONE) ? "done" : "FAILED", mc_id_error_name(r.error), t, e.rs,
+               e.ls, e.ke, e.j, e.deadtime);
         assert_int_equal(r.status, MC_ID_DONE);
         assert_int_equal(s.now.state, MC_STATE_STOPPED);
         assert_true(fabs(e.rs) < 5.0);
