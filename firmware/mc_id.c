@@ -381,7 +381,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     int32_t target = id->i_dc / 4;
     if (c->inj == 0) { /* the DC currents settled first (LQ: the rotor turns to its bias) */
         if (id_settled(id, ax ? w->i_q : w->i_d, id->p->i_target / 128 * N_)) {
-            c->inj = (id->inj_set != 0) ? id->inj_set : (q15_t)(c->v_d / 4 + 1);
+            c->inj = (q15_t)((id->inj_set != 0) ? id->inj_set : c->v_d / 4 + 1);
         } else if (id->wins > ID_R_SETTLE_MAX) {
             mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
         }

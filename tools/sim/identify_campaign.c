@@ -49,9 +49,9 @@ typedef struct {
 typedef struct {
     mc_id_result_t r;
     simcore_id_err_t e;
-    double t_s;    /* from the request to STOPPED */
-    double i_peak; /* largest phase current, A */
-    mc_state_t state;
+    double t_s;         /* from the request to STOPPED */
+    double i_peak;      /* largest phase current, A */
+    int state;          /* the core's mc_state_t at the end */
     const char *result; /* PASS or FAIL */
     char why[96];
 } outcome_t;
