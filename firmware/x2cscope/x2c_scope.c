@@ -140,7 +140,7 @@ void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
         s->run.left = (cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
     }
     /* the negative delay in datasets, divided here, not in the interrupt */
-    s->run.wait = (cfg->delay < 0) ? (uint32_t)(-(cfg->delay / (int32_t)s->dataset)) : 0UL;
+    s->run.wait = (cfg->delay < 0) ? (uint32_t)(-(cfg->delay / (int32_t)s->dataset)) : (uint32_t)0;
     s->run.div = 0;
     s->run.prev = 0;
     s->run.primed = false;
