@@ -87,19 +87,7 @@ MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0
 #define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
 
 #if MC_IDENTIFY
-static const mc_id_params_t mc_id_params = {
-    MC_ID_I_Q15,
-    MC_ID_I_MIN_Q15,
-    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */
-    (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */
-    MC_ID_WC_TS,
-    (uint16_t)MC_SLOW_STEP_PERIODS,
-    (int16_t)PWM_DUTY_MAX,
-    MC_VEST_W_NEW,
-    MC_ID_ACCEL,
-    MC_ID_STEP_MAX,
-    MC_ID_DAMP,
-};
+static const mc_id_params_t mc_id_params = MC_ID_PARAMS_INIT;
 #endif
 
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /

@@ -794,6 +794,16 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
 /* (the angle steps in 2^8 units before the shift: a 32-bit double holds them exactly, note 1) */
 #define MC_ID_STEP_MAX                                                                             \
     ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 16777216.0) << 8)
+/* mc_id_params_t's initializer (mc_id.h), in its order: the build's values
+ * the sequence runs with (mc.c; the tests and check-16bit take the same) */
+#define MC_ID_PARAMS_INIT                                                                          \
+    {                                                                                              \
+        MC_ID_I_Q15, MC_ID_I_MIN_Q15,                                                              \
+            (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */         \
+            (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */            \
+            MC_ID_WC_TS, (uint16_t)MC_SLOW_STEP_PERIODS, (int16_t)PWM_DUTY_MAX, Q15(MC_SAMPLE_AT), \
+            MC_ID_ACCEL, MC_ID_STEP_MAX, MC_ID_DAMP                                                \
+    }
 /* the spin's damping (mc_id.c note 5): the forced speed moved by
  * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */
 #define MC_ID_DAMP_HZ 10.0

@@ -63,19 +63,7 @@ static void test_exp_neg_should_match_double_over_its_range(void **state)
 
 /* ---- the stages fed windows of a resistive motor at rest -------------------- */
 
-static const mc_id_params_t params = {
-    MC_ID_I_Q15,
-    MC_ID_I_MIN_Q15,
-    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L),
-    (q15_t)(MC_VMAX_Q15 / 4),
-    MC_ID_WC_TS,
-    (uint16_t)MC_SLOW_STEP_PERIODS,
-    (int16_t)PWM_DUTY_MAX,
-    Q15(MC_SAMPLE_AT),
-    MC_ID_ACCEL,
-    MC_ID_STEP_MAX,
-    MC_ID_DAMP,
-};
+static const mc_id_params_t params = MC_ID_PARAMS_INIT;
 
 /* One window at the command's open-loop voltage on a motor of R (Z_FS
  * units) at rest: i = v / R on d, iq on q; returns the stage after it. */

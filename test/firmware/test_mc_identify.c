@@ -1,54 +1,9 @@
 /* test_mc_identify.c - self-commissioning against the simulated motor (the build's profile
  * and plant): its figures, every way it ends without numbers, and random motors that take
  * its branches (a unit test, so the coverage build measures mc_id.c through it). */
-#include "test_support.h"
+#include "cl_helpers.h" /* test/closedloop: the simulator's run, events and start */
 
-#include <math.h>
-#include <stdio.h>
 #include <string.h>
-
-#include "sim_core.h"
-
-#define PERIOD_S (1.0 / (double)PWM_FREQUENCY_HZ)
-
-static void cl_run(simcore_t *s, double seconds)
-{
-    long n = (long)(seconds / PERIOD_S + 0.5);
-    while (n-- > 0) {
-        simcore_step(s);
-    }
-}
-
-static void cl_event(simcore_t *s, sim_event_kind_t kind, double v1, double v2)
-{
-    sim_event_t ev;
-    ev.t_s = s->rig.t;
-    ev.kind = kind;
-    ev.v1 = v1;
-    ev.v2 = v2;
-    simcore_event(s, &ev);
-}
-
-/* START with the pot at rpm; fails unless closed loop within 2 % for 0.2 s by max_s. */
-static void cl_start_and_reach(simcore_t *s, double rpm, double max_s)
-{
-    double t_end = s->rig.t + max_s, t_in = -1.0;
-    simcore_set_speed(s, rpm);
-    simcore_request(s, MC_REQUEST_START);
-    while (s->rig.t < t_end) {
-        simcore_step(s);
-        if (s->now.state == MC_STATE_CLOSED_LOOP && fabs(s->now.speed_rpm - rpm) <= 0.02 * rpm) {
-            t_in = (t_in < 0.0) ? s->now.t_s : t_in;
-            if (s->now.t_s - t_in >= 0.2) {
-                return;
-            }
-        } else {
-            t_in = -1.0;
-        }
-    }
-    fail_msg("%.0f rpm not reached within %.1f s: state %s", rpm, max_s,
-             mc_state_name(s->now.state));
-}
 
 #if MC_IDENTIFY
 

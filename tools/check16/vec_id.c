@@ -27,21 +27,8 @@
 
 static mc_t mc; /* static: off the AVR stack */
 
-/* The parameters the build gives the sequence (mc.c mc_id_params), from the
- * same macros. */
-static const mc_id_params_t params = {
-    MC_ID_I_Q15,
-    MC_ID_I_MIN_Q15,
-    (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L),
-    (q15_t)(MC_VMAX_Q15 / 4),
-    MC_ID_WC_TS,
-    (uint16_t)MC_SLOW_STEP_PERIODS,
-    (int16_t)PWM_DUTY_MAX,
-    Q15(MC_SAMPLE_AT),
-    MC_ID_ACCEL,
-    MC_ID_STEP_MAX,
-    MC_ID_DAMP,
-};
+/* The parameters the build gives the sequence (mc.c mc_id_params). */
+static const mc_id_params_t params = MC_ID_PARAMS_INIT;
 
 static int32_t draw_i32(int32_t lo, int32_t hi)
 {

@@ -23,7 +23,6 @@ an existing file without --force and is written whole or not at all.
 from __future__ import annotations
 
 import argparse
-import math
 import re
 import sys
 import time
@@ -32,7 +31,7 @@ from dataclasses import dataclass
 from typing import NoReturn
 
 from scope import lnet, mc_names, x2c
-from scope.cli import UsageError, check_output, replacing
+from scope.cli import UsageError, _number, check_output, replacing
 from scope.varmap import MapError, Var, VarMap, load_map
 
 EXIT_FAIL, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
@@ -50,19 +49,6 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
         print(f"identify: {' '.join(message.split())} (an1078-identify --help)", file=sys.stderr)
         sys.exit(EXIT_USAGE)
-
-
-def _number(lo: float, hi: float) -> Callable[[str], float]:
-    def conv(s: str) -> float:
-        try:
-            v = float(s)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{s!r} is not a number") from None
-        if not math.isfinite(v) or not lo <= v <= hi:
-            raise argparse.ArgumentTypeError(f"{s!r} is outside {lo:g}..{hi:g}")
-        return v
-
-    return conv
 
 
 def _pole_pairs(s: str) -> int:
