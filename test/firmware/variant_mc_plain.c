@@ -1,5 +1,5 @@
-/* variant_mc_plain.c - the core built without ripple and dead-time compensation (UserParms.h off).
- */
+/* variant_mc_plain.c - the core built without ripple and dead-time compensation and without the
+ * identification (UserParms.h off). */
 #include "test_support.h"
 
 #include <math.h>
@@ -8,7 +8,7 @@
 #include "mc_bench.h"
 #include "mc_internal.h"
 
-#if defined(ENVOLTRIPPLE) || MC_DEADTIME_COMP
+#if defined(ENVOLTRIPPLE) || MC_DEADTIME_COMP || MC_IDENTIFY
 #error "variant_mc_plain.c must be built against the core without compensations (mc_plain)"
 #endif
 
@@ -46,9 +46,33 @@ test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_
     assert_cmp(ang.max_abs, <, 45.0);
 }
 
+/* MC_IDENTIFY 0: the request fails at once, UNAVAILABLE, in STOPPED, and the motor then
+ * starts as usual. */
+static void test_without_identification_a_request_should_fail_unavailable(void **state)
+{
+    (void)state;
+    mc_bench_cfg_t c;
+    mc_id_result_t r;
+    mc_bench_cfg_default(&c);
+    mc_bench_init(&b, &c);
+    mc_request(&b.mc, MC_REQUEST_IDENTIFY);
+    for (long k = 0; k < PWM_FREQUENCY_HZ / 10; k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_STOPPED);
+        assert_false(b.st.outputs_on);
+    }
+    mc_identify_result(&b.mc, &r);
+    assert_int_equal(r.status, MC_ID_FAILED);
+    assert_int_equal(r.error, MC_ID_ERROR_UNAVAILABLE);
+    assert_int_equal(r.rs_uohm, 0);
+    mc_request(&b.mc, MC_REQUEST_START);
+    assert_cmp(mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 4L * PWM_FREQUENCY_HZ), >, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_without_identification_a_request_should_fail_unavailable),
         cmocka_unit_test(
             test_without_compensation_the_voltage_should_pass_unchanged_and_the_motor_still_run),
     };
