@@ -13,8 +13,8 @@
  * q = -alpha) until the spin:
  *
  *   RAMP  open loop: the d voltage grows by 1/32 a window (1/128 past half
- *         the target) from ID_V_START until the d current reaches the
- *         target p->i_target (or the voltage limit: a motor whose R takes
+ *         the target) from ID_V_START until the current's magnitude reaches
+ *         the target p->i_target (or the voltage limit: a motor whose R takes
  *         more than the bus is measured at the current it allows); then
  *         held, trimmed to the target, until the current has settled. The
  *         rotor turns to the current's axis on the way; while it turns
@@ -48,19 +48,17 @@
  */
 
 /* The sequence's own timing, in windows (1 ms at the default speed-loop rate). */
-#define ID_HALF_MIN        4U  /* periods per half of the injected square wave: 2.5 kHz at 20 kHz */
-#define ID_HALF_MAX        32U /* ... at the longest */
-#define ID_L_WINDOWS       32U /* windows of correlation for each L */
-#define ID_INJ_WINDOWS_MAX 200U /* to set the injection's amplitude */
-#define ID_SETTLE          4U   /* windows in a row within tolerance: settled */
-#define ID_V_SETTLE        32   /* ... a voltage moving less than this (Q15, window mean) */
-#define ID_R_SETTLE_MAX    300U /* windows for a level to settle, or the ramp's rotor to rest */
-#define ID_RAMP_WINDOWS_MAX                                                                        \
-    3000U                       /* windows the ramp takes at most (some 400 at a steady rotor)     \
-                                 */
-#define ID_R_WINDOWS        100 /* windows each level is measured over */
-#define ID_MOVING_TRIES     8   /* levels measured again while the rotor swings */
-#define ID_R_BAND_TOL       20  /* the lower slope 1/20 steeper: the band */
+#define ID_HALF_MIN         4U /* periods per half of the injected square wave: 2.5 kHz at 20 kHz */
+#define ID_HALF_MAX         32U   /* ... at the longest */
+#define ID_L_WINDOWS        32U   /* windows of correlation for each L */
+#define ID_INJ_WINDOWS_MAX  200U  /* to set the injection's amplitude */
+#define ID_SETTLE           4U    /* windows in a row within tolerance: settled */
+#define ID_V_SETTLE         32    /* ... a voltage moving less than this (Q15, window mean) */
+#define ID_R_SETTLE_MAX     300U  /* windows for a level to settle, or the ramp's rotor to rest */
+#define ID_RAMP_WINDOWS_MAX 3000U /* the ramp's windows at most (some 400 at a steady rotor) */
+#define ID_R_WINDOWS        100   /* windows each level is measured over */
+#define ID_MOVING_TRIES     8     /* levels measured again while the rotor swings */
+#define ID_R_BAND_TOL       20    /* the lower slope 1/20 steeper: the band */
 #define ID_R_MAX_Q16        (16L * 65536L) /* R at most 16 Z_FS */
 #define ID_V_START          ((q15_t)64)    /* the ramp's first voltage: 1/512 of V_FS */
 #define ID_E1               ((q15_t)6554)  /* |E| at the first speed: 0.2 V_FS */
@@ -75,10 +73,8 @@
 #define ID_JERK             32U    /* windows the spin's acceleration takes to change */
 #define ID_A_UNIT           32     /* the J fit's unit of acceleration: the spin's = 32 */
 #define ID_DAMP_LP          64     /* windows: the low-pass that finds the swing's mean */
-#define ID_DAMP_F                                                                                  \
-    8                           /* windows: the damping's own low-pass (a swing of a few           \
-                                   windows' period would see the loop's delay) */
-#define ID_DAMP_ANGLE_MAX 16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
+#define ID_DAMP_F           8 /* windows: the damping's own low-pass, against the loop's delay */
+#define ID_DAMP_ANGLE_MAX   16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
 
 #define N_ ((int32_t)id->p->n)
 
@@ -502,8 +498,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
     }
 }
 
-/* ---- R (note 4) --------------------------------------------------------------------------------
- */
+/* ---- R (note 4) ---------------------------------------------------------------------------- */
 
 /* Open loop at 90 degrees, four levels of d voltage, each settled and then
  * measured over ID_R_WINDOWS windows: the ramp's (the target current), a
