@@ -1878,11 +1878,11 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
         /* the slope of the torque current against the acceleration, Q16 (a
          * least-squares line: its intercept, friction, drops out) */
         int64_t den = (int64_t)id->j_n * id->j_aa - (int64_t)id->j_a * id->j_a;
-        if (den > 0 && id->accel > 0U) {
+        if (den > 0) {
             int64_t k = ((int64_t)id->j_n * id->j_ia - (int64_t)id->j_i * id->j_a) * 65536 / den;
             int64_t a = dm * MC_ID_K_J / dx;
             /* up minus down at the spin's acceleration: 2 ID_A_UNIT k */
-            r->j_ng_m2 = mc_id_u32(a * 64 * k / ((int64_t)id->accel * 65536));
+            r->j_ng_m2 = mc_id_u32(a * 64 * k / ((int64_t)id->p->accel * 65536));
         }
     }
     /* The q injection's torque shakes the rotor: its back-EMF, in

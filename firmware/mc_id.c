@@ -1,6 +1,8 @@
 /* mc_id.c - self-commissioning's sequence, one speed-loop window at a time (see mc_id.h). */
 #include "mc_id.h"
 
+#include <string.h>
+
 #include "UserParms.h" /* MC_IDENTIFY alone: the sequence reads no profile */
 #include "q15_dsp.h"
 #include "q15_sqrt.h"
@@ -129,7 +131,7 @@ static void id_gains(const mc_id_t *id, mc_id_cmd_t *c, int32_t l, int32_t r)
         kp = (kp + 1) >> 1;
         sh++;
     }
-    c->kp = (q15_t)((kp > 32767L) ? 32767L : kp);
+    c->kp = q15_sat(kp);
     c->kp_shift = sh;
     if (r >= 0) {
         ki = (int32_t)(((int64_t)r * id->p->wc_ts) >> 16); /* R wc Ts: Q15 */
@@ -231,57 +233,15 @@ static void id_track(mc_id_t *id, int32_t x)
 
 void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
 {
-    uint8_t k;
+    /* every sum, result and command at zero (MC_ID_ERROR_NONE, no current,
+     * no injection, no acceleration, no dead-time compensation), then
+     * what is not */
+    memset(id, 0, sizeof *id);
     id->p = p;
-    id->error = MC_ID_ERROR_NONE;
-    id->i_dc = 0;
-    id->r_q16 = -1;
-    id->l_q12 = 0;
-    id->l_dq[0] = 0;
-    id->l_dq[1] = 0;
-    id->dv = 0;
-    id->di = 0;
-    id->v0 = 0;
-    id->nwin = 0;
-    id->m1 = 0;
-    id->m2 = 0;
-    id->x1 = 0U;
-    id->x2 = 0U;
-    id->j_n = 0;
-    id->j_a = 0;
-    id->j_aa = 0;
-    id->j_i = 0;
-    id->j_ia = 0;
-    id->a_prev = 0;
-    id->accel = 0U;
-    id->goal = 0;
-    id->ramp = 0;
-    id->damp = 0;
-    id->damp_goal = 0;
-    id->it_lp = 0;
-    id->ang_f = 0;
-    id->i_spin = 0;
-    for (k = 0; k < 8U; k++) {
-        id->l_c[0][k] = 0;
-        id->l_c[1][k] = 0;
-    }
-    id->vbus = 0;
-    id->cmd.i_ref.d = 0;
-    id->cmd.i_ref.q = 0;
-    id->cmd.kp = 0;
-    id->cmd.kp_shift = 0U;
-    id->cmd.ki = 0;
+    id->r_q16 = -1; /* R unknown */
     id->cmd.v_d = ID_V_START;
-    id->cmd.inj = 0;
-    id->cmd.inj_q = 0U;
     id->cmd.inj_half = ID_HALF_MIN;
-    id->cmd.accel = 0;
-    id->cmd.dt_counts = 0;
     id->cmd.open_loop = true;
-    id->cmd.v_q = 0;
-    id->inj_set = 0;
-    id->tries = 0U;
-    id->cmd.end = false;
     id_stage(id, MC_ID_STAGE_RAMP);
     *cmd = id->cmd;
 }
@@ -296,7 +256,7 @@ static void id_ramp(mc_id_t *id, const mc_id_win_t *w)
     /* the current's magnitude is what the target limits: with a lead cut
      * the d current is half of it (note 6) */
     uint32_t m = q15_isqrt_u32((uint32_t)((int32_t)i * i) + (uint32_t)((int32_t)iq * iq));
-    q15_t im = (q15_t)((m > 32767U) ? 32767U : m);
+    q15_t im = q15_sat((int32_t)m); /* m <= 46341 */
     if (id->wins > ID_RAMP_WINDOWS_MAX) {
         mc_id_fail(id, MC_ID_ERROR_TIMEOUT);
         return;
@@ -489,11 +449,9 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts =
             (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
-        id->i_spin = (q15_t)(id->i_dc / 3);
-        c->i_ref.d = id->i_spin;
+        c->i_ref.d = (q15_t)(id->i_dc / 3);
         c->i_ref.q = 0;
-        id->accel = id->p->accel;
-        id->goal = (int32_t)id->accel;
+        id->goal = (int32_t)id->p->accel;
         id_stage(id, MC_ID_STAGE_SPIN1);
     }
 }
@@ -626,11 +584,11 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
     int32_t eq = (int32_t)id_mean(id, w->u_q) - (int32_t)(((int64_t)r * iq) >> 16) -
                  (int32_t)(((int64_t)wl * id_) >> 12);
     uint32_t m2;
-    ed = (ed > 32767L) ? 32767L : (ed < -32767L) ? -32767L : ed;
-    eq = (eq > 32767L) ? 32767L : (eq < -32767L) ? -32767L : eq;
+    ed = q15_sat(ed);
+    eq = q15_sat(eq);
     m2 = (uint32_t)(ed * ed) + (uint32_t)(eq * eq);
     m2 = q15_isqrt_u32(m2); /* up to 46341: past Q15 where both axes are near full scale */
-    *mag = (q15_t)((m2 > 32767U) ? 32767U : m2);
+    *mag = q15_sat((int32_t)m2);
     /* cppcheck-suppress knownConditionTrueFalse ; it takes q15_isqrt_u32's result as 0 */
     if (*mag < 64) {
         *it = 0;
@@ -639,7 +597,7 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
          * +-32768 sum below 2^31; the quotient is below |i| < 46341, more
          * than Q15 where both axes are near full scale (and mag clamped) */
         int32_t t = ((int32_t)id_ * ed + (int32_t)iq * eq) / (int32_t)*mag;
-        *it = (q15_t)((t > 32767L) ? 32767L : (t < -32767L) ? -32767L : t);
+        *it = q15_sat(t);
     }
 }
 
@@ -660,7 +618,7 @@ static int32_t id_volts2(const mc_id_t *id, const mc_id_win_t *w)
  * spin's acceleration, once it has eased to the full acceleration. */
 static void id_j(mc_id_t *id, q15_t it)
 {
-    int32_t a = id_ratio(id->a_prev * ID_A_UNIT, (int32_t)id->accel, 0);
+    int32_t a = id_ratio(id->a_prev * ID_A_UNIT, (int32_t)id->p->accel, 0);
     if (a > -ID_A_UNIT && a < ID_A_UNIT) {
         return; /* easing: the rotor's torque lags a changing acceleration */
     }
@@ -685,7 +643,7 @@ static void id_damp(mc_id_t *id, const mc_id_win_t *w, q15_t mag, q15_t it, bool
     int32_t sn = (i > 0) ? id_ratio(it, i, 15) : 0; /* sin(load angle), Q15 */
     int32_t lim = (int32_t)(w->step / 2U);
     int32_t ang = 0;
-    sn = (sn > 32767L) ? 32767L : (sn < -32767L) ? -32767L : sn;
+    sn = q15_sat(sn);
     if (on && mag >= ID_E_MIN) {
         int32_t dev = sn * 64 - id->it_lp; /* Q15 x 64 */
         id->it_lp += dev / ID_DAMP_LP;
@@ -779,7 +737,7 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                 if (id->stage == MC_ID_STAGE_HOLD1) {
                     id->m1 = m;
                     id->x1 = w->step;
-                    id->goal = (int32_t)id->accel;
+                    id->goal = (int32_t)id->p->accel;
                     id_stage(id, MC_ID_STAGE_SPIN2);
                 } else {
                     id->m2 = m;
@@ -791,7 +749,7 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                         mc_id_fail(id, MC_ID_ERROR_NO_SYNC);
                         return;
                     }
-                    id->goal = -(int32_t)id->accel;
+                    id->goal = -(int32_t)id->p->accel;
                     id_stage(id, MC_ID_STAGE_SPIN3);
                 }
             }
@@ -810,7 +768,7 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
             if (w->step <= id->x1 + id->x1 / 8U) {
                 /* J is measured: to rest at four times the rate (the
                  * stopping distance of the rest is the spin's longest) */
-                id->goal = -4 * (int32_t)id->accel;
+                id->goal = -4 * (int32_t)id->p->accel;
                 id_stage(id, MC_ID_STAGE_SPIN4);
             }
             return;
@@ -831,7 +789,7 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
  * torque needs (note 5). */
 static void id_ease(mc_id_t *id)
 {
-    int32_t step = (int32_t)(id->accel / ID_JERK) + 1;
+    int32_t step = (int32_t)(id->p->accel / ID_JERK) + 1;
     int32_t a = id->ramp;
     int32_t d = (id->damp_goal - id->damp) / N_; /* the damping's offset over the window */
     a += (id->goal > a + step) ? step : (id->goal < a - step) ? -step : id->goal - a;

@@ -160,14 +160,12 @@ typedef struct {
      * (ID_A_UNIT = the spin's), fitted over the ramps between the speeds */
     int32_t j_n, j_a, j_aa, j_i, j_ia; /* windows, sums of a, a^2, i, i a */
     int32_t a_prev;                    /* the acceleration that acted over the last window */
-    uint32_t accel;    /* the spin's acceleration, 2^32 a turn per period per period */
-    int32_t goal;      /* the acceleration ramp eases to */
-    int32_t ramp;      /* the spin's acceleration without the damping's */
+    int32_t goal;                      /* the acceleration ramp eases to */
+    int32_t ramp;                      /* the spin's acceleration without the damping's */
     int32_t damp;      /* the damping's forced-speed offset now, 2^32 a turn per period */
     int32_t damp_goal; /* ... and the one this window's swing asks */
     int32_t it_lp;     /* sin(load angle)'s low-pass (the swing's mean), Q15 x 64 */
     int32_t ang_f;     /* the swing's angle, low-passed (ID_DAMP_F), rad Q15 x 16 */
-    q15_t i_spin;      /* the spin's d current */
 } mc_id_t;
 
 /* Starts the sequence (the core is entering MC_STATE_IDENTIFY, offsets

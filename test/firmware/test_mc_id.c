@@ -201,7 +201,6 @@ static void test_drawn_windows_should_keep_the_command_within_its_limits(void **
             id.r_q16 = rnd(1, 16L * 65536L);
             id.l_q12 = rnd(1, 4000000L);
             id.v0 = rnd(-2000000L, 20000000L);
-            id.accel = params.accel;
             id.goal = (int32_t)params.accel;
             id.cmd.i_ref.d = (q15_t)(id.i_dc / 3);
             id.cmd.v_d = (q15_t)rnd(64, params.v_max);

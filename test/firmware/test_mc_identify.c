@@ -86,6 +86,32 @@ static void test_the_motor_should_be_measured_within_its_figures_in_under_10_s(v
     cl_start_and_reach(&s, 0.5 * (SPEED_REF_MIN_RPM + SPEED_REF_MAX_RPM), 8.0);
 }
 
+/* Where the sequence cannot measure, it says so and gives no numbers: a
+ * light rotor on a stiff field behind a large R (R x3.7, L x0.34, Ke x4,
+ * J x0.5, 2.6 us) is held at a low speed (twice it would ask more than the
+ * voltage), where its swing, from this rotor angle (1.4 rad; from 2.1 it
+ * settles and is measured), takes it to a standstill in each cycle: NO_SYNC
+ * (docs/identify.md). */
+static void test_a_motor_the_spin_cannot_hold_should_end_in_no_sync(void **state)
+{
+    static simcore_t s;
+    simcore_cfg_t cfg;
+    (void)state;
+    simcore_cfg_default(&cfg);
+    cfg.rs_scale = 3.7;
+    cfg.l_scale = 0.34;
+    cfg.ke_scale = 4.0;
+    cfg.j_scale = 0.5;
+    cfg.deadtime_s = 2.6e-6;
+    cfg.theta0_rad = 1.4;
+    cfg.progress = false;
+    assert_int_equal(simcore_init(&s, &cfg), 0);
+    cl_run(&s, 0.02);
+    identify(&s, 40.0);
+    expect_failure(&s, MC_ID_ERROR_NO_SYNC, MC_STATE_STOPPED,
+                   "a light high-R rotor on a stiff field");
+}
+
 static void test_a_cut_lead_should_end_in_open_phase(void **state)
 {
     static simcore_t s;
@@ -245,6 +271,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_the_motor_should_be_measured_within_its_figures_in_under_10_s),
         cmocka_unit_test(test_motors_far_from_the_profile_should_be_identified),
+        cmocka_unit_test(test_a_motor_the_spin_cannot_hold_should_end_in_no_sync),
         cmocka_unit_test(test_a_cut_lead_should_end_in_open_phase),
         cmocka_unit_test(test_a_locked_rotor_should_end_in_rotor_locked),
         cmocka_unit_test(test_a_motor_too_small_for_the_current_resolution_should_end_in_too_small),

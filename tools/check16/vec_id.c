@@ -71,7 +71,6 @@ static void vec_stage(mc_id_t *id, uint8_t stage, uint16_t n)
     id->r_q16 = draw_i32(1000, 16L * 65536L);
     id->l_q12 = draw_i32(100, 4000000L);
     id->v0 = draw_i32(-2000000L, 20000000L);
-    id->accel = params.accel;
     id->goal = (int32_t)params.accel;
     id->cmd.i_ref.d = (q15_t)(id->i_dc / 3);
     id->cmd.v_d = (q15_t)vec_rand_between(64, params.v_max);
@@ -178,7 +177,7 @@ static void vec_result(void)
         id->j_aa = draw_i32(0, 400000L);
         id->j_i = draw_i32(-4000000L, 4000000L);
         id->j_ia = draw_i32(-40000000L, 40000000L);
-        id->accel = (uint32_t)draw_i32(1, 100000L);
+        id->p = &params; /* mc_identify_result reads the spin's acceleration there */
         mc_identify_result(&mc, &r);
         emit_u16(k);
         emit_sep();
