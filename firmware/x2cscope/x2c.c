@@ -165,8 +165,7 @@ static void tune_refresh(x2c_t *x)
         x->tune.speed_ref_rpm = 0;
     }
     x->tune.run = running(st.state) ? 1 : 0;
-    motor_identify_result(&x->id);
-    x->tune.identify = (x->id.status == MC_ID_RUNNING) ? 1 : 0;
+    x->tune.identify = (st.state == MC_STATE_IDENTIFY) ? 1 : 0;
 }
 
 static uint8_t set_gain(mc_gain_t gain, int16_t v)
@@ -336,8 +335,11 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     if (row == NULL) {
         return X2C_ERR_FORMAT;
     }
-    if (row->obj == X2C_OBJ_TUNE || row->obj == X2C_OBJ_ID) {
+    if (row->obj == X2C_OBJ_TUNE) {
         tune_refresh(x);
+    } else if (row->obj == X2C_OBJ_ID) {
+        /* only here: the result's 64-bit conversions, not for every tunable's read */
+        motor_identify_result(&x->id);
     }
     if (row->obj == X2C_OBJ_MOTOR) {
         motor_copy(&d[2], p, count); /* at most 4 bytes (a variable), masked */
@@ -573,6 +575,7 @@ void x2c_init(x2c_t *x)
     x->answered = 0;
     x->refused = 0;
     tune_refresh(x);
+    motor_identify_result(&x->id);
 }
 
 void x2c_set_start_guard(x2c_t *x, bool (*may_start)(void *ctx), void *ctx)

@@ -108,7 +108,7 @@
  * the values between are refused (X2C_ERR_LIMIT); run is S2 (1 start,
  * 0 stop); identify 1 measures the motor (MC_REQUEST_IDENTIFY, only from
  * STOPPED, refused otherwise), 0 stops a measurement going on, and it
- * reads 1 while one runs.
+ * reads 1 while the motor is in IDENTIFY.
  */
 #define X2C_GAIN_MIN(g) ((int16_t)((g) / 8 > 0 ? (g) / 8 : 1))
 #define X2C_GAIN_MAX(g) ((int16_t)((int32_t)(g)*8 > 32767 ? 32767 : (int32_t)(g)*8))
