@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # The one entry point. `make help` lists the targets.
 BOARD    ?= mclv
 MOTOR    ?= hurst

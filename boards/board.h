@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* board.h - the power stage the HAL and the core both read: the board profile and its PWM. */
 #ifndef BOARD_H
 #define BOARD_H

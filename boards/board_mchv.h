@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* board_mchv.h - dsPICDEM MCHV (DM330023): scalings and limits (ASSUMED, see below). */
 #ifndef BOARD_MCHV_H
 #define BOARD_MCHV_H

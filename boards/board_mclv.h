@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* board_mclv.h - dsPICDEM MCLV (DM330021) with the dsPIC33FJ32MC204 PIM: scalings and limits. */
 #ifndef BOARD_MCLV_H
 #define BOARD_MCLV_H

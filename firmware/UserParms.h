@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* UserParms.h - the one file a user tunes: board and motor selection plus application settings. */
 #ifndef USERPARMS_H
 #define USERPARMS_H

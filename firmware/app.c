@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* app.c - the main loop of the dsPIC application (see app.h). */
 #include "app.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* app.h - the main loop of the dsPIC application: buttons, pot, LEDs, UART, fault latch. */
 #ifndef APP_H
 #define APP_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* main.c - the dsPIC33FJ32MC204 program: init, then the main loop forever (dsPIC only). */
 #include "app.h"
 #include "../hal/hal.h" /* firmware/ may include hal/hal.h (docs/architecture.md) */

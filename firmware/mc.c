@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc.c - the motor-control core: state machine, protections, current and speed loops. */
 #include <string.h>
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc.h - the motor-control core: one object, one step per PWM period, no hardware access. */
 #ifndef MC_H
 #define MC_H

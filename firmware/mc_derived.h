@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_derived.h - UserParms.h and the profiles turned into Q15 constants, with named range checks.
  */
 #ifndef MC_DERIVED_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_id.c - self-commissioning's sequence, one speed-loop window at a time (see mc_id.h). */
 #include "mc_id.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_id.h - self-commissioning's sequence: the windows of measurement that give R, L, Ke, J. */
 #ifndef MC_ID_H
 #define MC_ID_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_internal.h - the core's pure helpers, exposed for the unit tests (not part of the seam). */
 #ifndef MC_INTERNAL_H
 #define MC_INTERNAL_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* motor.c - the one running motor: the HAL's interrupt hooks and the main loop's mailbox. */
 #include <stddef.h>
 

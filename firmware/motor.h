@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* motor.h - the one running motor: the object the ADC interrupt steps, and its mailbox. */
 #ifndef MOTOR_H
 #define MOTOR_H

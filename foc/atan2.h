@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* atan2.h - four-quadrant arctangent from one octant table with linear interpolation. */
 #ifndef ATAN2_H
 #define ATAN2_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* clarke.c - amplitude-invariant Clarke transform from two phase currents. */
 #include "clarke.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* clarke.h - Clarke transform: two measured phase currents to alpha/beta. */
 #ifndef CLARKE_H
 #define CLARKE_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* fieldweak.c - field weakening: Id reference from a 16-point table versus speed. */
 #include "fieldweak.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* frames.h - value types for the three reference frames (abc, alpha/beta, d/q). */
 #ifndef FRAMES_H
 #define FRAMES_H

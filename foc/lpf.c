@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* lpf.c - first-order low-pass filter: the functions are inline in lpf.h. */
 #include "lpf.h"
 

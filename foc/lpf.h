@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* lpf.h - first-order low-pass filter y += K (x - y) with a 32-bit state. */
 #ifndef LPF_H
 #define LPF_H

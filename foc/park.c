@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* park.c - Park and inverse Park: the functions are inline in park.h. */
 #include "park.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* park.h - Park (alpha/beta -> d/q) and inverse Park (d/q -> alpha/beta). */
 #ifndef PARK_H
 #define PARK_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* pi.c - PI controller with Kc anti-windup (AN1078 "PI Control"). */
 #include "pi.h"
 

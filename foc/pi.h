@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* pi.h - PI controller with Kc anti-windup, exactly as AN1078 describes it. */
 #ifndef PI_H
 #define PI_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* q15.h - Q15 fixed-point types, constant macros and saturating primitives. */
 #ifndef Q15_H
 #define Q15_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* q15_dsp.h - the dsPIC's multiplier, divider and DSP accumulators: XC16 built-ins on the chip,
  * bit-identical C elsewhere. */
 #ifndef Q15_DSP_H

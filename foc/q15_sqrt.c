@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* q15_sqrt.c - integer and Q15 square roots, rounded to nearest. */
 #include "q15_sqrt.h"
 

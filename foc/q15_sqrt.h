@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* q15_sqrt.h - integer and Q15 square roots, rounded to nearest. */
 #ifndef Q15_SQRT_H
 #define Q15_SQRT_H

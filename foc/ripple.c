@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* ripple.c - DC-bus ripple compensation of Vd and Vq (AN1078 Equation 8). */
 #include "ripple.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sincos.c - sine and cosine from one quarter-wave table with linear interpolation. */
 #include "sincos.h"
 

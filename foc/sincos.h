@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sincos.h - sine and cosine of a binary angle: table plus linear interpolation. */
 #ifndef SINCOS_H
 #define SINCOS_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* svgen.c - space-vector modulation with AN1078's modified inverse Clarke. */
 #include "svgen.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vlimit.h - voltage-circle limit: the Vq bound left once Vd is applied. */
 #ifndef VLIMIT_H
 #define VLIMIT_H

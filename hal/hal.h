@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal.h - the hardware seam of the firmware: everything main loop and ISR need from the chip. */
 #ifndef HAL_H
 #define HAL_H

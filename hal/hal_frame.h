@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal_frame.h - the two values one PWM period hands across the seam: the ADC set in, the duties
  * out. */
 #ifndef HAL_FRAME_H

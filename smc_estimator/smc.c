@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* smc.c - sliding-mode observer: rotor angle and speed from alpha/beta currents and voltages.
  * "note N" is docs/estimator.md, "Derivation", note N. */
 #include "smc.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* smc_params.h - the observer's parameters (smc_params_t) from motor and board data, at compile
  * time. */
 #ifndef SMC_PARAMS_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* smc_update.h - the observer's per-period step, inline: it runs once per PWM period inside
  * mc_step. */
 #ifndef SMC_UPDATE_H

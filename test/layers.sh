@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # layers.sh - the include graph has no edge running up (docs/architecture.md).
 #
 # Usage: test/layers.sh <repo root> <C compiler>

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* lnet.c - the LNet frame layer: receiver and sender, one byte at a time (lnet.h). */
 #include "lnet.h"
 

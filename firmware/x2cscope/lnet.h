@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* lnet.h - the LNet frame layer X2Cscope clients speak: a byte-at-a-time receiver and sender. */
 #ifndef LNET_H
 #define LNET_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c.c - the X2Cscope target's services and its whitelist (see x2c.h, x2c_vars.h). */
 #include "x2c.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c.h - the X2Cscope target: the LNet services MPLAB X's X2CScope, Data Visualizer and pyx2cscope
  * use. */
 #ifndef X2C_H

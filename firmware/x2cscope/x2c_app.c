@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_app.c - the X2Cscope target as the application's UART client (see x2c_app.h). */
 #include "x2c_app.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_app.h - the X2Cscope target as the application's UART client (firmware/app.h). */
 #ifndef X2C_APP_H
 #define X2C_APP_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_scope.c - the X2Cscope scope (see x2c_scope.h). */
 #include "x2c_scope.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_scope.h - the X2Cscope scope: channels sampled in the ADC interrupt, an edge trigger. */
 #ifndef X2C_SCOPE_H
 #define X2C_SCOPE_H

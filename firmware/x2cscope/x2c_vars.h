@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_vars.h - the X2Cscope target's whitelist: every variable a client may read, scope or tune. */
 #ifndef X2C_VARS_H
 #define X2C_VARS_H

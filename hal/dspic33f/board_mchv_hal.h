@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* board_mchv_hal.h - HAL-side facts of the dsPICDEM MCHV (PIM not confirmed). */
 #ifndef BOARD_MCHV_HAL_H
 #define BOARD_MCHV_HAL_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* board_mclv_hal.h - HAL-side facts of the dsPICDEM MCLV with the dsPIC33FJ32MC204 PIM. */
 #ifndef BOARD_MCLV_HAL_H
 #define BOARD_MCLV_HAL_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* config_bits.c - the dsPIC33FJ32MC204 configuration words, all in this one file. */
 
 /*

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal_dspic33f.c - hal.h for the dsPIC33FJ32MC204: clock, MCPWM1, ADC1, fault, pins, UART1, tick.
  */
 #include <xc.h>

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal_dspic33f.h - register values of the dsPIC33FJ32MC204 HAL, derived at compile time from the
  * profiles. */
 #ifndef HAL_DSPIC33F_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal_isr.c - the ADC interrupt trampoline and the slow interrupt, calling the firmware's hooks. */
 #include <xc.h>
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* hal_regs.h - the ADC results and PWM duties as register accesses, inline for the ADC interrupt.
  */
 #ifndef HAL_REGS_H

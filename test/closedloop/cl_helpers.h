@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* cl_helpers.h - shared steps of the closed-loop tests: run the core against the plant. */
 #ifndef CL_HELPERS_H
 #define CL_HELPERS_H

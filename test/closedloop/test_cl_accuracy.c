@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_cl_accuracy.c - steady-state angle and speed error of the sensorless loop. */
 #include "cl_helpers.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_cl_faults.c - protections in closed loop: detection time, outputs off, restart. */
 #include "cl_helpers.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_cl_starts.c - 100 starts from random rotor angles under 0..50 % rated load. */
 #include "cl_helpers.h"
 

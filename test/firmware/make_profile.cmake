@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # make_profile.cmake - every make goal that takes BOARD/MOTOR refuses a name
 # with no profile header, in one line naming it, before anything runs
 # (cmake -P, from CTest).

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_bench.c - the firmware tests' settings of the one bench (mc_bench.h). */
 #include "mc_bench.h"
 

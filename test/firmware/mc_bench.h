@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_bench.h - the firmware tests' settings of the one bench (tools/sim/sim_core.h). */
 #ifndef MC_BENCH_H
 #define MC_BENCH_H

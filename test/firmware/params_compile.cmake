@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # params_compile.cmake - compiles params_probe.c with one UserParms.h / profile
 # value changed and judges the compiler's answer (cmake -P, from CTest).
 #

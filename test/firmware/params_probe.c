@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* params_probe.c - instantiates every derived constant, so a bad UserParms.h value fails here. */
 #include "mc.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_mc.c - the mc core with synthetic ADC frames: states, transitions, protections, helpers. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_mc_closedloop.c - the mc core on the simulated Hurst: start, tracking, field weakening,
  * ripple compensation, voltage limit, stall detection, no false trips. */
 #include "test_support.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_mc_id.c - the identification's sequence alone (mc_id.h): its math against double
  * precision, and its stages fed synthetic windows. */
 #include "test_support.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_mc_identify.c - self-commissioning against the simulated motor (the build's profile
  * and plant): its figures, every way it ends without numbers, and random motors that take
  * its branches (a unit test, so the coverage build measures mc_id.c through it). */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* variant_mc_plain.c - the core built without ripple and dead-time compensation and without the
  * identification (UserParms.h off). */
 #include "test_support.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* variant_mc_torque.c - the core built with TORQUEMODE: the pot sets Iq, the speed loop is off. */
 #include "test_support.h"
 

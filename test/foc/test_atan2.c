@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_atan2.c - atan2_q15 and atan2_q31 against double atan2 at every magnitude. */
 #include "test_support.h"
 

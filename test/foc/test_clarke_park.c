@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_clarke_park.c - Clarke, Park and inverse Park against double references. */
 #include "test_support.h"
 

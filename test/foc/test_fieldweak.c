@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_fieldweak.c - fieldweak_id_ref against double linear interpolation of the table. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_lpf.c - lpf_update against the double recurrence y += K (x - y). */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_pi.c - pi_update against a double model of AN1078's PI equations. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_q15.c - every primitive of q15.h and q15_dsp.h against 64-bit integer and double references.
  */
 #include "test_support.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_q15_dsp.c - every q15_dsp.h primitive against an exact 64-bit reference of its documented
  * formula, over all edge combinations and a seeded random stream. */
 #include "test_support.h"

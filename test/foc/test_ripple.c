@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_ripple.c - ripple_compensate against AN1078 Equation 8 in double precision. */
 #include "test_support.h"
 

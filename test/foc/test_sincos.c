@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sincos.c - sincos_compute against double sin/cos over every binary angle. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_svgen.c - svgen_update: line-to-line voltages rebuilt from the duties vs the request. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_vlimit.c - q15_sqrt (exhaustive), q15_isqrt_u32 and the voltage-circle limit. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_app.c - the main-loop body (firmware/app.c) against cmocka mocks of hal.h. */
 #include "test_support.h"
 

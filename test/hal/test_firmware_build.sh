@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # test_firmware_build.sh - CTest checks of tools/firmware_build (make firmware).
 #   no-xc16 <root>  without XC16: exactly one line on stderr naming XC16_DIR and the
 #                   download page, nothing on stdout, exit status 2, no image;

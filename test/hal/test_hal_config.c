@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_hal_config.c - the configuration words in hal/dspic33f/config_bits.c state the settings of
  * docs/hardware.md 1.3. */
 #include "test_support.h"

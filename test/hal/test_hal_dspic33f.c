@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_hal_dspic33f.c - what hal/dspic33f writes to the registers, against the datasheet facts. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_hal_isr.c - the HAL's interrupt trampoline alone, the firmware's hooks mocked (cmocka). */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_hal_isr_core.c - the trampoline, motor.c and the real core: registers follow mc_step(). */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_motor.c - firmware/motor.c over the dsPIC HAL: the hooks and the mailbox, the core mocked
  * (cmocka). */
 #include "test_support.h"

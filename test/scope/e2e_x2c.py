@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """End to end: tools/scope against the firmware's X2Cscope target served by `sim --pty
 --realtime 0` over a real pseudo-terminal (and once over TCP).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """tools/scope without a target: LNet frames (escaping of every field, both inverted checksums,
 every size, resynchronisation), the link's errors (no reply, a bad checksum, a reply for another
 service, every named error code), the scope's configuration bytes and the client's rotation, the

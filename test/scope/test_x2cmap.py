@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """an1078-x2cmap on the built simulator: the map holds exactly the whitelist's rows
 (firmware/x2cscope/x2c_vars.h: motor.<path> read-only, x2c.tune.<field> tunable, x2c.id.<field>
 the identification's result, read-only) in the target's 16-bit window, with the XC16 type of

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 # refuses.cmake - runs a simulator program (sim, robust) on one bad input and checks that it is
 # refused the way docs/sim.md promises: exit status 2, nothing on stdout, exactly one line on
 # stderr, matching EXPECT (which names the field, and FILE:LINE for a scenario file).

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """tools/sim/plot.py: one line and a non-zero exit for a bad input, never a traceback; nothing
 written but the .png asked for; a trace cut short by a diverged plant still plots."""
 from __future__ import annotations

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sim_bench.c - inverter, ADC and the period timing of the simulator's bench. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sim_openloop.c - the whole bench driven by an ideal double-precision FOC with the true
  * angle. */
 #include "test_support.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sim_parse.c - the strict number parser (sim_parse.h) and the scenario parser's value
  * checks: every bad number is refused in one line that names its field and line. */
 #include "test_support.h"

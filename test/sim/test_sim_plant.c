@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sim_plant.c - the PMSM plant against analytic solutions. */
 #include "test_support.h"
 

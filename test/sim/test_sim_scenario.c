@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_sim_scenario.c - the scenario parser, and every shipped scenario file. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_smc.c - the sliding-mode estimator against double-precision references and an ideal PMSM. */
 #include "test_support.h"
 

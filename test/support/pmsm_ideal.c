@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* pmsm_ideal.c - ideal PMSM and sensored drive in double precision: what an estimator sees. */
 #include "test_support.h"
 

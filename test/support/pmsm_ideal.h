@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* pmsm_ideal.h - ideal PMSM and sensored drive in double precision: what an estimator sees. */
 #ifndef PMSM_IDEAL_H
 #define PMSM_IDEAL_H

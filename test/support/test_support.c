@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_support.c - helpers shared by the host tests. */
 #include "test_support.h"
 

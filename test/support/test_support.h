@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_support.h - helpers shared by the host tests: error statistics, conversions, PRNG. */
 #ifndef TEST_SUPPORT_H
 #define TEST_SUPPORT_H

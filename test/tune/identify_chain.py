@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Self-commissioning end to end: a motor the firmware's profile knows nothing of is measured by
 the firmware itself, and what it measured becomes the profile that then runs it.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Closed-loop proof of tools/tune (label slow): each example description's generated
 profile (firmware/motors/motor_<name>.h, checked up to date by test_tune_unit) drives
 the simulated motor with no hand edits: it starts, reaches closed loop, and holds the

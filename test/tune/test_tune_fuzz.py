@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Property-based fuzzing of tools/tune's input paths (hypothesis).
 
 Random and hostile TOML texts go to describe.loads / describe.parse /

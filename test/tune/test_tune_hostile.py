@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Hostile inputs to tools/tune, each with the answer it must get.
 
 The review of tools/tune (docs/tune.md, "Input safety") found that --check ran

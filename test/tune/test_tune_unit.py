@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Unit tests of tools/tune: derivations vs hand calculations, bad input, the
 field-weakening table, the C probe that reads the core's headers, the --check
 round trip, and the generated headers against the core (they compile, and the

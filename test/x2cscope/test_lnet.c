@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_lnet.c - the LNet frame layer: known frames, every escape, resync, errors, round trips. */
 #include "test_support.h"
 

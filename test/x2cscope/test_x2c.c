@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_x2c.c - the X2Cscope target's services: every service, the whitelist, every refusal. */
 #include "x2c_util.h"
 

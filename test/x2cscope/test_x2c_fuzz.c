@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_x2c_fuzz.c - a million random requests: one reply each, no crash, no change from a refusal.
  */
 #include "x2c_util.h"

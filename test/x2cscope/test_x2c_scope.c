@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_x2c_scope.c - the scope alone: trigger keys of every type, edges, delays, the prescaler. */
 #include "test_support.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* x2c_util.h - the X2Cscope target's tests: one request in, one reply out, and state snapshots. */
 #ifndef X2C_UTIL_H
 #define X2C_UTIL_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench.h - registration API of the instruction-count bench (tools/bench/run, make bench). */
 #ifndef BENCH_H
 #define BENCH_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench_foc.c - instruction-count cases for every foc/ block that is present. */
 /* bench-requires: foc/q15.h */
 #include "bench.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench_mc.c - instruction count of mc_step in the states reachable without a motor model. */
 /* bench-requires: firmware/mc.c */
 /* bench-symbols: mc_init mc_step mc_request */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench_mc_closedloop.c - instructions per mc_step in closed loop, the core on the simulated Hurst.
  */
 /* bench-requires: firmware/mc.c smc_estimator/smc.c tools/sim/sim_core.c */

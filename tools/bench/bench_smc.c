@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench_smc.c - instruction count of smc_update over a rotating back-EMF (sliding-mode estimator).
  */
 /* bench-requires: smc_estimator/smc.c */

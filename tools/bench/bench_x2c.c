@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* bench_x2c.c - instruction count of the X2Cscope target: the ISR's scope and the main loop's
  * services. */
 /* bench-requires: firmware/mc.c firmware/x2cscope/x2c.c tools/sim/sim_mailbox.c */

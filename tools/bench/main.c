@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* main.c - driver of the instruction-count bench: lists the registered cases or runs one. */
 #include <stdio.h>
 #include <stdlib.h>

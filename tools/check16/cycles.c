@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* cycles.c - AVR clock cycles of mc_step and mc_slow_step over check16's recorded start, per frame.
  */
 /* check16-cflags: -DMOTOR_LOCK_TIME_S=0.02 -DMOTOR_RAMP_TIME_S=0.15 -DMC_HANDOFF_WAIT_S=0.05 */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* emit.c - hex line output and the deterministic input generator of the 16-bit check. */
 #include "emit.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* emit.h - the output API of the 16-bit check: one text line per vector, same bytes on PC and AVR.
  */
 #ifndef EMIT_H

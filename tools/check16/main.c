@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* main.c - driver of the 16-bit check: runs every vec_<module>() and prints one line per vector. */
 #include <stdint.h>
 

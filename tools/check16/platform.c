@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* platform.c - where the 16-bit check's programs write: USART0 under simavr, stdout on the PC. */
 #include <stdint.h>
 

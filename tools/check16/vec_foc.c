@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_foc.c - 16-bit check vectors for q15.h and every foc/ block that is present. */
 /* check16-requires: foc/q15.h */
 #include "emit.h"

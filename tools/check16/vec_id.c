@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_id.c - 16-bit check vectors for self-commissioning: the sequence, its math, its results. */
 /* check16-requires: firmware/mc.c firmware/mc_id.c smc_estimator/smc.c */
 #include "emit.h"

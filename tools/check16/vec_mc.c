@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_mc.c - 16-bit check vectors for the motor-control core: mc_step over a recorded start. */
 /* check16-requires: firmware/mc.c firmware/mc_id.c smc_estimator/smc.c */
 /* check16-cflags: -DMOTOR_LOCK_TIME_S=0.02 -DMOTOR_RAMP_TIME_S=0.15 -DMC_HANDOFF_WAIT_S=0.05 */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_mc_frames.h - what vec_mc.c and gen_mc_frames.c share: frame count, bus and pot formulas. */
 #ifndef VEC_MC_FRAMES_H
 #define VEC_MC_FRAMES_H

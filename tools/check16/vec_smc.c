@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_smc.c - 16-bit check vectors for the sliding-mode estimator (smc_estimator/). */
 /* check16-requires: smc_estimator/smc.c foc/lpf.c foc/atan2.c foc/sincos.c */
 #include "emit.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_x2c.c - 16-bit check vectors for the X2Cscope target: services, whitelist, tunables, scope.
  */
 /* (tools/check16/run reads the first directive line only: kept whole) */

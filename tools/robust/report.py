@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """The randomized campaign's report: success rate, failures with the command that
 reproduces each, the distributions of angle and speed error, and plots.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """an1078-scope (tools/scope): an X2Cscope client for the AN1078 firmware and `sim --pty`.
 
     an1078-scope --port /dev/pts/5 info

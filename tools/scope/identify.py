@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """an1078-identify (tools/scope): measure the motor on the board, or on `sim --pty`, and write
 the motor description tools/tune takes.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """LNet, the frame layer X2Cscope speaks (docs/x2cscope.md, "Frame"), and its transports.
 
     SYN 0x55 | SIZE | NODE | DATA[SIZE] | CRC

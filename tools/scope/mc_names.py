@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """The core's states, fault codes and identification errors, in order, from their one list each.
 
 firmware/mc.h spells the states and faults once, as the X-macro tables MC_STATE_LIST and

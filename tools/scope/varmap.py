@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """an1078-x2cmap: the simulator's X2Cscope variable map, from its ELF, in the YAML format
 pyx2cscope's import_variables reads; and the reader of that file for tools/scope.
 

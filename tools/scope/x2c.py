@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """The X2Cscope services over LNet (docs/x2cscope.md): device info, target state, RAM read and
 write, and the scope (load / save parameter 1), as the firmware's target (firmware/x2cscope)
 answers them.

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* identify_campaign.c - self-commissioning against random motors: the identification's
  * accuracy over a population the profile knows nothing of (docs/identify.md). */
 #include <math.h>

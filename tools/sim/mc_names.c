@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* mc_names.c - the names of the core's states and fault codes (mc.h), from
  * their one list. Beside the simulator, not in firmware/: the dsPIC image
  * has no use for the strings. */

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """plot.py - the plots of one simulator run: build/sim/<scenario>.csv -> <scenario>.png.
 
 Usage: plot.py <trace.csv> <out.png> [title]   (also: an1078-plot, python -m sim.plot)

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* robust.c - the randomized campaign: the core against motors, loads and inverters drawn
  * around its profile (docs/robustness.md). */
 #include <math.h>

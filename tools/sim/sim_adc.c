@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_adc.c - quantising, saturating, noisy ADC model. */
 #include "sim_adc.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_adc.h - the ADC as the core sees it: 10-bit, offsets, noise, saturation. */
 #ifndef SIM_ADC_H
 #define SIM_ADC_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_board_mchv.c - the simulated dsPICDEM MCHV (DM330023). */
 #include "sim_profiles.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_board_mclv.c - the simulated dsPICDEM MCLV (DM330021). */
 #include "sim_profiles.h"
 

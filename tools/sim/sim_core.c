@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_core.c - the one bench: the core on the simulated plant, one PWM period a step. */
 /* clock_gettime (wall time for the progress line) is POSIX, not C99. */
 #define _POSIX_C_SOURCE 199309L

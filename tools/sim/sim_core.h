@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_core.h - the one bench: the firmware core (mc.h) on the simulated plant, inverter and ADC. */
 #ifndef SIM_CORE_H
 #define SIM_CORE_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_inverter.c - inverter: duty to pin voltage (averaged or per edge), dead time, bus ripple. */
 #include "sim_inverter.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_inverter.h - three-phase inverter (averaged or switching) with dead time, DC bus with ripple.
  */
 #ifndef SIM_INVERTER_H

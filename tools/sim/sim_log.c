@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_log.c - the record of a run and its summary lines (sim_log.h). */
 #include "sim_log.h"
 

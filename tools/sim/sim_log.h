@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_log.h - the record of a run: state changes, peak current, the segments' windows. */
 #ifndef SIM_LOG_H
 #define SIM_LOG_H

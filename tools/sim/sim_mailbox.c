@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_mailbox.c - motor.h's mailbox over the attached motor, no interrupts to mask. */
 #include "sim_mailbox.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_mailbox.h - motor.h's mailbox over a motor the caller steps itself (the simulator, tests). */
 #ifndef SIM_MAILBOX_H
 #define SIM_MAILBOX_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_main.c - runs a scenario file against the firmware core and the simulated motor. */
 #include <math.h>
 #include <stdio.h>

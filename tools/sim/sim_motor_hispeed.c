@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_motor_hispeed.c - the simulated 2-pole-pair high-speed motor ("hispeed", "hs2p"). */
 #include "sim_profiles.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_motor_hurst.c - the simulated Hurst DMB0224C10002 ("hurst", "hurst075"). */
 #include "sim_profiles.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_motor_hurst300.c - the simulated Hurst DMA0204024B101 ("hurst300", "hurst_long"). */
 #include "sim_profiles.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_motor_lowl.c - the simulated low-inductance motor ("lowl"), for the robustness campaign. */
 #include <stddef.h>
 

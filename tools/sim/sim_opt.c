@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_opt.c - the command-line options of the simulator's programs (sim_opt.h). */
 #include "sim_opt.h"
 

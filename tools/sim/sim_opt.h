@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_opt.h - the command-line options of the simulator's programs: one table per program. */
 #ifndef SIM_OPT_H
 #define SIM_OPT_H

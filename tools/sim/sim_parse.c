@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_parse.c - strict numbers for the simulator's inputs (sim_parse.h). */
 #include "sim_parse.h"
 

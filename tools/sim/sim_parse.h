@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_parse.h - strict numbers for the simulator's inputs (scenario files and command lines). */
 #ifndef SIM_PARSE_H
 #define SIM_PARSE_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_plant.c - PMSM rotor-frame model, RK4 integration, stick-slip mechanics. */
 #include "sim_plant.h"
 

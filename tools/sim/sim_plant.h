@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_plant.h - PMSM in the rotor (d-q) frame with its mechanics, double precision. */
 #ifndef SIM_PLANT_H
 #define SIM_PLANT_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_profiles.c - the simulated motors and boards by name (one file per profile). */
 #include "sim_profiles.h"
 

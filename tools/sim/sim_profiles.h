@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_profiles.h - the simulated motors and boards, by name. */
 #ifndef SIM_PROFILES_H
 #define SIM_PROFILES_H

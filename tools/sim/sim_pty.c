@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_pty.c - the X2Cscope target on a pseudo-terminal and, optionally, TCP (see sim_pty.h). */
 /* posix_openpt, grantpt, unlockpt, ptsname, nanosleep, clock_gettime, sigaction, sockets:
  * POSIX/XSI, not C99. */

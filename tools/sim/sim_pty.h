@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_pty.h - the X2Cscope target (firmware/x2cscope) on a pseudo-terminal and TCP, driven by
  * the simulator. */
 #ifndef SIM_PTY_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_rig.c - one PWM period of plant, inverter and ADC; the diode model with outputs off. */
 #include "sim_rig.h"
 

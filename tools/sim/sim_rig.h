@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_rig.h - plant, inverter and ADC, one PWM period a step (sim_core.h adds the core). */
 #ifndef SIM_RIG_H
 #define SIM_RIG_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_sample.h - one PWM period of the core on the bench, as an engineer reads it. */
 #ifndef SIM_SAMPLE_H
 #define SIM_SAMPLE_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_scenario.c - scenario text parser. */
 #include "sim_scenario.h"
 

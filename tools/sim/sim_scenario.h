@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_scenario.h - time-stamped scenario events read from small text files. */
 #ifndef SIM_SCENARIO_H
 #define SIM_SCENARIO_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_trace.c - the CSV trace of a run (sim_trace.h). */
 #include "sim_trace.h"
 

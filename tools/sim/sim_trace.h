@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_trace.h - the CSV trace of a run: one row per sample (docs/sim.md "Outputs"). */
 #ifndef SIM_TRACE_H
 #define SIM_TRACE_H

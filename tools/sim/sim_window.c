@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_window.c - sums of a steady-state window (sim_window.h). */
 #include "sim_window.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_window.h - sums of a steady-state window: speeds, speed error, angle error, current. */
 #ifndef SIM_WINDOW_H
 #define SIM_WINDOW_H

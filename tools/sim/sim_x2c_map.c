@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_x2c_map.c - the simulator's X2Cscope variable map (see sim_x2c_map.h). */
 #include "sim_x2c_map.h"
 

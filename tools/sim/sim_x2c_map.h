@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sim_x2c_map.h - the simulator's X2Cscope variable map, kept in its ELF for the map generator. */
 #ifndef SIM_X2C_MAP_H
 #define SIM_X2C_MAP_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_cl_hispeed.c - the 2-pole-pair high-speed motor on the MCHV bus to 17,000 rpm. */
 #include "cl_helpers.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sfr_standin.c - storage of the stand-in registers and the emulated XC16 clock built-ins. */
 #include "sfr_standin.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* sfr_standin.h - test-side control of the SFR stand-in: reset values and the built-in call log. */
 #ifndef SFR_STANDIN_H
 #define SFR_STANDIN_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* xc.h (host stand-in) - the dsPIC33FJ32MC204 SFRs the HAL touches, as plain variables. */
 #ifndef SFR_STANDIN_XC_H
 #define SFR_STANDIN_XC_H

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_x2c_app.c - the board's main loop (firmware/app.c) with the X2Cscope target as its UART
  * client, over a fake UART. */
 #include "../x2c_util.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* test_x2c_readonly.c - the target built with X2C_READ_ONLY: every write refused, reads and the
  * scope as before. */
 #include "../x2c_util.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* vec_canary.c - a deliberate int-width dependence: tools/check16/selftest expects the check to
  * fail here. */
 /* check16-requires: foc/q15.h */

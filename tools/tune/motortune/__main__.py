@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """python -m tune.motortune: the tools/tune/tune command."""
 
 import sys

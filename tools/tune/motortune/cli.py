@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Command line: tools/tune/tune <description.toml> | --check <profile.h>.
 
 Every problem ends in exactly one line on stderr, "tune: <file>: <field>: <why>",

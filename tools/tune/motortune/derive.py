@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """From a motor description to every value of a motor profile, with the reason for each.
 
 All arithmetic in SI units (speeds in rpm where named so). Phase quantities

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """The motor description file (TOML): fields, units, validation.
 
     name = "hurst075"            # profile name: firmware/motors/motor_<name>.h

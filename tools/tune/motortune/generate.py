@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """A description to a checked header text: derive, write, judge with the core's own checks.
 
 `build` runs derive.derive, renders the header (emit.render, then the repo's

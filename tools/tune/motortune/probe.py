@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """The core's numbers, from the C compiler: tools/tune's probe (probe/*.c).
 
 tools/tune computes nothing the core computes. To learn what the core makes of

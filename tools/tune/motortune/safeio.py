@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Reading inputs and writing the profile header without trusting the paths.
 
 Reading: only a regular file is read (a fifo or a device could block or never
@@ -79,18 +81,23 @@ def read_utf8(path: str, label: str, limit: int) -> str:
 
 
 def is_generated(path: str) -> bool:
-    """Whether the header at `path` says, in its first comment, that tools/tune wrote it
-    (clang-format may have wrapped the words over ' * ' continuation lines)."""
+    """Whether the header at `path` says, in its first comment after the licence lines,
+    that tools/tune wrote it (clang-format may have wrapped the words over ' * '
+    continuation lines)."""
     try:
         head = read_regular(path, path, 1 << 20, follow=False)[:4096].decode("utf-8", "replace")
     except InputError:
         return False
-    start = head.find("/*")
-    end = head.find("*/", start + 2)
-    if start < 0 or end < 0 or head[:start].strip():
-        return False
-    words = re.sub(r"[\s*]+", " ", head[start + 2:end])
-    return GENERATED_MARK in words
+    pos = 0
+    while True:
+        start = head.find("/*", pos)
+        end = head.find("*/", start + 2)
+        if start < 0 or end < 0 or head[pos:start].strip():
+            return False
+        words = re.sub(r"[\s*]+", " ", head[start + 2:end]).strip()
+        if not words.startswith(("SPDX-License-Identifier:", "Copyright ")):
+            return GENERATED_MARK in words
+        pos = end + 2
 
 
 def _symlink_on_path(path: str, root: str | None = None) -> str | None:

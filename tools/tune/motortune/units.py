@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: Apache-2.0
+# Copyright 2026 The open AN1078 authors
 """Quantities with units: "5.34 ohm", "3.84 mH", "7.3 V/krpm", "1.64 A".
 
 Every physical value in a motor description carries its unit, either in the

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* probe_facts.h - the numbers tools/tune's probe reads from the core's headers: one list for its
  * two files. */
 #ifndef PROBE_FACTS_H

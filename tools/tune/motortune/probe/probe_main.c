@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* probe_main.c - prints what probe_values.c holds, as lines tools/tune reads (motortune/probe.py).
  */
 

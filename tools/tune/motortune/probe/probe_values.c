@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Copyright 2026 The open AN1078 authors */
 /* probe_values.c - the core's numbers for a board or a profile, as data only (tools/tune's probe).
  */
 
