@@ -50,13 +50,29 @@
 
 /* ---- operating mode -------------------------------------------------------- */
 
-/* TORQUEMODE: the pot (or mc_set_reference) sets the Iq reference directly,
- * 0..MOTOR_CURRENT_MAX_A; the speed loop is bypassed (AN1078 "Torque Mode").
- * Leave undefined for speed mode. */
-/* #define TORQUEMODE */
+/* Every switch below is a 0/1 macro, defined here unless the build (-D) or a
+ * profile set it first; the code tests it with `if (MC_X)`, so the
+ * compiler drops what is off (mc_derived.h refuses anything but 0 and 1).
+ * AN1078's own names still work: defining TORQUEMODE selects torque mode,
+ * and ENVOLTRIPPLE is defined whenever the ripple compensation is on. */
 
-/* ENVOLTRIPPLE: compensate Vd and Vq for DC-bus ripple (AN1078 Equation 8). */
-#ifndef MC_NO_VOLTRIPPLE
+/* MC_TORQUE_MODE: the pot (or mc_set_reference) sets the Iq reference
+ * directly, 0..MOTOR_CURRENT_MAX_A; the speed loop is bypassed (AN1078
+ * "Torque Mode", its TORQUEMODE). 0 = speed mode. */
+#ifndef MC_TORQUE_MODE
+#if defined(TORQUEMODE)
+#define MC_TORQUE_MODE 1
+#else
+#define MC_TORQUE_MODE 0
+#endif
+#endif
+
+/* MC_VOLTAGE_RIPPLE: compensate Vd and Vq for DC-bus ripple (AN1078
+ * Equation 8, its ENVOLTRIPPLE). 1 = on. */
+#ifndef MC_VOLTAGE_RIPPLE
+#define MC_VOLTAGE_RIPPLE 1
+#endif
+#if MC_VOLTAGE_RIPPLE && !defined(ENVOLTRIPPLE)
 #define ENVOLTRIPPLE
 #endif
 

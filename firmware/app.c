@@ -131,25 +131,22 @@ static void on_s2(app_t *app)
  * another side has taken the reference (or handed it back to the pot) and
  * S3's mode ends.
  */
-#if !defined(TORQUEMODE)
 static void board_reference(app_t *app)
 {
     app->ref_seq_mine = motor_set_reference(app_speed_from_pot(hal_pot_read(), true));
 }
-#endif
 
 static void on_s3(app_t *app)
 {
-#if defined(TORQUEMODE)
-    (void)app; /* no speed reference to double */
-#else
+    if (MC_TORQUE_MODE) {
+        return; /* no speed reference to double */
+    }
     app->double_speed = !app->double_speed;
     if (app->double_speed) {
         board_reference(app);
     } else {
         motor_request(MC_REQUEST_REF_POT);
     }
-#endif
 }
 
 /* ---- UART -------------------------------------------------------------------- */
@@ -312,15 +309,13 @@ void app_tick_1ms(app_t *app)
         app->status_ms = 0;
         motor_status(&app->status);
         update_leds(app);
-#if !defined(TORQUEMODE)
-        if (app->double_speed) {
+        if (!MC_TORQUE_MODE && app->double_speed) {
             if (mc_reference_held(&app->status, app->ref_seq_mine)) {
                 board_reference(app);
             } else {
                 app->double_speed = false; /* another side took the reference */
             }
         }
-#endif
     }
 
     if (app->uart_client != NULL) {

@@ -1,10 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Copyright 2026 The open AN1078 authors */
-/* mc.c - the motor-control core: state machine, protections, current and speed loops. */
-#include <string.h>
-
-#include "mc.h"
-#include "mc_internal.h"
+/* mc.c - the motor-control core's 50 us path: one PWM period, mc_step_control and mc_step_finish.
+ */
+#include "mc_parts.h"
 
 #include "clarke.h"
 #include "park.h"
@@ -29,210 +27,28 @@
  *   6. every MC_SLOW_STEP_PERIODS periods, the window end: this window's
  *      inputs out to the slow step, whose results come back
  *      MC_SLOW_APPLY_PERIODS periods later (mc.h note 4).
- * mc_slow_step(), once per window outside the interrupt: the estimator's
- * speed and compensation, the speed ramp, speed PI (or the torque
- * reference), field weakening, stall detection.
+ * mc_slow_step() (mc_slow.c), once per window outside the interrupt: the
+ * estimator's speed and compensation, the speed ramp, speed PI (or the
+ * torque reference), field weakening, stall detection. The changes of
+ * state are in mc_state.c, called from the period that makes them.
  * Divisions in the per-period path: atan2's ratio, the ripple gain and the
  * circle limit's square root (one div.ud each; docs/performance.md says
  * what the alternatives cost).
  */
 
-/* ---- constant parameters (compile-time, mc_derived.h) --------------------- */
-
-static const smc_params_t mc_smc_params = MC_SMC_PARAMS_INIT;
-
-static const pi_params_t mc_pi_cur_params = {
-    MC_CUR_KP, MC_CUR_KP_SHIFT, MC_CUR_KI, MC_PI_KC, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15,
-};
-
-static const pi_params_t mc_pi_spd_params = {
-    MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
-};
-
-static const fieldweak_params_t mc_fw_params = {
-    MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM),
-    MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM),
-    MC_FW_TABLE_Q15,
-};
-
-/* Inverse-Park advance (mc.h note 2): the sample is taken at MC_SAMPLE_AT
- * of period n, the voltage computed from it acts over the whole period n+1,
- * centred (1.5 - MC_SAMPLE_AT) Ts after the sample (0.96 Ts on the MCLV),
- * so it is rotated by that much. In binary angle counts: speed_q15 *
- * 2 (1.5 - a) omega_fs Ts (omega_fs in Hz); open loop: the forced step per
- * period times (1.5 - a). */
-#define MC_ADV_PERIODS_ (1.5 - MC_SAMPLE_AT)
-#define MC_ADV_K_       (2.0 * MC_ADV_PERIODS_ * MC_OMEGA_FS_HZ * MC_TS_S)
-MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_ADV_K_ < 1.0,
-         "the advance at full speed must be < pi (PWM too slow for the speed range)");
-#define MC_ADV_K Q15(MC_ADV_K_)
-/* The estimator's angle is one sample old when the current loops use it
- * (mc.h note 2): one period of the estimated speed, speed_q15 * 2
- * omega_fs Ts angle counts. */
-#define MC_PRED_K_ (2.0 * MC_OMEGA_FS_HZ * MC_TS_S)
-MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_PRED_K_ < 1.0,
-         "one period at full speed must be < pi (PWM too slow for the speed range)");
-#define MC_PRED_K      Q15(MC_PRED_K_)
-#define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
-/* The open-loop step per period (binary angle counts) must stay below 2^15
- * for the advance's Q15 product: the ramp's end below half the PWM rate. */
-MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 0.5,
-         "the ramp's end must be below half the PWM frequency (electrical)");
-
-/* The voltage the current evolved under between the previous sample and
- * this one (mc.h note 2): the duty of period n-1 (computed two steps ago,
- * v_hist[1]) for the part of the interval before the boundary, 1 - a, and
- * the one of period n (computed one step ago, v_hist[0]) for the part
- * after it, a. Weights sum to exactly 1.0, so a steady voltage passes
- * unchanged. */
-#define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
-#define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
-
-#if MC_IDENTIFY
-static const mc_id_params_t mc_id_params = MC_ID_PARAMS_INIT;
-#endif
-
-/* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
- * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
- * for |speed_ref| < MC_KP_FULL_Q15, so the product stays below 2^30. */
-#define MC_KP_FULL_Q15  MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM)
-#define MC_KP_SCHED_ONE Q15(1.0)
-#define MC_KP_SCHED_MIN Q15(MC_SPEED_KP_MIN_FRACTION)
-#define MC_KP_SCHED_K_  (32768.0 * 32767.0 / (double)MC_KP_FULL_Q15)
-MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_KP_SCHED_K_ <= 32768.0 * 32767.0 / 16.0,
-         "must be at least 16 Q15 counts of speed");
-#define MC_KP_SCHED_K ((int32_t)(MC_KP_SCHED_K_ + 0.5))
-
-/* Pot travel in Q15 speed (speed mode): 0 < span < 32768. */
-#define MC_SPEED_REF_SPAN_Q15 ((q15_t)(MC_SPEED_REF_MAX_Q15 - MC_SPEED_REF_MIN_Q15))
-
-/* Total current the speed loop may ask for with field weakening active: 90 %
- * of the software trip, so |(Id, Iq)| never reaches it in steady state. */
-#define MC_I_TOTAL_Q15 MC_Q15_AMPS(0.9 * MC_OVERCURRENT_A)
-
-#define MC_TIMER_MAX 0xFFFFFFFFUL
-
-/* A compiler barrier: the stores before it are not moved after it. Every
- * supported compiler (gcc, clang, XC16's gcc) understands it; the dsPIC
- * executes stores in order. */
-#define MC_BARRIER() __asm__ __volatile__("" ::: "memory")
-
-/* The voltage circle on the Q30 scale of a Q15 x Q15 product (note 3):
- * Vmax^2, and (7/8 Vmax)^2, past which a period's vector is near it. */
 #define MC_VMAX_SQ  ((int32_t)MC_VMAX_Q15 * (int32_t)MC_VMAX_Q15)
 #define MC_VNEAR_SQ ((int32_t)(MC_VMAX_Q15 * 7L / 8L) * (int32_t)(MC_VMAX_Q15 * 7L / 8L))
 
-/* sqrt(3) / 2 and -1/2 in Q15, for the phase currents from alpha/beta. */
-#define MC_SQRT3_2    Q15(0.86602540378443865)
-#define MC_MINUS_HALF Q15(-0.5)
-
-/* ---- pure helpers (mc_internal.h) ------------------------------------------ */
-
-/* Both maps run every period: Q15 x Q15 products, written as 16 x 16 -> 32
- * (gcc narrows the 32-bit form too: avr-gcc -O1 emits the same widening
- * multiply for either, so this states the cost rather than changing it). */
-q15_t mc_pot_to_speed(int16_t pot)
-{
-    q15_t p = (pot < 0) ? 0 : pot;
-    return (q15_t)(MC_SPEED_REF_MIN_Q15 + (((int32_t)p * MC_SPEED_REF_SPAN_Q15) >> 15));
-}
-
-q15_t mc_pot_to_torque(int16_t pot)
-{
-    q15_t p = (pot < 0) ? 0 : pot;
-    return (q15_t)(((int32_t)p * MC_IQ_MAX_Q15) >> 15);
-}
-
-bool mc_reference_held(const mc_status_t *st, uint8_t seq)
-{
-    return st->ref_remote && st->ref_seq == seq;
-}
-
-uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
-{
-    cnt[0] = (q15_abs_sat(in->speed) < MC_STALL_SPEED_Q15) ? (uint16_t)(cnt[0] + 1U) : 0U;
-    bool emf_bad = (in->emf_ratio > MC_STALL_BEMF_HI_Q12) ||
-                   (!in->fw_active && in->emf_ratio < MC_STALL_BEMF_LO_Q12);
-    cnt[1] = emf_bad ? (uint16_t)(cnt[1] + 1U) : 0U;
-    bool track_bad = q15_abs_sat(in->speed_err) > MC_STALL_SPEED_ERR_Q15 && in->saturated;
-    cnt[2] = track_bad ? (uint16_t)(cnt[2] + 1U) : 0U;
-    if (cnt[0] >= MC_STALL_TICKS) {
-        return MC_FAULT_STALL_SPEED;
-    }
-    if (cnt[1] >= MC_STALL_TICKS) {
-        return MC_FAULT_STALL_BEMF;
-    }
-    if (cnt[2] >= MC_STALL_TRACK_TICKS) {
-        return MC_FAULT_STALL_TRACK;
-    }
-    return MC_FAULT_NONE;
-}
-
-/* ---- the mailbox ------------------------------------------------------------- */
+/* ---- the mailbox, as the step takes it ----------------------------------------- */
 
 static bool mc_take(mc_t *mc, mc_request_t r)
 {
-    uint8_t posted = mc->req_posted[r];
+    uint8_t posted = mc->mbox.req_posted[r];
     if (posted == mc->req_taken[r]) {
         return false;
     }
     mc->req_taken[r] = posted;
     return true;
-}
-
-void mc_request(mc_t *mc, mc_request_t r)
-{
-    if (r == MC_REQUEST_REF_POT) {
-        /* a choice of reference like mc_set_reference, on the same
-         * sequence: of the two, the later one wins even within a period */
-        mc->ref_to_pot = true;
-        mc->ref_remote_seq = (uint8_t)(mc->ref_remote_seq + 1U);
-        mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
-    } else if ((unsigned)r < (unsigned)MC_REQUEST_COUNT) {
-        mc->req_posted[r] = (uint8_t)(mc->req_posted[r] + 1U);
-        mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* after the request: mc.h note 1 */
-    }
-}
-
-uint8_t mc_set_reference(mc_t *mc, int16_t ref)
-{
-    uint8_t seq = (uint8_t)(mc->ref_remote_seq + 1U);
-    mc->ref_remote = ref;
-    mc->ref_to_pot = false;
-    mc->ref_remote_seq = seq;
-    mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
-    return seq;
-}
-
-bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)
-{
-    if ((unsigned)g >= (unsigned)MC_GAIN_COUNT || value < 0) {
-        return false;
-    }
-    mc->gain_posted[g] = value;
-    mc->gain_seq = (uint8_t)(mc->gain_seq + 1U);
-    mc->req_seq = (uint8_t)(mc->req_seq + 1U); /* last: mc.h note 1 */
-    return true;
-}
-
-int16_t mc_get_gain(const mc_t *mc, mc_gain_t g)
-{
-    return ((unsigned)g < (unsigned)MC_GAIN_COUNT) ? mc->gain_posted[g] : 0;
-}
-
-/* Apply the posted gains (mc.h note 3). */
-static void mc_apply_gains(mc_t *mc)
-{
-    q15_t kp = mc->gain_posted[MC_GAIN_CUR_KP];
-    q15_t ki = mc->gain_posted[MC_GAIN_CUR_KI];
-    mc->pi_d.p.kp = kp;
-    mc->pi_q.p.kp = kp;
-    mc->pi_d.p.ki = ki;
-    mc->pi_q.p.ki = ki;
-    mc->pi_d.p.kc = ki;
-    mc->pi_q.p.kc = ki;
-    mc->spd_kp_base = mc->gain_posted[MC_GAIN_SPD_KP]; /* to the slow step at the window end */
-    mc->spd_ki_base = mc->gain_posted[MC_GAIN_SPD_KI];
 }
 
 /* sin/cos of theta + the closed-loop advance: sc turned by mc->adv_sc. */
@@ -248,242 +64,14 @@ Q15_INLINE sincos_q15_t mc_advance(sincos_q15_t sc, sincos_q15_t a)
  * angle's one-period prediction (mc.h note 2), from the estimator's speed:
  * recomputed whenever that speed changes (the slow step's results, a
  * preset, a reset), so the period only turns sc and adds pred. */
-static void mc_set_advance(mc_t *mc)
+void mc_set_advance(mc_t *mc)
 {
     q15_t w = smc_omega(&mc->smc);
     mc->adv_sc = sincos_compute(q15_mul(w, MC_ADV_K));
     mc->pred = q15_mul(w, MC_PRED_K);
 }
 
-/* ---- state changes --------------------------------------------------------------- */
-
-static void mc_prepare(mc_t *mc);
-
-/* The states that drive the motor, outputs on: LOCK, OPEN_LOOP, CLOSED_LOOP,
- * IDENTIFY (consecutive in MC_STATE_LIST: one unsigned compare). */
-Q15_STATIC_ASSERT(MC_STATE_OPEN_LOOP == MC_STATE_LOCK + 1 &&
-                      MC_STATE_CLOSED_LOOP == MC_STATE_LOCK + 2 &&
-                      MC_STATE_IDENTIFY == MC_STATE_LOCK + 3,
-                  "mc_driving needs LOCK, OPEN_LOOP, CLOSED_LOOP, IDENTIFY consecutive");
-Q15_INLINE bool mc_driving(mc_state_t s)
-{
-    return (unsigned)s - (unsigned)MC_STATE_LOCK <=
-           (unsigned)MC_STATE_IDENTIFY - (unsigned)MC_STATE_LOCK;
-}
-
-static void mc_enter(mc_t *mc, mc_state_t s)
-{
-    mc->state = s;
-    mc->timer = 0U;
-    /* the window's voltage sums: the dead-time measurement's, the identification's */
-    mc->sums_on = s == MC_STATE_IDENTIFY || (MC_DTM_ON && s == MC_STATE_LOCK);
-}
-
-/* Everything the power stage and the loops hold, back to rest. */
-static void mc_outputs_off(mc_t *mc)
-{
-    mc->outputs_on = false;
-    mc->duty[0] = PWM_DUTY_MAX / 2U;
-    mc->duty[1] = PWM_DUTY_MAX / 2U;
-    mc->duty[2] = PWM_DUTY_MAX / 2U;
-    mc->v_dq.d = 0;
-    mc->v_dq.q = 0;
-    mc->i_ref.d = 0;
-    mc->i_ref.q = 0;
-    mc->v_hist[0].alpha = 0;
-    mc->v_hist[0].beta = 0;
-    mc->v_hist[1] = mc->v_hist[0];
-    pi_reset(&mc->pi_d);
-    pi_reset(&mc->pi_q);
-    mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
-    mc->preset_pending = false;
-#if MC_IDENTIFY
-    mc->id_inj = 0;
-    mc->ol_inc = 0U;
-#endif
-}
-
-static void mc_id_stop(mc_t *mc, uint16_t error);
-
-/* FAULT's entry: the cause recorded, the outputs off. */
-static void mc_enter_fault(mc_t *mc, uint16_t code)
-{
-    mc->fault = code;
-    mc_id_stop(mc, MC_ID_ERROR_FAULT);
-    mc_outputs_off(mc);
-    mc_enter(mc, MC_STATE_FAULT);
-}
-
-/* A fault raised in any state; in FAULT the first cause stays. */
-static void mc_fault(mc_t *mc, uint16_t code)
-{
-    if (mc->state != MC_STATE_FAULT) {
-        mc_enter_fault(mc, code);
-    }
-}
-
-/* CALIBRATE, after coasting for `wait` periods. */
-static void mc_begin_calibration(mc_t *mc, uint16_t wait)
-{
-    mc_outputs_off(mc);
-    mc->calib_wait = wait;
-    mc->offset_acc_a = 0;
-    mc->offset_acc_b = 0;
-    mc_enter(mc, MC_STATE_CALIBRATE);
-}
-
-static void mc_stop(mc_t *mc)
-{
-    mc_id_stop(mc, MC_ID_ERROR_ABORTED);
-    mc_outputs_off(mc);
-    mc_enter(mc, MC_STATE_STOPPED);
-}
-
-static void mc_enter_lock(mc_t *mc)
-{
-    pi_reset(&mc->pi_d);
-    pi_reset(&mc->pi_q);
-    smc_reset(&mc->smc);
-    mc_set_advance(mc);
-    mc->epoch = (uint8_t)(mc->epoch + 1U);
-    mc->ol_angle = 0U;
-    mc->ol_damp = 0;
-    mc->ol_dlive = false;
-    mc->ol_dmean = 0;
-    mc->agree = 0U;
-    mc->ol_iq = 0;
-    mc->lock_done = false;
-    mc->lock_va = 0;
-    mc->lock_vb = 0;
-    mc->ol_step = 0U;
-    mc->theta = 0;
-    mc->theta_offset = 0;
-    /* AN1078: the torque current at a fixed angle; the rotor settles with
-     * its d axis on the current vector, 90 degrees ahead of the forced d
-     * axis, which is where the ramp's load angle starts from. */
-    mc->i_ref.d = 0;
-    mc->i_ref.q = MC_LOCK_CURRENT_Q15;
-    mc_enter(mc, MC_STATE_LOCK);
-    mc_prepare(mc); /* the outputs turn on with the lock's first period */
-}
-
-/* Id reference with the light-load floor (UserParms.h MC_ID_MIN_A): at
- * least MC_ID_MIN_Q15 - |iq| of negative Id, so the current vector is never
- * shorter than MC_ID_MIN_Q15 / sqrt 2 and the phase currents stay outside
- * the dead-time band, where the inverter's voltage loss depends only on
- * the current's sign and the estimator's applied voltage is exact. Under
- * load (|iq| >= MC_ID_MIN_Q15) it is off and costs no torque. id <= 0
- * (field weakening), |iq| <= 32767: no overflow. */
-static q15_t mc_id_floor(q15_t id, q15_t iq)
-{
-    int32_t f = (int32_t)MC_ID_MIN_Q15 - (int32_t)q15_abs_sat(iq); /* > -32768 */
-    return ((int32_t)id > -f) ? (q15_t)(-f) : id;
-}
-
-static void mc_enter_closed_loop(mc_t *mc)
-{
-    angle_q15_t est = smc_theta(&mc->smc);
-    /* The forced angle stays the reference; the difference is bled off. */
-    mc->theta_offset = angle_sub(mc->theta, est);
-    /* The rotor turns at the forced speed on average; the estimator's
-     * window speed is noisier than that, so both start from it. */
-    smc_preset_speed(&mc->smc, MC_RAMP_END_Q15);
-    mc_set_advance(mc);
-    mc->speed_ref =
-        (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
-    /* The speed PI starts from the load's share of the ramp current, the
-     * measured current on the estimated q axis low-passed over 32 windows
-     * by the slow step (ol_iq), plus a quarter of the ramp current, within
-     * 0..I_ramp: one sample swings with the rotor about the forced angle,
-     * the low-passed one alone falls short of a stick-slip load, and the
-     * whole ramp current (AN1078's preset) overshoots an unloaded motor
-     * (docs/tuning.md, "Behind the defaults"). The slow step presets the PI
-     * with it; until its first result arrives, the references are what the
-     * preset PI puts out. */
-    mc->i_ref.q =
-        q15_clamp(q15_add_sat(mc->ol_iq, (q15_t)(MC_RAMP_CURRENT_Q15 / 4)), 0, MC_RAMP_CURRENT_Q15);
-    mc->i_ref.d = mc_id_floor(0, mc->i_ref.q); /* what the first speed-loop run will set */
-    mc->epoch = (uint8_t)(mc->epoch + 1U);
-    mc->preset_pending = true;
-    mc->preset_iq = mc->i_ref.q;
-    mc->preset_speed_ref = mc->speed_ref;
-    mc_enter(mc, MC_STATE_CLOSED_LOOP);
-}
-
 /* ---- pieces of the step ---------------------------------------------------------------- */
-
-/* Speed-loop work of the slow step (CLOSED_LOOP): the speed from the
- * estimator's fresh result, the ramp, field weakening, the speed PI (or the
- * torque reference) and the stall check, into out. */
-static void mc_slow_speed_loop(mc_t *mc, const smc_result_t *est, mc_slow_out_t *out)
-{
-    q15_t w = est->omega;
-    dq_q15_t i_ref;
-
-#if defined(TORQUEMODE)
-    i_ref.q = out->torque_target;
-    mc->spd_ref = w;
-    i_ref.d = mc_id_floor(fieldweak_id_ref(&mc->fw, w), i_ref.q);
-#else
-    /* Ramp the reference towards the target. */
-    int32_t diff = (int32_t)out->speed_target - (int32_t)mc->spd_ref;
-    if (diff > MC_SPEED_RAMP_STEP) {
-        diff = MC_SPEED_RAMP_STEP;
-    } else if (diff < -MC_SPEED_RAMP_STEP) {
-        diff = -MC_SPEED_RAMP_STEP;
-    }
-    mc->spd_ref = (q15_t)((int32_t)mc->spd_ref + diff);
-
-    /* Field weakening from the reference (AN1078), then what is left of the
-     * current budget for Iq. */
-    i_ref.d = fieldweak_id_ref(&mc->fw, mc->spd_ref);
-    q15_t iq_max = vlimit_vq_max(i_ref.d, MC_I_TOTAL_Q15);
-    if (iq_max > MC_IQ_MAX_Q15) {
-        iq_max = MC_IQ_MAX_Q15;
-    }
-    pi_set_limits(&mc->pi_w, (q15_t)(-iq_max), iq_max);
-    /* Kp and Ki scheduled on the reference: full above MOTOR_SPEED_KP_FULL_RPM,
-     * proportional below it (at least MC_KP_SCHED_MIN): the estimated
-     * speed is noisiest at low speed, where a full Kp turns that noise into
-     * current and speed ripple. */
-    q15_t sched = MC_KP_SCHED_ONE;
-    if (mc->spd_ref < MC_KP_FULL_Q15) {
-        int32_t f = ((int32_t)q15_abs_sat(mc->spd_ref) * MC_KP_SCHED_K) >> 15;
-        sched = (f < MC_KP_SCHED_MIN) ? MC_KP_SCHED_MIN : (q15_t)f;
-    }
-    mc->pi_w.p.kp = q15_mul(mc->slow_in.spd_kp, sched);
-    mc->pi_w.p.ki = q15_mul(mc->slow_in.spd_ki, sched);
-    mc->pi_w.p.kc = mc->slow_in.spd_ki;
-    i_ref.q = pi_update(&mc->pi_w, mc->spd_ref, w);
-    /* After Iq: the floor only asks |Id| + |Iq| <= MC_ID_MIN_Q15, inside
-     * the current budget the limit above was computed from. */
-    i_ref.d = mc_id_floor(i_ref.d, i_ref.q);
-#endif
-
-    /* Stall / loss of synchronisation (note 2). */
-    mc_stall_in_t si;
-    si.speed = w;
-    si.emf_ratio = est->emf_ratio;
-    /* The low back-EMF side is waived in field weakening only while the
-     * estimator still vouches for its back-EMF: the linear (dead-beat)
-     * observer reads the rotor flux, which Id does not weaken, so a valid
-     * estimate keeps the ratio near 1 there; a rotor locked in field
-     * weakening makes the estimated speed swing by thousands of rpm, so
-     * neither the speed nor the tracking condition persists, and only the
-     * back-EMF catches it. */
-    si.fw_active = q15_abs_sat(mc->spd_ref) > mc_fw_params.speed_nominal && est->valid;
-#if defined(TORQUEMODE)
-    si.speed_err = 0;
-    si.saturated = false;
-#else
-    si.speed_err = q15_sub_sat(mc->spd_ref, w);
-    si.saturated = pi_at_limit(&mc->pi_w);
-#endif
-    out->fault = mc_stall_check(mc->stall_cnt, &si);
-    out->i_ref = i_ref;
-    out->speed_ref = mc->spd_ref;
-    out->loop = true;
-}
 
 /* The estimator's update for this sample, after the duties
  * (mc_step_finish): fed the voltage applied while this sample's current
@@ -576,11 +164,11 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
             }
         }
     }
-#if defined(ENVOLTRIPPLE)
-    /* The gain mc_prepare formed from the previous sample's bus. */
-    v.d = ripple_apply(v.d, mc->ripple_gain);
-    v.q = ripple_apply(v.q, mc->ripple_gain);
-#endif
+    if (MC_VOLTAGE_RIPPLE) {
+        /* The gain mc_prepare formed from the previous sample's bus. */
+        v.d = ripple_apply(v.d, mc->ripple_gain);
+        v.q = ripple_apply(v.q, mc->ripple_gain);
+    }
     mc->v_dq = v;
 
     /* Voltage at the angle it will be applied at. */
@@ -604,11 +192,11 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     int16_t d0 = (int16_t)sv.duty[0];
     int16_t d1 = (int16_t)sv.duty[1];
     int16_t d2 = (int16_t)sv.duty[2];
-#if MC_DEADTIME_COMP
-    d0 = (int16_t)(d0 + dt0);
-    d1 = (int16_t)(d1 + dt1);
-    d2 = (int16_t)(d2 + dt2);
-#endif
+    if (MC_DEADTIME_COMP) {
+        d0 = (int16_t)(d0 + dt0);
+        d1 = (int16_t)(d1 + dt1);
+        d2 = (int16_t)(d2 + dt2);
+    }
     /* Shunt window (mc_derived.h MC_DUTY_SAMPLE_MAX): phases A and B, the
      * measured ones, must leave their low-side switch on long enough before
      * the next sample. A duty above the limit first moves the three down by
@@ -683,7 +271,7 @@ static void mc_prepare(mc_t *mc)
         th = mc_forced_angle(mc, MC_RAMP_STEP_INC, &sc);
 #if MC_IDENTIFY
     } else if (mc->state == MC_STATE_IDENTIFY) {
-        th = mc_forced_angle(mc, mc->ol_inc, &sc);
+        th = mc_forced_angle(mc, mc->id_isr.inc, &sc);
 #endif
     } else { /* LOCK */
         th = 0;
@@ -692,164 +280,10 @@ static void mc_prepare(mc_t *mc)
     }
     mc->theta_next = th;
     mc->sc_next = sc;
-#if defined(ENVOLTRIPPLE)
-    mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15);
-#endif
-}
-
-/* ---- identification (mc_id.h) ----------------------------------------------------------- */
-
-#if MC_IDENTIFY
-
-/* The sequence's command (mc_id_cmd_t) into the interrupt's loops: at
- * IDENTIFY's entry and MC_SLOW_APPLY_PERIODS after each window end. An open
- * loop sets the PIs' integrals to the voltage (and the injection's present
- * half); the first closed-loop command keeps them (a bumpless hand-over). */
-static void mc_id_apply(mc_t *mc, const mc_id_cmd_t *c)
-{
-    pi_t *pis[2];
-    uint8_t k;
-    pis[0] = &mc->pi_d;
-    pis[1] = &mc->pi_q;
-    for (k = 0; k < 2U; k++) {
-        pis[k]->p.kp = c->kp;
-        pis[k]->p.kp_shift = c->kp_shift;
-        pis[k]->p.ki = c->ki;
-        pis[k]->p.kc = c->ki;
-    }
-    if (c->open_loop) {
-        q15_t inj = (c->inj != 0 && mc->id_sign < 0) ? (q15_t)(-c->inj) : c->inj;
-        mc->pi_d.sum = (q31_t)(c->v_d + ((c->inj_q == 0U) ? inj : 0)) * 65536L;
-        mc->pi_q.sum = (q31_t)(c->v_q + ((c->inj_q != 0U) ? inj : 0)) * 65536L;
-    } else if (mc->id_open) {
-        mc->pi_d.sum = (q31_t)c->v_d * 65536L;
-        mc->pi_q.sum = 0;
-    }
-    mc->id_open = c->open_loop;
-    if (c->inj_q != mc->id_inj_q || c->inj_half != mc->id_half) {
-        mc->id_cnt = 0U;
-    }
-    mc->id_inj = c->inj;
-    mc->id_inj_q = c->inj_q;
-    mc->id_half = c->inj_half;
-    mc->i_ref = c->i_ref;
-    mc->ol_inc = (uint32_t)c->accel;
-    if (c->dt_counts != mc->dt_counts) {
-        mc->dt_counts = c->dt_counts;
-        mc->dt_slope = mc_deadtime_slope(c->dt_counts);
+    if (MC_VOLTAGE_RIPPLE) {
+        mc->ripple_gain = ripple_gain(mc->vbus, MC_VBUS_NOMINAL_Q15);
     }
 }
-
-/* IDENTIFY, after CALIBRATE: the rotor's expected axis (d) on beta, the
- * dead time uncompensated while it is measured (mc_id.c note 4). */
-static void mc_enter_identify(mc_t *mc)
-{
-    mc_id_cmd_t cmd;
-    mc->id_pending = false;
-    pi_reset(&mc->pi_d);
-    pi_reset(&mc->pi_q);
-    mc->epoch = (uint8_t)(mc->epoch + 1U);
-    mc->ol_angle = 0x40000000UL; /* 90 degrees */
-    mc->ol_damp = 0;
-    mc->ol_step = 0U;
-    mc->theta_offset = 0;
-    mc->id_sign = 1;
-    mc->id_z = 1;
-    mc->id_z2 = 1;
-    mc->id_i_prev = 0;
-    mc->id_u_prev = 0;
-    mc->id_open = true;
-    memset(&mc->id_win, 0, sizeof mc->id_win);
-    mc->lock_va = 0;
-    mc->lock_vb = 0;
-    mc_id_begin(&mc->id, &mc_id_params, &cmd);
-    mc_id_apply(mc, &cmd);
-    mc_enter(mc, MC_STATE_IDENTIFY);
-    mc_prepare(mc); /* the outputs turn on with the next period */
-}
-
-/* An identification ended, or was ended (error: MC_ID_ERROR_*, NONE when
- * the sequence finished): the status for mc_identify_result, the loops
- * back to the build's gains and dead time. Any state may call it; only a
- * run that is going changes. */
-static void mc_id_stop(mc_t *mc, uint16_t error)
-{
-    if (mc->state != MC_STATE_IDENTIFY && !mc->id_pending) {
-        return;
-    }
-    mc->id_pending = false;
-    mc->id_error = error;
-    mc->id_status = (error == MC_ID_ERROR_NONE) ? MC_ID_DONE : MC_ID_FAILED;
-    mc_apply_gains(mc);
-    mc->pi_d.p.kp_shift = MC_CUR_KP_SHIFT;
-    mc->pi_q.p.kp_shift = MC_CUR_KP_SHIFT;
-    mc->dt_counts = MC_DT_COUNTS;
-    mc->dt_slope = MC_DT_SLOPE;
-}
-
-/* IDENTIFY's work in each period after the duties (mc_step_finish, after
- * mc_estimate): the window's sums and the injected square wave (mc_id.c
- * note 2). v_hist[1] is the command of the period before, id_u_prev the
- * one before that: over the interval that ends at this sample they acted
- * for MC_SAMPLE_AT and 1 - MC_SAMPLE_AT of a period (mc.h note 2). The
- * injected axis in the stationary frame: d is beta and q -alpha (an axis's
- * sign drops out of its ratio). The two commands are summed apart: how
- * much each moves the current depends on L / R (mc_identify_result). */
-Q15_INLINE void mc_id_period(mc_t *mc)
-{
-    mc_id_win_t *w = &mc->id_win;
-    w->i_d += mc->i_dq.d;
-    w->i_q += mc->i_dq.q;
-    w->u_d += mc->pi_d.out;
-    w->u_q += mc->pi_q.out;
-    if (mc->id_inj != 0) {
-        bool q = mc->id_inj_q != 0U;
-        q15_t un = q ? mc->v_hist[1].alpha : mc->v_hist[1].beta;
-        q15_t uo = mc->id_u_prev;
-        q15_t i = q ? mc->i_ab.alpha : mc->i_ab.beta;
-        q15_t ip = mc->id_i_prev;
-        /* z: the injected square wave as it acts over this interval, the
-         * same weights (Q15): +-1, or +-(W_NEW - W_OLD) across a reversal;
-         * w: its sign a quarter cycle earlier, in phase with the current */
-        q15_t z = (mc->id_z == mc->id_z2) ? (q15_t)(mc->id_z * 32767)
-                                          : (q15_t)(mc->id_z * (MC_VEST_W_NEW - MC_VEST_W_OLD));
-        mc->id_u_prev = un;
-        mc->id_i_prev = i;
-        w->c[0] += q15_dsp_mulss(z, i) >> 15;
-        w->c[1] += q15_dsp_mulss(z, ip) >> 15;
-        w->c[2] += q15_dsp_mulss(z, un) >> 15;
-        w->c[3] += q15_dsp_mulss(z, uo) >> 15;
-        if (((mc->id_zh >> (mc->id_half / 2U)) & 1U) != 0U) {
-            w->c[4] += i;
-            w->c[5] += ip;
-            w->c[6] += un;
-            w->c[7] += uo;
-        } else {
-            w->c[4] -= i;
-            w->c[5] -= ip;
-            w->c[6] -= un;
-            w->c[7] -= uo;
-        }
-        mc->id_zh = (mc->id_zh << 1) | (uint32_t)(mc->id_z > 0);
-        mc->id_z2 = mc->id_z;
-        mc->id_z = mc->id_sign; /* the sign this period's command carries */
-        if (++mc->id_cnt >= mc->id_half) {
-            pi_t *pi = q ? &mc->pi_q : &mc->pi_d;
-            q31_t step = (q31_t)mc->id_inj * 131072L; /* 2 x inj, Q31 */
-            mc->id_cnt = 0U;
-            mc->id_sign = (int8_t)-mc->id_sign;
-            pi->sum = q31_add_sat(pi->sum, (mc->id_sign > 0) ? step : -step);
-        }
-    }
-}
-#else
-/* No identification in this build: nothing ever runs to stop. */
-static void mc_id_stop(mc_t *mc, uint16_t error)
-{
-    (void)mc;
-    (void)error;
-}
-#endif /* MC_IDENTIFY */
 
 /* CALIBRATE: after calib_wait periods of coasting, sum the two current
  * readings over MC_CALIB_PERIODS (mc_calibrate, before the duties); the
@@ -863,270 +297,6 @@ static void mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
         mc->offset_acc_b += in->ib;
     }
 }
-
-/* The offsets, then LOCK from the next period, or FAULT OFFSET. Called
- * once, with mc->timer already counting the period that took the last
- * sample. */
-static void mc_calibrate_end(mc_t *mc)
-{
-    /* Two divisions per start, not per period: the mean of
-     * MC_CALIB_PERIODS <= 32767 int16 samples fits div.sd. */
-    mc->offset_a = q15_dsp_divsd(mc->offset_acc_a, (int16_t)MC_CALIB_PERIODS);
-    mc->offset_b = q15_dsp_divsd(mc->offset_acc_b, (int16_t)MC_CALIB_PERIODS);
-    if (q15_abs_sat(mc->offset_a) > MC_OFFSET_MAX_Q15 ||
-        q15_abs_sat(mc->offset_b) > MC_OFFSET_MAX_Q15) {
-        mc->offset_a = 0;
-        mc->offset_b = 0;
-        mc_fault(mc, MC_FAULT_OFFSET);
-        return;
-    }
-#if MC_IDENTIFY
-    if (mc->id_pending) {
-        mc_enter_identify(mc);
-        return;
-    }
-#endif
-    mc_enter_lock(mc);
-}
-
-int16_t mc_deadtime_from_lock(int16_t dt, int32_t avg, q15_t dv)
-{
-    if (dv <= 0) {
-        return dt;
-    }
-    /* |avg| <= dv keeps the quotient within +-dt (the clamp below is
-     * narrower anyway); dt * dv < 2^31. */
-    if (avg > dv) {
-        avg = dv;
-    } else if (avg < -dv) {
-        avg = -dv;
-    }
-    int32_t m = (int32_t)dt + (int32_t)q15_dsp_divsd(avg * (int32_t)dt, dv);
-    if (m < MC_DT_COUNTS_MIN) {
-        m = MC_DT_COUNTS_MIN;
-    } else if (m > MC_DT_COUNTS_MAX) {
-        m = MC_DT_COUNTS_MAX;
-    }
-    return (int16_t)m;
-}
-
-/* The phase balance (note 5), CLOSED_LOOP, once per window: true when the
- * two measured phases' mean squares differ by more than 8:1 while the larger
- * is above MC_SENSOR_BAL_FLOOR (a quarter of the error floor, squared). A
- * turning rotor's healthy phases carry the same RMS current; a stuck, open
- * or dead sensor's reading stops following its phase. */
-static bool mc_sensor_unbalanced(mc_t *mc, const mc_slow_in_t *si)
-{
-    /* halves of ia = alpha and ib = sqrt3/2 beta - alpha/2 (Q15, |.| < 2^15) */
-    q15_t ah = (q15_t)(si->i_ab.alpha / 2);
-    q15_t bh = q15_sub_sat(q15_mul(si->i_ab.beta, MC_SQRT3_2 / 2), (q15_t)(si->i_ab.alpha / 4));
-    q15_t r = (q15_t)(q15_abs_sat(si->speed_est) % MC_SENSOR_BAL_SYNC16);
-    int32_t big, small;
-    /* squares of the halves, Q15: <= 2^13; the filters stay below 2^(13 + MC_SENSOR_BAL_SHIFT) */
-    mc->sens_sa += (int32_t)q15_mul(ah, ah) - (mc->sens_sa >> MC_SENSOR_BAL_SHIFT);
-    mc->sens_sb += (int32_t)q15_mul(bh, bh) - (mc->sens_sb >> MC_SENSOR_BAL_SHIFT);
-    if (r < MC_SENSOR_BAL_BAND16 || r > MC_SENSOR_BAL_UPPER16) {
-        return false; /* one sample per window cannot tell the phases apart here */
-    }
-    if (mc->sens_bal_n < 2U << MC_SENSOR_BAL_SHIFT) {
-        mc->sens_bal_n++; /* the filters fill from 0 in CLOSED_LOOP's first windows */
-        return false;
-    }
-    big = (mc->sens_sa > mc->sens_sb) ? mc->sens_sa : mc->sens_sb;
-    small = (mc->sens_sa > mc->sens_sb) ? mc->sens_sb : mc->sens_sa;
-    return big >> MC_SENSOR_BAL_SHIFT > MC_SENSOR_BAL_FLOOR && small < big / 8;
-}
-
-/* Current-sensor plausibility, once per window (note 5): did the measured
- * current follow the current loops? */
-static void mc_slow_sensor(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
-{
-    int32_t ed = si->sens_d; /* window sums: |.| < MC_SLOW_STEP_PERIODS x 2^16 */
-    int32_t eq = si->sens_q;
-    q15_t rd = q15_abs_sat(si->sens_ref.d);
-    q15_t rq = q15_abs_sat(si->sens_ref.q);
-    /* half the reference's larger component plus the floor (half of it at
-     * the start, whose errors are low-passed further), per period, as a
-     * window sum (< 2^15 x MC_SLOW_STEP_PERIODS) */
-    int32_t flr = (si->state == MC_STATE_CLOSED_LOOP) ? (int32_t)MC_SENSOR_FLOOR_Q15
-                                                      : (int32_t)MC_SENSOR_FLOOR_Q15 / 2;
-    int32_t thr = ((int32_t)((rd > rq) ? rd : rq) / 2 + flr) * (int32_t)MC_SLOW_STEP_PERIODS;
-    bool bad, unbalanced = false, hold = false;
-    if (si->state != MC_STATE_CLOSED_LOOP) {
-        /* the balance filters and the back-EMF count are CLOSED_LOOP's */
-        mc->sens_sa = 0;
-        mc->sens_sb = 0;
-        mc->sens_bal_n = 0U;
-        mc->sens_emf_low = 0U;
-    }
-    if (!mc_driving(si->state) || si->state == MC_STATE_IDENTIFY) {
-        mc->sens_cnt = 0U;
-        so->sensor_fault = false;
-        return;
-    }
-    if (si->state != MC_STATE_CLOSED_LOOP) {
-        /* at the start, over MC_SENSOR_START_WINDOWS windows too */
-        mc->sens_fd += (ed - mc->sens_fd) / MC_SENSOR_START_WINDOWS;
-        mc->sens_fq += (eq - mc->sens_fq) / MC_SENSOR_START_WINDOWS;
-        ed = mc->sens_fd;
-        eq = mc->sens_fq;
-    }
-    ed = (ed < 0) ? -ed : ed;
-    eq = (eq < 0) ? -eq : eq;
-    if (si->state == MC_STATE_CLOSED_LOOP && 2U * si->sens_qsat > MC_SLOW_STEP_PERIODS) {
-        /* q at the voltage limit for most of the window: the circle, not
-         * the sensor, may hold its current short of the reference, by any
-         * amount (a bus or a load the speed asks too much of), so q's error
-         * says nothing. The d axis, which the limit serves first, still
-         * does, and so does the estimator: a model fed a failed sensor's
-         * currents soon stops vouching for its estimate. */
-        bad = ed > thr || !si->est_valid;
-    } else {
-        bad = ed > thr || eq > thr;
-    }
-    if (si->state == MC_STATE_CLOSED_LOOP) {
-        unbalanced = mc_sensor_unbalanced(mc, si);
-    }
-    /* A rotor stopped in CLOSED_LOOP (locked, stalled) leaves the
-     * estimate spinning with no back-EMF behind it: the frame turns under
-     * the current loops and their errors look like a failed sensor's. The
-     * stall check owns that case; while the back-EMF has read below
-     * MC_STALL_BEMF_LO_Q12 of the speed's for MC_SENSOR_DEFER_WINDOWS
-     * windows running, a failing window is held, neither counted nor
-     * forgiven. A failed sensor on a turning rotor leaves its back-EMF
-     * behind (the ratio swings, it does not stay low). */
-    if (si->state == MC_STATE_CLOSED_LOOP && si->emf_ratio < MC_STALL_BEMF_LO_Q12) {
-        if (mc->sens_emf_low < MC_SENSOR_DEFER_WINDOWS) {
-            mc->sens_emf_low++;
-        }
-    } else {
-        mc->sens_emf_low = 0U;
-    }
-    if (unbalanced) {
-        bad = true; /* a stopped rotor's healthy phases stay balanced: no deferring */
-    } else if (bad && mc->sens_emf_low >= MC_SENSOR_DEFER_WINDOWS) {
-        bad = false;
-        hold = true;
-    }
-    if (bad && MC_SENSOR_CHECK) {
-        if (mc->sens_cnt < MC_SENSOR_TRIP) {
-            mc->sens_cnt = (uint8_t)(mc->sens_cnt + 2U);
-        }
-    } else if (mc->sens_cnt > 0U && !hold) {
-        mc->sens_cnt--;
-    }
-    so->sensor_fault = mc->sens_cnt >= MC_SENSOR_TRIP;
-}
-
-/* The dead-time measurement's phases (note 4). */
-enum {
-    MC_DTM_ALIGN, /* the lock proper, MC_LOCK_PERIODS */
-    MC_DTM_WAIT1, /* at the lock current, until the swing reverses */
-    MC_DTM_ACC1,  /* averaging, to a reversal at least MC_DTM_N periods on */
-    MC_DTM_SETTLE2,
-    MC_DTM_WAIT2, /* at 3/4 of it */
-    MC_DTM_ACC2,
-    MC_DTM_DONE /* OPEN_LOOP next */
-};
-
-#if MC_DTM_ON
-/* LOCK, once per window in the slow step (note 4). The rotor's swing
- * reverses where the estimator's alpha voltage (its back-EMF), summed over
- * the window (a 1 ms mean, which also smooths the chatter an inverter with
- * a sharp dead-time edge puts on phase A, whose current sits at zero),
- * crosses its mean over MC_DTM_MEAN windows (the offset phase A's loss
- * leaves in it). Each level's average runs between two reversals, or gives
- * up waiting after MC_DTM_WAIT windows. so->lock_iq is the lock's current
- * reference; so->lock_done, with the dead time, ends the lock. */
-static void mc_slow_deadtime(mc_t *mc, const mc_slow_in_t *si, mc_slow_out_t *so)
-{
-    int32_t a = si->lock_va; /* |.| <= MC_SLOW_STEP_PERIODS x 2^15 */
-    mc->dtm_mean += a - mc->dtm_mean / MC_DTM_MEAN;
-    bool pos = a >= mc->dtm_mean / MC_DTM_MEAN;
-    bool rev = pos != mc->dtm_pos;
-    mc->dtm_pos = pos;
-    mc->dtm_cnt++;
-    switch (mc->dtm_phase) {
-        case MC_DTM_ALIGN:
-            /* the first window may start within the lock's last MC_DTM_WAIT windows */
-            if (si->timer + (uint32_t)MC_DTM_WAIT * MC_SLOW_STEP_PERIODS >=
-                (uint32_t)MC_LOCK_PERIODS) {
-                mc->dtm_phase = MC_DTM_WAIT1;
-                mc->dtm_cnt = 0U;
-            }
-            break;
-        case MC_DTM_WAIT1:
-        case MC_DTM_WAIT2:
-            if (rev || mc->dtm_cnt >= MC_DTM_WAIT) {
-                mc->dtm_slow |= !rev;
-                mc->dtm_phase++;
-                mc->dtm_cnt = 0U;
-                mc->dtm_sum = 0;
-                mc->dtm_hi = a; /* each level's own range: its alpha level differs */
-                mc->dtm_lo = a;
-            }
-            break;
-        case MC_DTM_SETTLE2:
-            if (mc->dtm_cnt >= MC_DTM_SETTLE) {
-                mc->dtm_phase = MC_DTM_WAIT2;
-                mc->dtm_cnt = 0U;
-            }
-            break;
-        case MC_DTM_ACC1:
-        case MC_DTM_ACC2:
-            mc->dtm_sum += si->lock_vb;
-            mc->dtm_hi = (a > mc->dtm_hi) ? a : mc->dtm_hi;
-            mc->dtm_lo = (a < mc->dtm_lo) ? a : mc->dtm_lo;
-            /* at least MC_DTM_N windows, and not before the lock's end */
-            if (mc->dtm_cnt >= MC_DTM_N && si->timer >= (uint32_t)MC_LOCK_PERIODS &&
-                (rev || mc->dtm_cnt >= MC_DTM_N + 2U * MC_DTM_WAIT)) {
-                mc->dtm_slow |= !rev;
-                /* the mean of <= 32767 Q15 samples (mc_derived.h) fits div.sd */
-                q15_t u = q15_dsp_divsd(mc->dtm_sum, (int16_t)(mc->dtm_cnt * MC_SLOW_STEP_PERIODS));
-                mc->dtm_cnt = 0U;
-                if (mc->dtm_phase == MC_DTM_ACC1) {
-                    mc->dtm_u1 = u;
-                    mc->dtm_range1 = mc->dtm_hi - mc->dtm_lo;
-                    so->lock_iq = MC_DTM_CURRENT_Q15;
-                    mc->dtm_phase = MC_DTM_SETTLE2;
-                } else {
-                    /* The model's dead-time voltage on beta: phase B
-                     * carries +sqrt(3)/2 of the lock current, C -sqrt(3)/2,
-                     * both outside the band (mc_derived.h). */
-                    int16_t dv[3];
-                    dv[0] = 0;
-                    dv[1] = si->dt_counts;
-                    dv[2] = (int16_t)(-si->dt_counts);
-                    q15_t d = mc_duty_to_voltage(dv, si->vbus).beta;
-                    int32_t avg = 4 * (int32_t)u - 3 * (int32_t)mc->dtm_u1;
-                    /* A swing too slow to reverse within the windows
-                     * leaves its back-EMF in them: unless the rotor was
-                     * nearly still (at each level, the alpha voltage's
-                     * range within 1/16 of the dead-time voltage, i.e.
-                     * the sums' within MC_SLOW_STEP_PERIODS / 16 of it:
-                     * its swing then moves the result by well under 1 %),
-                     * the dead time in use is kept. */
-                    int32_t range = mc->dtm_hi - mc->dtm_lo;
-                    range = (range > mc->dtm_range1) ? range : mc->dtm_range1;
-                    bool still = range * 16 < (int32_t)d * (int32_t)MC_SLOW_STEP_PERIODS;
-                    int16_t dt = (mc->dtm_slow && !still)
-                                     ? si->dt_counts
-                                     : mc_deadtime_from_lock(si->dt_counts, avg, d);
-                    so->dt_counts = dt;
-                    so->dt_slope = mc_deadtime_slope(dt); /* dt < MC_DT_BAND_Q15 */
-                    so->lock_done = true;
-                    mc->dtm_phase = MC_DTM_DONE;
-                }
-            }
-            break;
-        default:
-            break;
-    }
-}
-#define MC_LOCK_DONE(mc) ((mc)->lock_done)
-#else
-#define MC_LOCK_DONE(mc) ((mc)->timer >= MC_LOCK_PERIODS)
-#endif
 
 /* OPEN_LOOP at the end speed: hold it until the estimate is valid, for at
  * most MC_HANDOFF_WAIT_PERIODS (note 1), then retry or fault. */
@@ -1149,34 +319,6 @@ static void mc_ramp_end(mc_t *mc)
     } else {
         mc_fault(mc, MC_FAULT_START_FAILED);
     }
-}
-
-/* ---- the seam ------------------------------------------------------------------------------ */
-
-void mc_init(mc_t *mc)
-{
-    memset(mc, 0, sizeof(*mc));
-    pi_init(&mc->pi_d, &mc_pi_cur_params);
-    pi_init(&mc->pi_q, &mc_pi_cur_params);
-    pi_init(&mc->pi_w, &mc_pi_spd_params);
-    fieldweak_init(&mc->fw, &mc_fw_params);
-    smc_init(&mc->smc, &mc_smc_params);
-    mc->gain_posted[MC_GAIN_CUR_KP] = MC_CUR_KP;
-    mc->gain_posted[MC_GAIN_CUR_KI] = MC_CUR_KI;
-    mc->gain_posted[MC_GAIN_SPD_KP] = MC_SPD_KP;
-    mc->gain_posted[MC_GAIN_SPD_KI] = MC_SPD_KI;
-    mc->spd_kp_base = MC_SPD_KP;
-    mc->spd_ki_base = MC_SPD_KI;
-    mc->speed_ref = MC_SPEED_REF_MIN_Q15;
-    mc->speed_target = MC_SPEED_REF_MIN_Q15;
-    mc->spd_ref = MC_SPEED_REF_MIN_Q15;
-    mc->ripple_gain = RIPPLE_ONE;
-    mc->dt_counts = MC_DT_COUNTS;
-    mc->dt_slope = MC_DT_SLOPE;
-    mc_outputs_off(mc);
-    mc->slow_epoch = mc->epoch;
-    mc->fault = MC_FAULT_NONE;
-    mc_enter(mc, MC_STATE_STOPPED);
 }
 
 /* OPEN_LOOP, with the estimator's speed fresh (mc_slow_apply): the forced
@@ -1233,8 +375,8 @@ Q15_INLINE void mc_sensor_sum(mc_t *mc)
  * results in. */
 static void mc_slow_apply(mc_t *mc)
 {
-    const mc_slow_out_t *so = &mc->slow_out;
-    if (mc->slow_busy) {
+    const mc_slow_out_t *so = &mc->ho.out;
+    if (mc->ho.busy) {
         mc_fault(mc, MC_FAULT_OVERRUN); /* the slow step has not finished in time */
         return;
     }
@@ -1249,8 +391,7 @@ static void mc_slow_apply(mc_t *mc)
     }
     mc->speed_target = so->speed_target;
     mc->torque_target = so->torque_target;
-#if MC_DTM_ON
-    if (mc->state == MC_STATE_LOCK && so->epoch == mc->epoch) {
+    if (MC_DTM_ON && mc->state == MC_STATE_LOCK && so->epoch == mc->epoch) {
         mc->i_ref.q = so->lock_iq;
         if (so->lock_done) {
             mc->dt_counts = so->dt_counts;
@@ -1258,18 +399,9 @@ static void mc_slow_apply(mc_t *mc)
             mc->lock_done = true; /* OPEN_LOOP from the next period */
         }
     }
-#endif
-#if MC_IDENTIFY
-    if (mc->state == MC_STATE_IDENTIFY && so->epoch == mc->epoch) {
-        mc_id_apply(mc, &mc->id.cmd);
-        if (mc->id.cmd.end) {
-            mc_id_stop(mc, mc->id.error);
-            mc_outputs_off(mc);
-            mc_enter(mc, MC_STATE_STOPPED);
-            return;
-        }
+    if (MC_IDENTIFY && mc->state == MC_STATE_IDENTIFY && so->epoch == mc->epoch && mc_id_take(mc)) {
+        return; /* the sequence is over: STOPPED */
     }
-#endif
     if (so->sensor_fault && so->epoch == mc->epoch && mc->outputs_on) {
         mc_fault(mc, MC_FAULT_CURRENT_SENSOR);
         return;
@@ -1286,8 +418,8 @@ static void mc_slow_apply(mc_t *mc)
 /* The window end (mc.h note 4): this window's inputs out to the slow step. */
 static void mc_window_end(mc_t *mc)
 {
-    mc_slow_in_t *si = &mc->slow_in;
-    if (mc->slow_busy) {
+    mc_slow_in_t *si = &mc->ho.in;
+    if (mc->ho.busy) {
         mc_fault(mc, MC_FAULT_OVERRUN); /* the slow step of the last window never finished */
         return;
     }
@@ -1295,7 +427,7 @@ static void mc_window_end(mc_t *mc)
     si->epoch = mc->epoch;
     si->state = mc->state;
     si->pot = mc->pot;
-    si->ref_remote = mc->ref_remote;
+    si->ref_remote = mc->mbox.ref_remote;
     si->ref_from_remote = mc->ref_from_remote;
     si->spd_kp = mc->spd_kp_base;
     si->spd_ki = mc->spd_ki_base;
@@ -1314,105 +446,22 @@ static void mc_window_end(mc_t *mc)
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
-#if MC_IDENTIFY
-    if (mc->state == MC_STATE_IDENTIFY) {
-        /* the applied voltage on the standing frame's axes: d is beta, q -alpha */
-        mc->id_win.v_d = mc->lock_vb;
-        mc->id_win.v_q = -mc->lock_va;
-        mc->id_win.step = mc->ol_step;
-        si->id = mc->id_win;
+    if (MC_IDENTIFY && mc->state == MC_STATE_IDENTIFY) {
+        mc_id_post(mc);
+    }
+    if (MC_DTM_ON) {
+        si->lock_va = mc->lock_va;
+        si->lock_vb = mc->lock_vb;
+        si->timer = mc->timer;
+        si->dt_counts = mc->dt_counts;
         si->vbus = mc->vbus;
-        memset(&mc->id_win, 0, sizeof mc->id_win);
         mc->lock_va = 0;
         mc->lock_vb = 0;
     }
-#endif
-#if MC_DTM_ON
-    si->lock_va = mc->lock_va;
-    si->lock_vb = mc->lock_vb;
-    si->timer = mc->timer;
-    si->dt_counts = mc->dt_counts;
-    si->vbus = mc->vbus;
-    mc->lock_va = 0;
-    mc->lock_vb = 0;
-#endif
     mc->preset_pending = false;
     mc->slow_posted = true;
     MC_BARRIER(); /* every field above is written before the flag hands it over */
-    mc->slow_busy = true;
-}
-
-void mc_slow_step(mc_t *mc)
-{
-    const mc_slow_in_t *si = &mc->slow_in;
-    mc_slow_out_t *so = &mc->slow_out;
-    if (!mc->slow_busy) {
-        return;
-    }
-    smc_slow_step(&mc->smc);
-#if defined(TORQUEMODE)
-    so->speed_target = MC_SPEED_REF_MIN_Q15;
-    so->torque_target = si->ref_from_remote
-                            ? q15_clamp(si->ref_remote, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15)
-                            : mc_pot_to_torque(si->pot);
-#else
-    so->torque_target = 0;
-    so->speed_target = si->ref_from_remote
-                           ? q15_clamp(si->ref_remote, MC_SPEED_REF_MIN_Q15, MC_SPEED_REF_MAX_Q15)
-                           : mc_pot_to_speed(si->pot);
-#endif
-    if (si->epoch != mc->slow_epoch) {
-        mc->slow_epoch = si->epoch;
-        /* a new run, or the hand-off: the dead-time measurement starts over */
-        mc->dtm_phase = MC_DTM_ALIGN;
-        mc->dtm_cnt = 0U;
-        mc->dtm_sum = 0;
-        mc->dtm_mean = 0;
-        mc->dtm_slow = false;
-        mc->sens_fd = 0;
-        mc->sens_fq = 0;
-        mc->sens_cnt = 0U;
-        so->lock_iq = MC_LOCK_CURRENT_Q15;
-        so->lock_done = false;
-        if (si->preset) {
-            /* Closed loop entered in this window: the speed loop starts from
-             * the hand-off (mc_enter_closed_loop). */
-            pi_preset(&mc->pi_w, si->preset_iq);
-            mc->spd_ref = si->preset_speed_ref;
-            mc->stall_cnt[0] = 0U;
-            mc->stall_cnt[1] = 0U;
-            mc->stall_cnt[2] = 0U;
-        }
-    }
-    so->loop = false;
-    so->fault = MC_FAULT_NONE;
-    mc_slow_sensor(mc, si, so);
-    /* OPEN_LOOP: the load's share of the ramp current, the measured current
-     * on the estimated q axis low-passed over 32 windows (the hand-off's
-     * preset, mc_enter_closed_loop). */
-    if (si->state == MC_STATE_OPEN_LOOP) {
-        q15_t iq = park_forward(si->i_ab, sincos_compute(si->theta_est)).q;
-        mc->ol_iq_acc += (int32_t)iq - mc->ol_iq_acc / 32; /* |acc| <= 32 * 32768 */
-    } else {
-        mc->ol_iq_acc = 0;
-    }
-    so->ol_iq = (q15_t)(mc->ol_iq_acc / 32);
-#if MC_DTM_ON
-    if (si->state == MC_STATE_LOCK) {
-        mc_slow_deadtime(mc, si, so);
-    }
-#endif
-    if (si->state == MC_STATE_CLOSED_LOOP) {
-        mc_slow_speed_loop(mc, &mc->smc.res, so);
-    }
-#if MC_IDENTIFY
-    else if (si->state == MC_STATE_IDENTIFY) {
-        mc_id_window(&mc->id, &si->id, si->vbus, &mc->id.cmd);
-    }
-#endif
-    so->epoch = si->epoch;
-    MC_BARRIER(); /* the results are written before the flag hands them back */
-    mc->slow_busy = false;
+    mc->ho.busy = true;
 }
 
 /* |i| >= MC_OVERCURRENT_Q15, with |-32768| counted as 32767 (q15_abs_sat),
@@ -1451,7 +500,7 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
     ev->stop = false;
     ev->hw_fault = false;
     ev->identify = false;
-    uint8_t rseq = mc->req_seq;
+    uint8_t rseq = mc->mbox.req_seq;
     if (rseq != mc->req_seen) { /* something was posted (mc.h note 1) */
         mc->req_seen = rseq;
         ev->toggle = mc_take(mc, MC_REQUEST_START_STOP);
@@ -1459,30 +508,25 @@ static void mc_take_events(mc_t *mc, mc_events_t *ev)
         ev->start = mc_take(mc, MC_REQUEST_START);
         ev->stop = mc_take(mc, MC_REQUEST_STOP);
         ev->identify = mc_take(mc, MC_REQUEST_IDENTIFY);
-#if MC_IDENTIFY
-        if (ev->identify && mc->state != MC_STATE_STOPPED) {
+        if (ev->identify && (!MC_IDENTIFY || mc->state != MC_STATE_STOPPED)) {
             ev->identify = false;
-            if (mc->state != MC_STATE_IDENTIFY && !mc->id_pending) {
+            if (!MC_IDENTIFY) {
+                mc->id_status = MC_ID_FAILED; /* not in this build: nothing else changes */
+                mc->id_error = MC_ID_ERROR_UNAVAILABLE;
+            } else if (mc->state != MC_STATE_IDENTIFY && !mc_id_pending(mc)) {
                 mc->id_status = MC_ID_FAILED; /* refused: nothing else changes */
                 mc->id_error = MC_ID_ERROR_NOT_STOPPED;
             }
         }
-#else
-        if (ev->identify) {
-            ev->identify = false;
-            mc->id_status = MC_ID_FAILED; /* not in this build: nothing else changes */
-            mc->id_error = MC_ID_ERROR_UNAVAILABLE;
-        }
-#endif
-        uint8_t gseq = mc->gain_seq;
+        uint8_t gseq = mc->mbox.gain_seq;
         if (gseq != mc->gain_seen) {
             mc->gain_seen = gseq;
             mc_apply_gains(mc);
         }
-        uint8_t seq = mc->ref_remote_seq;
-        if (seq != mc->ref_remote_seen) {
-            mc->ref_remote_seen = seq;
-            mc->ref_from_remote = !mc->ref_to_pot;
+        uint8_t seq = mc->mbox.ref_seq;
+        if (seq != mc->ref_seen) {
+            mc->ref_seen = seq;
+            mc->ref_from_remote = !mc->mbox.ref_to_pot;
         }
     }
 }
@@ -1543,19 +587,12 @@ static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t 
 {
     if (ev->toggle || ev->start) {
         mc_start(mc, in);
-    }
-#if MC_IDENTIFY
-    else if (ev->identify) {
+    } else if (MC_IDENTIFY && ev->identify) {
         mc->id_status = MC_ID_RUNNING;
         mc->id_error = MC_ID_ERROR_NONE;
         mc_start(mc, in);
-        mc->id_pending = mc->state == MC_STATE_CALIBRATE;
-        if (!mc->id_pending) {
-            mc->id_status = MC_ID_FAILED; /* the bus is out of its window: FAULT */
-            mc->id_error = MC_ID_ERROR_FAULT;
-        }
+        mc_id_started(mc);
     }
-#endif
     return false;
 }
 
@@ -1586,7 +623,7 @@ static bool mc_on_lock(mc_t *mc, const mc_events_t *ev)
         mc_stop(mc);
         return false;
     }
-    if (MC_LOCK_DONE(mc)) {
+    if (MC_DTM_ON ? mc->lock_done : mc->timer >= MC_LOCK_PERIODS) {
         mc->i_ref.q = MC_RAMP_CURRENT_Q15;
         mc_enter(mc, MC_STATE_OPEN_LOOP);
     }
@@ -1655,11 +692,9 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         if (mc->sums_on) { /* the dead-time measurement's (note 4), the identification's */
             mc->lock_va += mc->v_hist[0].alpha;
             mc->lock_vb += mc->v_hist[0].beta;
-#if MC_IDENTIFY
-            if (mc->state == MC_STATE_IDENTIFY) {
+            if (MC_IDENTIFY && mc->state == MC_STATE_IDENTIFY) {
                 mc_id_period(mc);
             }
-#endif
         }
     }
     mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
@@ -1679,11 +714,15 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     } else {
         /* Off, or a fault raised here (a failed start, a stall, an
          * overrun) has just turned the outputs off: so does *out, at once.
-         * CALIBRATE ends here once it has its samples (the lock's first
-         * period turns the outputs on). */
+         * CALIBRATE ends here once it has its samples; the next period
+         * (LOCK's or IDENTIFY's first) turns the outputs on at the angle
+         * prepared here. */
         if (mc->state == MC_STATE_CALIBRATE &&
             mc->timer == (uint32_t)mc->calib_wait + (uint32_t)MC_CALIB_PERIODS) {
             mc_calibrate_end(mc);
+            if (mc_driving(mc->state)) {
+                mc_prepare(mc);
+            }
         }
         turned_off = out->outputs_on;
         mc_output(mc, out);
@@ -1696,218 +735,6 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
     mc_step_control(mc, in, out);
     (void)mc_step_finish(mc, out);
 }
-
-void mc_status(const mc_t *mc, mc_status_t *st)
-{
-    st->state = mc->state;
-    st->fault = mc->fault;
-    st->theta_est = mc->theta;
-    st->speed_est = smc_omega(&mc->smc);
-    st->speed_ref = mc->speed_ref;
-    st->id = mc->i_dq.d;
-    st->iq = mc->i_dq.q;
-    st->vd = mc->v_dq.d;
-    st->vq = mc->v_dq.q;
-    st->vbus = mc->vbus;
-    st->start_retries = mc->retries;
-    st->estimator_valid = smc_valid(&mc->smc);
-    st->id_ref = mc->i_ref.d;
-    st->iq_ref = mc->i_ref.q;
-    st->speed_target = mc->speed_target;
-    /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare). */
-    st->theta_forced =
-        (mc->state == MC_STATE_OPEN_LOOP) ? mc->theta : (int16_t)(uint16_t)(mc->ol_angle >> 16);
-    st->bemf = smc_emf_amplitude(&mc->smc);
-    st->ia = mc->ia;
-    st->ib = mc->ib;
-    st->duty[0] = mc->duty[0];
-    st->duty[1] = mc->duty[1];
-    st->duty[2] = mc->duty[2];
-    st->outputs_on = mc->outputs_on;
-    st->deadtime = mc->dt_counts;
-    /* a choice posted but not yet taken counts: the writer reading its
-     * own write back must find it, whether or not a period fell between */
-    uint8_t seq = mc->ref_remote_seq;
-    st->ref_remote = (seq != mc->ref_remote_seen) ? !mc->ref_to_pot : mc->ref_from_remote;
-    st->ref_seq = seq;
-}
-
-#if MC_IDENTIFY
-/* The identification's results in engineering units (mc_id.c note 1): each
- * a ratio of the sequence's sums times one constant, rounded once here. */
-#define MC_ID_Z_FS_ (MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A) /* ohm */
-/* R = dv / di Z_FS: micro-ohms */
-#define MC_ID_K_R ((int64_t)(MC_ID_Z_FS_ * 1e6 + 0.5))
-/* L = (zu - R zm / 2) / zi Ts Z_FS: nanohenries */
-#define MC_ID_K_L ((int64_t)(MC_ID_Z_FS_ * MC_TS_S * 1e9 + 0.5))
-/* Td = sqrt(3)/2 v0 / vbus (V_FS / VBUS_FS) Ts: ns (v0, vbus in Q15) */
-#define MC_ID_K_DT                                                                                 \
-    ((int64_t)(0.8660254037844386 * MC_VOLTAGE_FULLSCALE_V / BOARD_VBUS_FULLSCALE_V * MC_TS_S *    \
-                   1e9 +                                                                           \
-               0.5))
-/* Ke = sqrt(3) E_phase / rpm: E = m / 2^19 V_FS, rpm = x 60 / (2^32 Ts p): microvolts per rpm */
-#define MC_ID_K_KE                                                                                 \
-    ((int64_t)(1.7320508075688772 * MC_VOLTAGE_FULLSCALE_V * 1e6 * MC_TS_S * MOTOR_POLE_PAIRS *    \
-                   8192.0 / 60.0 +                                                                 \
-               0.5))
-/* J = 3/4 p^2 psi di / alpha_e, psi = m / 2^19 V_FS / (x 2 pi / (2^32 Ts)),
- * di = t / 32768 I_FS, alpha_e = accel 2 pi / (2^32 Ts^2): 1e-9 kg m^2 */
-#define MC_ID_K_J                                                                                  \
-    ((int64_t)(0.75 * MOTOR_POLE_PAIRS * MOTOR_POLE_PAIRS * MC_VOLTAGE_FULLSCALE_V *               \
-                   BOARD_I_FULLSCALE_A * MC_TS_S * MC_TS_S * MC_TS_S * 35184372088832.0 /          \
-                   (39.47841760435743 * 32768.0) * 1e9 +                                           \
-               0.5))
-
-/* The rotor's vibration under the q injection (mc_identify_result), Q16:
- * 1.5 (60 / (sqrt(3) 2 pi 1e6))^2 Ts^2 / pi^2 x 1e18 (nH ng m^2 per (uV/rpm)^2) */
-#define MC_ID_K_VIB                                                                                \
-    ((int64_t)(1.5 * 60.0 * 60.0 / (3.0 * 39.47841760435743 * 1e12) * MC_TS_S * MC_TS_S /          \
-                   9.869604401089358 * 1e18 * 65536.0 +                                            \
-               0.5))
-
-static uint32_t mc_id_u32(int64_t v)
-{
-    return (v <= 0) ? (uint32_t)0 : (v > (int64_t)UINT32_MAX) ? (uint32_t)UINT32_MAX : (uint32_t)v;
-}
-
-/* L of one axis (0 d, 1 q), nH, from the exact discrete model of the RL
- * circuit under the injection (mc_id.c note 2). Between two samples the
- * current decays by alpha = exp(-h), h = Ts R / L, towards u / R, the
- * voltage u_o of the period before acting for the first 1 - a of the
- * interval and u_n for the last a (a = MC_SAMPLE_AT):
- *   i_n = alpha i_n-1 + (g_o u_o + g_n u_n) / R,
- *   g_n = 1 - exp(-a h), g_o = (1 - exp(-(1 - a) h)) exp(-a h).
- * Correlated with the two instruments z and w (a quarter cycle apart) and
- * the voltages weighted g_o : g_n, that is two linear equations in alpha
- * and beta = (g_o + g_n) / R; the weights depend on h, so the solve is
- * repeated from the difference quotient's weights (a, 1 - a), four times.
- * L = Ts (g_o + g_n) / (beta h). The R found this way is the axis's own at
- * the injection's frequency, the apparent resistance of a phase current
- * inside the dead-time band included; the model holds where L / R is a
- * period or less, where a difference quotient does not. */
-static uint32_t mc_id_inductance(const mc_id_t *id, uint8_t ax)
-{
-    int64_t c[8], big = 1;
-    int64_t wn = MC_VEST_W_NEW, wo = MC_VEST_W_OLD; /* Q15 weights of u_n, u_o */
-    uint32_t l = 0U;
-    uint8_t k, sh = 0, it;
-    for (k = 0; k < 8U; k++) {
-        c[k] = id->l_c[ax][k];
-        big = (c[k] > big) ? c[k] : (-c[k] > big) ? -c[k] : big;
-    }
-    while ((big >> sh) >= ((int64_t)1 << 20)) { /* products below 2^40 */
-        sh++;
-    }
-    for (k = 0; k < 8U; k++) {
-        c[k] >>= sh;
-    }
-    for (it = 0; it < 4U; it++) {
-        /* the weighted voltage's correlations, then [c0; c4] = [c1 u1; c5 u2] [alpha; beta] */
-        int64_t u1 = (wn * c[2] + wo * c[3]) >> 15, u2 = (wn * c[6] + wo * c[7]) >> 15;
-        int64_t det = c[1] * u2 - c[5] * u1;
-        int64_t an = c[0] * u2 - c[4] * u1;     /* alpha det */
-        int64_t bn = c[1] * c[4] - c[5] * c[0]; /* beta det */
-        uint32_t en, eo;
-        if (det < 0) {
-            det = -det;
-            an = -an;
-            bn = -bn;
-        }
-        if (an <= 0 || an >= det || bn <= 0) {
-            return 0U; /* not a decay (0 < alpha < 1, beta > 0): no inductance */
-        }
-        /* alpha in Q22 (an < 2^41): below 2^63 shifted */
-        uint32_t nl = mc_id_neg_ln_q24((uint32_t)((an * ((int64_t)1 << 22) / det) << 8));
-        if (nl == 0U) {
-            return 0U;
-        }
-        /* the weights at this h: g_n = 1 - e^(-a h), g_o = (1 - e^(-(1-a) h)) e^(-a h),
-         * normalized to a sum of 2^15 */
-        en = mc_id_exp_neg_q30((uint32_t)(((int64_t)nl * MC_VEST_W_NEW) >> 15));
-        eo = mc_id_exp_neg_q30((uint32_t)(((int64_t)nl * MC_VEST_W_OLD) >> 15));
-        {
-            int64_t gn = ((int64_t)1 << 30) - en;
-            int64_t go = ((((int64_t)1 << 30) - eo) * en) >> 30;
-            int64_t gs = gn + go;
-            wn = gn * 32768 / gs;
-            wo = 32768 - wn;
-            /* L / (Ts Z_FS) = (g_o + g_n) / (beta h) = gs det / (bn h), h = nl 2^-24 */
-            l = mc_id_u32(((det * ((int64_t)1 << 24) / bn) * (gs >> 10) >> 20) * MC_ID_K_L / nl);
-        }
-    }
-    return l;
-}
-
-void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
-{
-    const mc_id_t *id = &mc->id;
-    memset(r, 0, sizeof *r);
-    r->status = (mc_id_status_t)mc->id_status;
-    r->error = mc->id_error;
-    r->pole_pairs = (uint8_t)MOTOR_POLE_PAIRS;
-    if (r->status != MC_ID_DONE || id->di <= 0) {
-        return;
-    }
-    r->rs_uohm = mc_id_u32((int64_t)id->dv * MC_ID_K_R / id->di);
-    r->ld_nh = mc_id_inductance(id, 0U);
-    r->lq_nh = mc_id_inductance(id, 1U);
-    /* where L / R is hundreds of periods the decay per period is too
-     * close to 1 for the exact model's solve, and the difference quotient
-     * (the sequence's own) is as good as exact */
-    if (r->ld_nh == 0U) {
-        r->ld_nh = mc_id_u32((int64_t)id->l_dq[0] * MC_ID_K_L / 4096);
-    }
-    if (r->lq_nh == 0U) {
-        r->lq_nh = mc_id_u32((int64_t)id->l_dq[1] * MC_ID_K_L / 4096);
-    }
-    /* LQ's rotor stood at phi = atan(i_q / i_d) to its d axis: the q
-     * injection saw Lq cos^2 phi + Ld sin^2 phi (mc_id.c note 2) */
-    {
-        int64_t d2 = (int64_t)(id->lq_i[0] / 256) * (id->lq_i[0] / 256);
-        int64_t q2 = (int64_t)(id->lq_i[1] / 256) * (id->lq_i[1] / 256);
-        if (d2 > 0) {
-            r->lq_nh = mc_id_u32((((int64_t)r->lq_nh * (d2 + q2)) - (int64_t)r->ld_nh * q2) / d2);
-        }
-    }
-    if (id->vbus > 0 && id->nwin > 0) {
-        uint32_t dt = mc_id_u32((int64_t)id->v0 * MC_ID_K_DT /
-                                ((int64_t)id->nwin * MC_SLOW_STEP_PERIODS * id->vbus));
-        r->deadtime_ns = (uint16_t)((dt > 65535U) ? 65535U : dt);
-    }
-    if (id->x2 > id->x1) {
-        int64_t dm = (int64_t)id->m2 - id->m1, dx = (int64_t)id->x2 - (int64_t)id->x1;
-        r->ke_uv_per_rpm = mc_id_u32(dm * MC_ID_K_KE / dx);
-        /* the slope of the torque current against the acceleration, Q16 (a
-         * least-squares line: its intercept, friction, drops out) */
-        int64_t den = (int64_t)id->j_n * id->j_aa - (int64_t)id->j_a * id->j_a;
-        if (den > 0) {
-            int64_t k = ((int64_t)id->j_n * id->j_ia - (int64_t)id->j_i * id->j_a) * 65536 / den;
-            int64_t a = dm * MC_ID_K_J / dx;
-            /* up minus down at the spin's acceleration: 2 ID_A_UNIT k */
-            r->j_ng_m2 = mc_id_u32(a * 64 * k / ((int64_t)id->p->accel * 65536));
-        }
-    }
-    /* The q injection's torque shakes the rotor: its back-EMF, in
-     * antiphase, took 1.5 p^2 psi^2 / (w^2 J) off Lq (mc_id.c note 2),
-     * w = pi / (half Ts) the injection's; with psi from Ke:
-     * 1.5 (60 / (sqrt(3) 2 pi 1e6))^2 (half Ts / pi)^2 / J: nH from uV/rpm,
-     * ng m^2 (p cancels) */
-    if (r->j_ng_m2 > 0U) {
-        int64_t ke = r->ke_uv_per_rpm, half = id->lq_half;
-        r->lq_nh = mc_id_u32((int64_t)r->lq_nh +
-                             ke * ke * half * half * MC_ID_K_VIB / ((int64_t)r->j_ng_m2 * 65536));
-    }
-    r->ls_nh = (uint32_t)(((uint64_t)r->ld_nh + r->lq_nh + 1U) / 2U);
-}
-#else
-void mc_identify_result(const mc_t *mc, mc_id_result_t *r)
-{
-    memset(r, 0, sizeof *r);
-    r->status = (mc_id_status_t)mc->id_status;
-    r->error = mc->id_error;
-    r->pole_pairs = (uint8_t)MOTOR_POLE_PAIRS;
-}
-#endif /* MC_IDENTIFY */
 
 /*
  * Notes

@@ -285,20 +285,96 @@ typedef struct {
 
 /* ---- the instance ------------------------------------------------------- *
  * Complete so the caller can allocate it; its members are private to the
- * core and may change between versions (read them through mc_status()). */
+ * core and may change between versions (read them through mc_status()).
+ * Each part has one writing context: the mailbox the main loop's, the
+ * hand-over's results and the slow step's state the slow step's (mc.h note
+ * 4), everything else the ADC interrupt's (mc_step). The slow step's
+ * functions take only their part (mc_slow.c, mc_sensor.c, mc_dtm.c), so
+ * the compiler holds them to it; the interrupt's fields stay at the top
+ * level, where the X2Cscope clients name them by path (x2c_vars.h). */
+
+/* The mailbox (note 1): written only by mc_request, mc_set_reference and
+ * mc_set_gain (the main loop), read by mc_step. */
 typedef struct {
-    /* mailbox (note 1): posted[] written only by mc_request, taken[] only by mc_step */
     volatile uint8_t req_posted[MC_REQUEST_COUNT];
-    uint8_t req_taken[MC_REQUEST_COUNT];
-    volatile uint8_t req_seq; /* incremented last by mc_request, mc_set_reference, mc_set_gain */
-    uint8_t req_seen;
-    volatile int16_t ref_remote;     /* remote reference (speed or Iq), Q15 */
-    volatile bool ref_to_pot;        /* the last choice: the pot (MC_REQUEST_REF_POT) */
-    volatile uint8_t ref_remote_seq; /* incremented by mc_set_reference and REF_POT */
-    uint8_t ref_remote_seen;
-    bool ref_from_remote;
+    volatile uint8_t req_seq;                    /* incremented last by each of the three */
+    volatile int16_t ref_remote;                 /* remote reference (speed or Iq), Q15 */
+    volatile bool ref_to_pot;                    /* the last choice: the pot (REF_POT) */
+    volatile uint8_t ref_seq;                    /* incremented by mc_set_reference and REF_POT */
     volatile int16_t gain_posted[MC_GAIN_COUNT]; /* mc_set_gain; Q15 mantissas */
     volatile uint8_t gain_seq;                   /* incremented by mc_set_gain */
+} mc_mailbox_t;
+
+/* The current-sensor check's slow side (mc_sensor.c, mc.c note 5). */
+typedef struct {
+    int32_t fd, fq;  /* the window error sums low-passed over windows (at the start) */
+    uint8_t cnt;     /* failing windows x 2, less passing ones */
+    uint8_t emf_low; /* consecutive windows of a back-EMF too low for the speed */
+    int32_t sa, sb;  /* ia^2 and ib^2 low-passed, Q15 of I_FS^2 << MC_SENSOR_BAL_SHIFT */
+    uint8_t bal_n;   /* CLOSED_LOOP windows they have filtered, up to 2 time constants */
+} mc_sensor_t;
+
+/* The lock's dead-time measurement (mc_dtm.c, mc.c note 4), per window. */
+typedef struct {
+    int32_t sum;  /* the windows' beta sums (lock_vb), Q15 of V_FS */
+    int32_t mean; /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
+    int32_t hi;   /* the largest and smallest alpha sum in the windows */
+    int32_t lo;
+    int32_t range1; /* the first level's alpha range (hi - lo) */
+    uint16_t cnt;   /* windows in the phase */
+    q15_t u1;       /* the first level's mean voltage, Q15 of V_FS */
+    uint8_t phase;  /* MC_DTM_* phase (mc_dtm.c) */
+    bool pos;       /* the alpha sum was above its mean last window */
+    bool slow;      /* a window waited MC_DTM_WAIT for a reversal */
+} mc_dtm_t;
+
+/* The slow step's own state (mc_slow.c). */
+typedef struct {
+    pi_t pi_w;             /* speed PI */
+    fieldweak_t fw;        /* its Id table (constant after mc_init) */
+    int16_t spd_ref;       /* the ramp's state, Q15 speed */
+    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
+    uint8_t epoch;         /* the run the slow step's state belongs to */
+    int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
+    mc_sensor_t sensor;    /* the current-sensor check */
+    mc_dtm_t dtm;          /* LOCK: the dead-time measurement */
+} mc_slow_t;
+
+/* The hand-over (note 4): the interrupt writes in while !busy, the slow
+ * step out while busy; the flag passes them. */
+typedef struct {
+    volatile bool busy; /* a window posted, its slow step not finished */
+    mc_slow_in_t in;
+    mc_slow_out_t out;
+} mc_handover_t;
+
+#if MC_IDENTIFY
+/* IDENTIFY (mc_id.h): the interrupt's side (mc_id_isr.c). */
+typedef struct {
+    mc_id_win_t win; /* this window's sums */
+    uint32_t inc;    /* the forced speed's change per period (the spin's) */
+    q15_t inj;       /* the injected square wave's amplitude, Q15 V_FS (0: none) */
+    uint8_t inj_q;   /* ... on q (else d) */
+    uint8_t half;    /* ... periods per half cycle */
+    uint8_t cnt;     /* ... periods into this half */
+    int8_t sign;     /* ... its sign in this period's command */
+    int8_t z;        /* ... in the previous period's */
+    int8_t z2;       /* ... in the one before */
+    uint32_t zh;     /* ... the signs of the commands before, one bit a period (1: +) */
+    q15_t i_prev;    /* the injected axis's current at the previous sample */
+    q15_t u_prev;    /* ... and the voltage commanded two periods ago */
+    bool open;       /* the last command was open loop */
+    bool pending;    /* CALIBRATE before IDENTIFY */
+} mc_id_isr_t;
+#endif
+
+typedef struct {
+    mc_mailbox_t mbox; /* the main loop's (note 1) */
+    /* the interrupt's view of the mailbox: what it has taken */
+    uint8_t req_taken[MC_REQUEST_COUNT];
+    uint8_t req_seen;
+    uint8_t ref_seen;
+    bool ref_from_remote;
     uint8_t gain_seen;
     q15_t spd_kp_base, spd_ki_base; /* speed PI gains the schedule scales */
 
@@ -361,63 +437,23 @@ typedef struct {
     uint16_t duty[3];
     bool outputs_on;
 
-    /* the hand-over to the slow step (note 4) */
-    uint16_t slow_div;       /* mc_step calls since the last window end */
-    uint8_t epoch;           /* incremented when a run starts, hands off or stops */
-    volatile bool slow_busy; /* a window posted, its slow step not finished */
-    bool slow_posted;        /* slow_out holds a result to apply */
-    bool preset_pending;     /* closed loop entered since the last window end */
+    /* the interrupt's side of the hand-over (note 4) */
+    uint16_t slow_div;   /* mc_step calls since the last window end */
+    uint8_t epoch;       /* incremented when a run starts, hands off or stops */
+    bool slow_posted;    /* ho.out holds a result to apply */
+    bool preset_pending; /* closed loop entered since the last window end */
     q15_t preset_iq;
     q15_t preset_speed_ref;
-    mc_slow_in_t slow_in;   /* written by mc_step while !slow_busy */
-    mc_slow_out_t slow_out; /* written by mc_slow_step while slow_busy */
+    mc_handover_t ho;
 
-    /* owned by the slow step */
-    pi_t pi_w;             /* speed PI */
-    fieldweak_t fw;        /* its Id table (constant after mc_init) */
-    int16_t spd_ref;       /* the ramp's state, Q15 speed */
-    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
-    uint8_t slow_epoch;    /* the run the slow step's state belongs to */
-    int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
-    /* LOCK: the dead-time measurement (mc.c note 4), per window */
-    int32_t sens_fd, sens_fq; /* current-sensor check: the error sums low-passed over windows */
-    uint8_t sens_cnt;         /* ... failing windows x 2, less passing ones */
-    uint8_t sens_emf_low;     /* ... consecutive windows of a back-EMF too low for the speed */
-    int32_t sens_sa,
-        sens_sb;        /* ... ia^2 and ib^2 low-passed, Q15 of I_FS^2 << MC_SENSOR_BAL_SHIFT */
-    uint8_t sens_bal_n; /* ... CLOSED_LOOP windows they have filtered, up to 2 time constants */
-    int32_t dtm_sum;    /* the windows' beta sums (lock_vb), Q15 of V_FS */
-    int32_t dtm_mean;   /* MC_DTM_MEAN x the windows' alpha sums (lock_va), low-passed */
-    int32_t dtm_hi;     /* the largest and smallest alpha sum in the windows */
-    int32_t dtm_lo;
-    int32_t dtm_range1; /* the first level's alpha range (dtm_hi - dtm_lo) */
-    uint16_t dtm_cnt;   /* windows in the phase */
-    q15_t dtm_u1;       /* the first level's mean voltage, Q15 of V_FS */
-    uint8_t dtm_phase;  /* MC_DTM_* phase (mc.c) */
-    bool dtm_pos;       /* the alpha sum was above its mean last window */
-    bool dtm_slow;      /* a window waited MC_DTM_WAIT for a reversal */
+    mc_slow_t slow; /* the slow step's */
 
     bool sums_on;      /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
     uint8_t id_status; /* mc_id_status_t, the interrupt's view */
     uint16_t id_error; /* MC_ID_ERROR_* of a run the interrupt ended */
 #if MC_IDENTIFY
-    /* IDENTIFY (mc_id.h): the interrupt's side ... */
-    mc_id_win_t id_win; /* this window's sums */
-    uint32_t ol_inc;    /* the forced speed's change per period (the spin's) */
-    q15_t id_inj;       /* the injected square wave's amplitude, Q15 V_FS (0: none) */
-    uint8_t id_inj_q;   /* ... on q (else d) */
-    uint8_t id_half;    /* ... periods per half cycle */
-    uint8_t id_cnt;     /* ... periods into this half */
-    int8_t id_sign;     /* ... its sign in this period's command */
-    int8_t id_z;        /* ... in the previous period's */
-    int8_t id_z2;       /* ... in the one before */
-    uint32_t id_zh;     /* ... the signs of the commands before, one bit a period (1: +) */
-    q15_t id_i_prev;    /* the injected axis's current at the previous sample */
-    q15_t id_u_prev;    /* ... and the voltage commanded two periods ago */
-    bool id_open;       /* the last command was open loop */
-    bool id_pending;    /* CALIBRATE before IDENTIFY */
-    /* ... and the slow step's: the sequence and its results */
-    mc_id_t id;
+    mc_id_isr_t id_isr; /* IDENTIFY: the interrupt's side */
+    mc_id_t id;         /* ... and the slow step's: the sequence and its results */
 #endif
 } mc_t;
 

@@ -92,6 +92,12 @@ MC_CHECK(MC_DEADTIME_MEASURE,
          MC_IS_INTEGER_(MC_DEADTIME_MEASURE) &&
              (MC_DEADTIME_MEASURE == 0 || MC_DEADTIME_MEASURE == 1),
          "must be 0 or 1");
+MC_CHECK(MC_TORQUE_MODE,
+         MC_IS_INTEGER_(MC_TORQUE_MODE) && (MC_TORQUE_MODE == 0 || MC_TORQUE_MODE == 1),
+         "must be 0 (speed mode) or 1 (torque mode)");
+MC_CHECK(MC_VOLTAGE_RIPPLE,
+         MC_IS_INTEGER_(MC_VOLTAGE_RIPPLE) && (MC_VOLTAGE_RIPPLE == 0 || MC_VOLTAGE_RIPPLE == 1),
+         "must be 0 (off) or 1 (on)");
 MC_CHECK(MC_DEADTIME_COMP,
          MC_IS_INTEGER_(MC_DEADTIME_COMP) && (MC_DEADTIME_COMP == 0 || MC_DEADTIME_COMP == 1),
          "must be 0 or 1");

@@ -182,9 +182,9 @@ static uint8_t set_speed(x2c_t *x, int16_t rpm)
         x->remote = false;
         return X2C_ERR_OK;
     }
-#if defined(TORQUEMODE)
-    return X2C_ERR_STATE; /* no speed loop to set */
-#else
+    if (MC_TORQUE_MODE) {
+        return X2C_ERR_STATE; /* no speed loop to set */
+    }
     if (rpm < X2C_RPM_MIN) {
         return X2C_ERR_LIMIT;
     }
@@ -196,7 +196,6 @@ static uint8_t set_speed(x2c_t *x, int16_t rpm)
         x->remote = true;
         return X2C_ERR_OK;
     }
-#endif
 }
 
 static uint8_t set_run(x2c_t *x, int16_t run)

@@ -330,7 +330,7 @@ static void test_voltage_limited_running_should_not_trip_the_sensor_check(void *
         while (n < (long)(1.5 * PWM_FREQUENCY_HZ)) {
             simcore_step(&s);
             /* the last window's count of periods with the q PI at the circle */
-            sat += (2U * s.mc.slow_in.sens_qsat > MC_SLOW_STEP_PERIODS) ? 1.0 : 0.0;
+            sat += (2U * s.mc.ho.in.sens_qsat > MC_SLOW_STEP_PERIODS) ? 1.0 : 0.0;
             n++;
         }
         printf("measured: %.0f rpm asked, %.2f x rated load, %.0f V: %s at %.0f rpm, q at the "

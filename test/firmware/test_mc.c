@@ -383,7 +383,7 @@ static void test_set_gain_should_refuse_unknown_gains_and_negative_values(void *
     for (unsigned g = 0; g < (unsigned)MC_GAIN_COUNT; g++) {
         assert_int_equal(mc_get_gain(&mc, (mc_gain_t)g), before[g]);
     }
-    assert_int_equal(mc.pi_w.p.kp, MC_SPD_KP);
+    assert_int_equal(mc.slow.pi_w.p.kp, MC_SPD_KP);
     assert_true(mc_set_gain(&mc, MC_GAIN_SPD_KI, 0)); /* 0 is a valid (if idle) gain */
 }
 

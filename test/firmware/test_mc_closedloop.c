@@ -558,11 +558,11 @@ static void test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_sched
     start_at(SPEED_REF_MIN_RPM);
     run(0.3);
     assert_cmp(b.st.speed_ref, <, MC_Q15_RPM(MOTOR_SPEED_KP_FULL_RPM));
-    q15_t kp_sched = b.mc.pi_w.p.kp;
+    q15_t kp_sched = b.mc.slow.pi_w.p.kp;
     q15_t base = mc_get_gain(&b.mc, MC_GAIN_SPD_KP);
     assert_true(mc_set_gain(&b.mc, MC_GAIN_SPD_KP, (q15_t)(base / 2)));
     run((double)(3 * IRP_PERCALC) / (double)PWM_FREQUENCY_HZ); /* three speed-loop ticks */
-    q15_t kp_now = b.mc.pi_w.p.kp;
+    q15_t kp_now = b.mc.slow.pi_w.p.kp;
     printf("measured: scheduled speed Kp %d with base %d, %d after the base was halved\n",
            (int)kp_sched, (int)base, (int)kp_now);
     assert_int_equal(mc_get_gain(&b.mc, MC_GAIN_SPD_KP), base / 2);

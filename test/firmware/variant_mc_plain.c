@@ -10,7 +10,7 @@
 #include "mc_bench.h"
 #include "mc_internal.h"
 
-#if defined(ENVOLTRIPPLE) || MC_DEADTIME_COMP || MC_IDENTIFY
+#if MC_VOLTAGE_RIPPLE || MC_DEADTIME_COMP || MC_IDENTIFY
 #error "variant_mc_plain.c must be built against the core without compensations (mc_plain)"
 #endif
 

@@ -10,8 +10,8 @@
 #include "mc_bench.h"
 #include "mc_internal.h"
 
-#if !defined(TORQUEMODE)
-#error "variant_mc_torque.c must be built against the TORQUEMODE core (mc_torque)"
+#if !MC_TORQUE_MODE
+#error "variant_mc_torque.c must be built against the torque-mode core (mc_torque)"
 #endif
 
 static mc_bench_t b;

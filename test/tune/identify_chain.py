@@ -131,8 +131,8 @@ def profile(conf: dict[str, Any], toml: str, header: str) -> float:
 
 def build(conf: dict[str, Any], header: str, exe: str) -> None:
     """Step 3: the simulator with the core compiled for the profile."""
-    srcs = [os.path.join(REPO, "firmware", "mc.c")] + [os.path.join(REPO, "tools", "sim", f)
-                                                        for f in ("sim_core.c", "mc_names.c", "sim_main.c")]
+    srcs = list(conf["core"]) + [os.path.join(REPO, "tools", "sim", f)
+                                 for f in ("sim_core.c", "mc_names.c", "sim_main.c")]
     incs = [f"-I{os.path.join(REPO, d)}" for d in ("firmware", "foc", "smc_estimator", os.path.join("tools", "sim"))]
     defs = [f"-DMC_BOARD_{conf['board'].upper()}", f'-DMC_MOTOR_HEADER="{header}"']
     cmd = [conf["cc"], *conf["flags"], "-O2", *incs, *defs, *srcs, "-o", exe, *conf["libs"], "-lm"]

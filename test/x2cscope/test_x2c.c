@@ -217,7 +217,7 @@ static void test_reads_outside_the_whitelist_or_misaligned_should_be_refused(voi
     } cases[] = {
         {0, 2, 2, X2C_ERR_FORMAT},                                          /* below everything */
         {0xFFFE, 2, 2, X2C_ERR_FORMAT},                                     /* above everything */
-        {RIG_MOTOR(&rig, req_posted[0]), 1, 1, X2C_ERR_FORMAT},             /* not exported */
+        {RIG_MOTOR(&rig, mbox.req_posted[0]), 1, 1, X2C_ERR_FORMAT},        /* not exported */
         {RIG_MOTOR(&rig, i_dq.d), 4, 2, X2C_ERR_FORMAT},                    /* straddles two rows */
         {(uint16_t)(RIG_MOTOR(&rig, i_dq.d) + 1U), 2, 2, X2C_ERR_FORMAT},   /* odd, word */
         {(uint16_t)(RIG_MOTOR(&rig, ol_angle) + 1U), 4, 4, X2C_ERR_FORMAT}, /* odd, long */
@@ -279,7 +279,7 @@ static void test_gains_should_be_applied_through_the_mailbox_and_read_back(void 
 static void test_speed_reference_should_be_remote_until_zero_gives_the_pot_back(void **state)
 {
     (void)state;
-#if !defined(TORQUEMODE)
+#if !MC_TORQUE_MODE
     uint16_t addr = RIG_TUNE(&rig, speed_ref_rpm);
     mc_status_t st;
     assert_int_equal(write_i16(addr, X2C_RPM_MIN + 100), X2C_ERR_OK);
@@ -315,7 +315,7 @@ static void test_run_should_start_and_stop_like_s2_and_follow_its_guard(void **s
 {
     (void)state;
     uint16_t addr = RIG_TUNE(&rig, run);
-    uint8_t seq = rig.mc.req_seq;
+    uint8_t seq = rig.mc.mbox.req_seq;
     x2c_set_start_guard(&rig.x, guard, NULL);
     guard_says = false;
     {
@@ -327,10 +327,10 @@ static void test_run_should_start_and_stop_like_s2_and_follow_its_guard(void **s
     }
     guard_says = true;
     assert_int_equal(write_i16(addr, 1), X2C_ERR_OK);
-    assert_int_equal(rig.mc.req_posted[MC_REQUEST_START], 1U);
-    assert_int_not_equal(rig.mc.req_seq, seq);
+    assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_START], 1U);
+    assert_int_not_equal(rig.mc.mbox.req_seq, seq);
     assert_int_equal(write_i16(addr, 0), X2C_ERR_OK);
-    assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 1U);
+    assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_STOP], 1U);
 }
 
 /* identify: 1 from STOPPED only (and under the start guard), 0 stops a
@@ -349,7 +349,7 @@ static void test_identify_should_request_a_measurement_from_stopped_only(void **
         assert_int_equal(write_i16(addr, 2), X2C_ERR_LIMIT);
         assert_true(rig_same(&rig, &before));
         assert_int_equal(write_i16(addr, 0), X2C_ERR_OK); /* not measuring: nothing to stop */
-        assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 0U);
+        assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_STOP], 0U);
         rig.mc.state = MC_STATE_STOPPED;
         guard_says = false; /* the fault pin still set */
         rig_snap(&rig, &before);
@@ -358,13 +358,13 @@ static void test_identify_should_request_a_measurement_from_stopped_only(void **
     }
     guard_says = true;
     assert_int_equal(write_i16(addr, 1), X2C_ERR_OK);
-    assert_int_equal(rig.mc.req_posted[MC_REQUEST_IDENTIFY], 1U);
-    assert_int_equal(rig.mc.req_posted[MC_REQUEST_START], 0U);
+    assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_IDENTIFY], 1U);
+    assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_START], 0U);
     rig.mc.state = MC_STATE_IDENTIFY; /* as the core would be, measuring */
     rig.mc.id_status = MC_ID_RUNNING;
     assert_int_equal(read_i16(addr), 1);
     assert_int_equal(write_i16(addr, 0), X2C_ERR_OK);
-    assert_int_equal(rig.mc.req_posted[MC_REQUEST_STOP], 1U);
+    assert_int_equal(rig.mc.mbox.req_posted[MC_REQUEST_STOP], 1U);
     rig.mc.state = MC_STATE_STOPPED;
     rig.mc.id_status = MC_ID_FAILED;
     assert_int_equal(read_i16(addr), 0);
@@ -427,7 +427,7 @@ static void test_writes_other_than_a_whole_tunable_should_be_refused(void **stat
     } cases[] = {
         {RIG_MOTOR(&rig, i_ref.q), 2, two, 2},                  /* read-only */
         {RIG_MOTOR(&rig, state), 2, two, 2},                    /* read-only */
-        {RIG_MOTOR(&rig, req_posted[0]), 1, two, 1},            /* not exported */
+        {RIG_MOTOR(&rig, mbox.req_posted[0]), 1, two, 1},       /* not exported */
         {RIG_TUNE(&rig, cur_kp), 1, two, 1},                    /* half of it */
         {(uint16_t)(RIG_TUNE(&rig, cur_kp) + 1U), 1, two, 1},   /* its other half */
         {RIG_TUNE(&rig, cur_kp), 2, four, 4},                   /* two tunables */
@@ -579,7 +579,7 @@ static void test_scope_configurations_outside_the_rules_should_be_refused(void *
         }
     }
     cfg_begin(&c, X2C_SCOPE_SAMPLE, 1, 0); /* a channel not exported */
-    cfg_channel(&c, RIG_MOTOR(&rig, req_seq), 1);
+    cfg_channel(&c, RIG_MOTOR(&rig, mbox.req_seq), 1);
     cfg_trigger(&c, 0x82, 0, 0, 0, 1, 0);
     assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_FORMAT);
     cfg_begin(&c, X2C_SCOPE_SAMPLE, 1, 0); /* a channel's source type other than an address */

@@ -58,7 +58,7 @@ static void run_periods(uint32_t n)
         bench.rig.pot = (k < n / 4U) ? 0.2 : 1.0;
         simcore_sample(&bench, &in);
         mc_bench_cl_step(&in, &bench.out);
-        if (bench.mc.slow_busy) {
+        if (bench.mc.ho.busy) {
             mc_bench_cl_slow();
         } else {
             mc_slow_step(&bench.mc); /* the same no-op, uncounted */

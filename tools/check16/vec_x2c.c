@@ -4,7 +4,7 @@
  */
 /* (tools/check16/run reads the first directive line only: kept whole) */
 /* clang-format off */
-/* check16-requires: firmware/mc.c firmware/mc_id.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
+/* check16-requires: firmware/mc.c firmware/mc_state.c firmware/mc_slow.c firmware/mc_sensor.c firmware/mc_dtm.c firmware/mc_api.c firmware/mc_id_isr.c firmware/mc_id_units.c firmware/mc_id.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
 /* clang-format on */
 #include "emit.h"
 
@@ -93,9 +93,9 @@ static void emit_state(void)
     emit_i16(x2c.tune.speed_ref_rpm);
     emit_i16(x2c.tune.run);
     for (k = 0; k < (uint8_t)MC_REQUEST_COUNT; k++) {
-        emit_u8(mc.req_posted[k]);
+        emit_u8(mc.mbox.req_posted[k]);
     }
-    emit_i16(mc.ref_remote);
+    emit_i16(mc.mbox.ref_remote);
     emit_i16(mc.pi_d.p.kp);
     emit_i16(mc.pi_q.p.ki);
     emit_i16(mc.spd_kp_base);

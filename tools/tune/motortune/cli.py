@@ -65,7 +65,8 @@ def generate(path: str, out: str | None = None, name: str | None = None, compile
         if compile_:
             err = probe.compile_core(g.text, g.profile.build, shown)
             if err is not None:
-                return _fail(f"{path}: ", f"firmware/mc.c does not compile with the generated profile: {err}",
+                return _fail(f"{path}: ",
+                             f"the core (firmware/mc*.c) does not compile with the generated profile: {err}",
                              EXIT_REFUSED), None
     except (InputError, Infeasible) as e:
         return _fail(f"{path}: ", str(e), EXIT_INPUT if isinstance(e, InputError) else EXIT_REFUSED), None
@@ -104,7 +105,7 @@ def format_table(rows: list[probe.Row], title: str) -> str:
 
 def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
     """The table in engineering units as the core computes it (the probe), the checks of
-    mc_derived.h and smc.h that fail, then firmware/mc.c's own compile."""
+    mc_derived.h and smc.h that fail, then the core's own compile (firmware/mc*.c)."""
     shown = probe.label(profile)
     try:
         text = safeio.read_utf8(profile, shown, MAX_HEADER_BYTES)
@@ -128,10 +129,11 @@ def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
     if compile_:
         err = probe.compile_core(text, prof.build, shown)
         if err is not None:
-            return _fail(f"{profile}: ", f"firmware/mc.c does not compile with this profile: {err}", EXIT_REFUSED)
-        print("every check of mc_derived.h / smc.h / mc.c passes")
+            return _fail(f"{profile}: ", f"the core (firmware/mc*.c) does not compile with this profile: {err}",
+                         EXIT_REFUSED)
+        print("every check of mc_derived.h / smc.h / the core passes")
     else:
-        print("every check of mc_derived.h / smc.h passes (firmware/mc.c not compiled: --no-compile)")
+        print("every check of mc_derived.h / smc.h passes (the core not compiled: --no-compile)")
     return 0
 
 
@@ -154,7 +156,7 @@ def _main(argv: list[str] | None) -> int:
                     help="leave the description's [tuning] out: the profile the tool derives on its own "
                          "(with --name or -o when the description has a [tuning])")
     ap.add_argument("--no-compile", action="store_true",
-                    help="skip the compile of firmware/mc.c with the profile (the core's checks in "
+                    help="skip the compile of the core (firmware/mc*.c) with the profile (the core's checks in "
                          "mc_derived.h still judge it, through the probe)")
     a = ap.parse_args(argv)
     if a.check is not None:

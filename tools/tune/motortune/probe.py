@@ -648,13 +648,15 @@ def tune_board(text: str, shown: str) -> str | None:
 
 
 def compile_core(text: str, build: Build, shown: str) -> str | None:
-    """cc -fsyntax-only of firmware/mc.c with the profile (the core's own compile, its
-    checks in mc.c too). None when it compiles, else its first error, in one line."""
+    """cc -fsyntax-only of the core's files (firmware/mc*.c) with the profile (the core's
+    own compile, the checks in its files too). None when it compiles, else its first
+    error, in one line."""
     cc = find_cc()
     with scratch() as tmp:
         (tmp / CC_PROFILE).write_text(text, encoding="utf-8")
         b = Build(build.board, CC_PROFILE, build.pwm_hz)
-        r = _compile(cc, [*b.defines(), "-fsyntax-only", str(FIRMWARE / "mc.c")], shown, tmp)
+        core = [str(f) for f in sorted(FIRMWARE.glob("mc*.c"))]
+        r = _compile(cc, [*b.defines(), "-fsyntax-only", *core], shown, tmp)
         if r.code == 0:
             return None
         errs = diagnostics(r.err)
