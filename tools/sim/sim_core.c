@@ -4,6 +4,7 @@
 /* clock_gettime (wall time for the progress line) is POSIX, not C99. */
 #define _POSIX_C_SOURCE 199309L
 #include "sim_core.h"
+#include "sim_record.h"
 
 #include <math.h>
 #include <string.h>
@@ -45,6 +46,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     memset(&cfg->inv, 0, sizeof(cfg->inv)); /* averaged, linear band (automatic), no drops */
     cfg->csv_decim = 10;
     cfg->csv = NULL;
+    cfg->record = NULL;
     cfg->progress = false;
 }
 
@@ -228,6 +230,9 @@ void simcore_request(simcore_t *s, mc_request_t r)
     if (r == MC_REQUEST_START || r == MC_REQUEST_START_STOP) {
         sim_log_start(&s->log, s->rig.t);
     }
+    if ((unsigned)r < 16U) {
+        s->requests = (uint16_t)(s->requests | (1U << (unsigned)r));
+    }
     mc_request(&s->mc, r);
 }
 
@@ -389,6 +394,12 @@ void simcore_step(simcore_t *s)
     simcore_sample(s, &in);
     mc_step(&s->mc, &in, &s->out);
     mc_slow_step(&s->mc); /* a no-op except after a window end (mc.h note 4) */
+    if (s->cfg.record != NULL && !s->record_failed) {
+        mc_status(&s->mc, &s->st);
+        s->record_failed =
+            sim_record_period(s->cfg.record, s->requests, &in, &s->out, (uint16_t)s->st.state) != 0;
+    }
+    s->requests = 0U;
     simcore_finish(s);
 }
 

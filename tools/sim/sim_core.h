@@ -58,6 +58,7 @@ typedef struct {
     sim_inverter_params_t inv; /* model, dt_shape, i_band_a, r_on_ohm, v_diode_v taken from here */
     int csv_decim;             /* CSV row every N periods */
     FILE *csv;                 /* NULL: no CSV */
+    FILE *record;              /* NULL: no period record (sim_record.h) */
     bool progress;             /* progress line on stderr for long runs */
 } simcore_cfg_t;
 
@@ -80,6 +81,8 @@ typedef struct {
      * every later simcore_step is a no-op. */
     bool diverged;
     double diverged_t_s, diverged_rpm;
+    uint16_t requests;  /* requests posted since the last step, for the record (bit r) */
+    bool record_failed; /* a write of the period record failed */
 } simcore_t;
 
 /* The largest electrical angle the plant may turn in one RK4 sub-step, rad:

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "sim_core.h"
+#include "sim_record.h"
 #include "sim_opt.h"
 #include "sim_parse.h"
 #include "sim_trace.h"
@@ -35,6 +36,7 @@ enum {
     OPT_MOTOR,
     OPT_BOARD,
     OPT_CSV,
+    OPT_RECORD,
     OPT_DECIM,
     OPT_SUBSTEPS,
     OPT_THETA0,
@@ -79,6 +81,8 @@ static const sim_opt_t OPTS[] = {
      .help = "simulated board (default mclv)"},
     {.id = OPT_CSV, .name = "--csv", .type = SIM_OPT_TEXT, .value = "FILE",
      .help = "write the trace (default: none)"},
+    {.id = OPT_RECORD, .name = "--record", .type = SIM_OPT_TEXT, .value = "FILE",
+     .help = "write every period's inputs and outputs (a replay's, docs/sim.md)"},
     {.id = OPT_DECIM, .name = "--decim", .type = SIM_OPT_NUMBER, .value = "N",
      .range = {"", "periods", 1.0, 1e6, SIM_RANGE_INTEGER},
      .help = "one CSV row every N PWM periods (default 10)"},
@@ -155,6 +159,13 @@ static const sim_opt_t OPTS[] = {
 /* clang-format on */
 
 #define N_OPTS (sizeof(OPTS) / sizeof(OPTS[0]))
+
+/* Whether two paths name one existing file. */
+static bool same_file(const char *x, const char *y)
+{
+    struct stat a, b;
+    return stat(x, &a) == 0 && stat(y, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
 
 static void usage(FILE *f)
 {
@@ -251,7 +262,7 @@ int main(int argc, char **argv)
     simcore_cfg_t cfg;
     static simcore_t s;
     static sim_scenario_t sc;
-    const char *scen_path = NULL, *csv_path = NULL;
+    const char *scen_path = NULL, *csv_path = NULL, *rec_path = NULL;
     const char *pty_only = NULL;                 /* a --pty option given, for the check below */
     char err[512], name[128], why[320], pq[256]; /* pq: a path, quoted */
     int i, rc;
@@ -302,6 +313,9 @@ int main(int argc, char **argv)
                 break;
             case OPT_CSV:
                 csv_path = v;
+                break;
+            case OPT_RECORD:
+                rec_path = v;
                 break;
             case OPT_DECIM:
                 cfg.csv_decim = (int)x;
@@ -415,6 +429,9 @@ int main(int argc, char **argv)
             return sim_refuse(PROG, "--csv",
                               "only with a scenario (with --pty, --truth writes the trace)");
         }
+        if (rec_path != NULL) {
+            return sim_refuse(PROG, "--record", "only with a scenario");
+        }
         if (simcore_init(&s, &cfg) != 0 || check_stiffness(&s) != 0) {
             return 2;
         }
@@ -453,11 +470,28 @@ int main(int argc, char **argv)
         }
         sim_trace_header(s.cfg.csv);
     }
+    if (rec_path != NULL) {
+        if (same_file(rec_path, scen_path) || (csv_path != NULL && same_file(rec_path, csv_path))) {
+            sim_parse_msg(why, sizeof(why), "'%s' is the scenario file or the trace",
+                          sim_parse_quote(rec_path, pq, sizeof(pq)));
+            return sim_refuse(PROG, "--record", why);
+        }
+        s.cfg.record = fopen(rec_path, "wb");
+        if (s.cfg.record == NULL || sim_record_header(s.cfg.record, (uint16_t)MC_SLOW_STEP_PERIODS,
+                                                      (uint32_t)PWM_FREQUENCY_HZ) != 0) {
+            sim_parse_msg(why, sizeof(why), "cannot write '%s'",
+                          sim_parse_quote(rec_path, pq, sizeof(pq)));
+            return sim_refuse(PROG, "--record", why);
+        }
+    }
     c0 = clock();
     rc = simcore_run_scenario(&s, &sc, name);
     wall = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (s.cfg.csv != NULL && fclose(s.cfg.csv) != 0) {
         return sim_refuse(PROG, "--csv", "write failed (disk full?)");
+    }
+    if (s.cfg.record != NULL && (fclose(s.cfg.record) != 0 || s.record_failed)) {
+        return sim_refuse(PROG, "--record", "write failed (disk full?)");
     }
     simcore_print_summary(&s, stdout, name);
     printf("   run: %.2f s simulated in %.2f s CPU (%.0f x real time)%s%s\n", s.rig.t, wall,
