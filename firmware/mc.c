@@ -113,10 +113,10 @@ Q15_INLINE void mc_duty_set(mc_t *mc, uint8_t k, int16_t d, int16_t dt, int16_t 
 /* The q current PI's step against +-vq_max (the circle limit, note 3). Its
  * three call sites are the three ways to that limit: each inlined, so the
  * near-circle path does not pay for saving the integral the redo needs. */
-Q15_INLINE q15_t mc_q_step(mc_t *mc, q15_t ref_q, q15_t vq_max)
+Q15_INLINE q15_t mc_q_step(mc_t *mc, q15_t err_q, q15_t vq_max)
 {
     pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
-    return pi_update(&mc->pi_q, ref_q, mc->i_dq.q);
+    return pi_step(&mc->pi_q, err_q);
 }
 
 /* Current loops and modulation, for one period with the outputs on, at
@@ -150,15 +150,20 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     bool near = q15_dsp_mulss(mc->pi_q.out, mc->pi_q.out) >=
                 MC_VNEAR_SQ - q15_dsp_mulss(mc->pi_d.out, mc->pi_d.out);
     dq_q15_t v;
-    v.d = pi_update(&mc->pi_d, ref.d, mc->i_dq.d);
+    q15_t err_d = q15_sub_sat(ref.d, mc->i_dq.d);
+    q15_t err_q = q15_sub_sat(ref.q, mc->i_dq.q);
+    /* the current-sensor check's window sums (note 5): the loops' own errors */
+    mc->sens_d += err_d;
+    mc->sens_q += err_q;
+    v.d = pi_step(&mc->pi_d, err_d);
     if (near) {
-        v.q = mc_q_step(mc, ref.q, vlimit_vq_max(v.d, MC_VMAX_Q15));
+        v.q = mc_q_step(mc, err_q, vlimit_vq_max(v.d, MC_VMAX_Q15));
     } else {
         q31_t sum_q = mc->pi_q.sum;
-        v.q = mc_q_step(mc, ref.q, MC_VMAX_Q15);
+        v.q = mc_q_step(mc, err_q, MC_VMAX_Q15);
         if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
             mc->pi_q.sum = sum_q;
-            v.q = mc_q_step(mc, ref.q, vlimit_vq_max(v.d, MC_VMAX_Q15));
+            v.q = mc_q_step(mc, err_q, vlimit_vq_max(v.d, MC_VMAX_Q15));
             if (mc->circle_redos != UINT16_MAX) {
                 mc->circle_redos++;
             }
@@ -250,7 +255,7 @@ Q15_INLINE angle_q15_t mc_forced_angle(mc_t *mc, uint32_t inc, sincos_q15_t *sc)
  *                period of the estimated speed on (mc.h note 2), advanced
  *                by a rotation by adv_sc (set once per window).
  * Called in those four states only (the outputs on). */
-static void mc_prepare(mc_t *mc)
+Q15_INLINE void mc_prepare(mc_t *mc)
 {
     angle_q15_t th;
     sincos_q15_t sc;
@@ -360,12 +365,11 @@ static void mc_ol_damp(mc_t *mc)
 }
 
 /* Current-sensor plausibility (note 5), every period with the outputs
- * on: the window's sums of the current error and of the periods with the
- * q PI at its voltage limit, for the slow step (mc_slow_sensor). */
+ * on: the window's count of the periods with the q PI at its voltage limit
+ * (the error sums are the current loops', mc_current_control), for the
+ * slow step (mc_sensor_window). */
 Q15_INLINE void mc_sensor_sum(mc_t *mc)
 {
-    mc->sens_d += (int32_t)mc->i_ref_frame.d - (int32_t)mc->i_dq.d;
-    mc->sens_q += (int32_t)mc->i_ref_frame.q - (int32_t)mc->i_dq.q;
     if (pi_at_limit(&mc->pi_q)) {
         mc->sens_qsat++;
     }
@@ -643,17 +647,20 @@ static bool mc_on_running(mc_t *mc, const mc_events_t *ev)
 
 static bool mc_dispatch(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
 {
-    switch (mc->state) {
-        case MC_STATE_STOPPED:
-            return mc_on_stopped(mc, ev, in);
-        case MC_STATE_FAULT:
-            return mc_on_fault(mc, ev, in);
-        case MC_STATE_CALIBRATE:
-            return mc_on_calibrate(mc, ev, in);
+    /* the driving states first: their periods are the ones that count */
+    mc_state_t s = mc->state;
+    if (s == MC_STATE_CLOSED_LOOP || s == MC_STATE_OPEN_LOOP || s == MC_STATE_IDENTIFY) {
+        return mc_on_running(mc, ev);
+    }
+    switch (s) {
         case MC_STATE_LOCK:
             return mc_on_lock(mc, ev);
-        default: /* OPEN_LOOP, CLOSED_LOOP */
-            return mc_on_running(mc, ev);
+        case MC_STATE_STOPPED:
+            return mc_on_stopped(mc, ev, in);
+        case MC_STATE_CALIBRATE:
+            return mc_on_calibrate(mc, ev, in);
+        default: /* FAULT */
+            return mc_on_fault(mc, ev, in);
     }
 }
 
@@ -697,7 +704,12 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
             }
         }
     }
-    mc->timer += (uint32_t)(mc->timer != MC_TIMER_MAX); /* saturates */
+    {
+        uint32_t t = mc->timer + 1U;
+        if (t != 0U) {
+            mc->timer = t; /* saturates at 2^32 - 1 */
+        }
+    }
 
     /* 6. The slow step's results MC_SLOW_APPLY_PERIODS after a window end,
      * and the window end every MC_SLOW_STEP_PERIODS calls since mc_init. */
@@ -709,23 +721,23 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
         mc->slow_div = 0U;
         mc_window_end(mc);
     }
-    if (mc->outputs_on) {
-        mc_prepare(mc);
-    } else {
+    bool prepare = mc->outputs_on;
+    if (!prepare) {
         /* Off, or a fault raised here (a failed start, a stall, an
          * overrun) has just turned the outputs off: so does *out, at once.
          * CALIBRATE ends here once it has its samples; the next period
          * (LOCK's or IDENTIFY's first) turns the outputs on at the angle
-         * prepared here. */
+         * prepared below. */
         if (mc->state == MC_STATE_CALIBRATE &&
             mc->timer == (uint32_t)mc->calib_wait + (uint32_t)MC_CALIB_PERIODS) {
             mc_calibrate_end(mc);
-            if (mc_driving(mc->state)) {
-                mc_prepare(mc);
-            }
+            prepare = mc_driving(mc->state);
         }
         turned_off = out->outputs_on;
         mc_output(mc, out);
+    }
+    if (prepare) {
+        mc_prepare(mc); /* one call: inline */
     }
     return turned_off;
 }

@@ -61,8 +61,6 @@ MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0
 #define MC_VEST_W_NEW Q15(MC_SAMPLE_AT)
 #define MC_VEST_W_OLD ((q15_t)(32768L - (long)MC_VEST_W_NEW))
 
-#define MC_TIMER_MAX 0xFFFFFFFFUL
-
 /* A compiler barrier: the stores before it are not moved after it. Every
  * supported compiler (gcc, clang, XC16's gcc) understands it; the dsPIC
  * executes stores in order. */

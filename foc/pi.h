@@ -83,17 +83,24 @@ Q15_INLINE void pi_set_limits(pi_t *pi, q15_t out_min, q15_t out_max)
 
 #define PI_KP_SHIFT_MAX 7U /* a larger kp_shift is treated as 7 */
 
-/* One PI step (notes in pi.c); returns Out (also kept in pi->out). */
-Q15_INLINE q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
+/* One PI step on the error err = ref - meas, saturated (notes in pi.c);
+ * returns Out (also kept in pi->out). For a caller that uses the error too
+ * (the core's current-sensor sums). */
+Q15_INLINE q15_t pi_step(pi_t *pi, q15_t err)
 {
     uint8_t shift = (pi->p.kp_shift > PI_KP_SHIFT_MAX) ? PI_KP_SHIFT_MAX : pi->p.kp_shift;
-    q15_t err = q15_sub_sat(ref, meas);
     /* U in 40 bits, Out clamped, Exc rounded for the multiplier, the
      * integral updated: q15_dsp_pi (pi.c notes 1 and 2). */
     q15_t out = q15_dsp_pi(&pi->sum, err, pi->p.kp, shift, pi->p.ki, pi->p.kc, pi->p.out_min,
                            pi->p.out_max);
     pi->out = out;
     return out;
+}
+
+/* One PI step (notes in pi.c); returns Out (also kept in pi->out). */
+Q15_INLINE q15_t pi_update(pi_t *pi, q15_t ref, q15_t meas)
+{
+    return pi_step(pi, q15_sub_sat(ref, meas));
 }
 
 /* Whether the last output sat at a limit (the loop asked for more than it may give). */
