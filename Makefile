@@ -32,18 +32,19 @@ $(error MOTOR=$(MOTOR): no firmware/motors/motor_$(MOTOR).h (motors: $(patsubst 
 endif
 endif
 
-.PHONY: help bootstrap build unit asan coverage check-16bit cycles lint format bench sim robust firmware test test-clang clean
+.PHONY: help bootstrap build unit asan coverage check-16bit cycles size lint format bench sim robust firmware test test-clang clean
 
 help:
 	@echo "make sim          run the firmware core against the simulated motor (SCENARIO=, MOTOR=, BOARD=)"
 	@echo "make sim PTY=1    the same motor behind X2Cscope on a pty (and TCP 12666), for tools/scope"
-	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, coverage, sanitized, clang and plain tests"
+	@echo "make test         everything CI runs: bootstrap, lint, check-16bit, cycles, size, coverage, sanitized, clang and plain tests"
 	@echo "make unit         build and run the host tests (plain build)"
 	@echo "make test-clang   build with clang in $(CLANG_DIR) and run the unit tests"
 	@echo "make asan         build and run the host tests under ASan + UBSan"
 	@echo "make coverage     gcovr HTML report in $(COV_DIR)/coverage/, fails below the gates"
 	@echo "make check-16bit  core built with avr-gcc (16-bit int), run in simavr, compared bit for bit with the PC"
 	@echo "make cycles       cycle guard: AVR cycles of mc_step per state (simavr) against committed ceilings"
+	@echo "make size         size guard: avr-gcc flash and RAM of the dsPIC image's sources per part against ceilings"
 	@echo "make lint         cppcheck + clang-format check; ruff + mypy (strict) on tools/ and test/ Python"
 	@echo "make format       clang-format the sources in place (and ruff's safe fixes)"
 	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
@@ -91,6 +92,9 @@ check-16bit:
 cycles:
 	@BOARD=mclv MOTOR=hurst tools/check16/cycles $(BUILD)/cycles  # the ceilings are for this profile
 
+size:
+	@BOARD=mclv MOTOR=hurst tools/check16/size $(BUILD)/size  # the ceilings are for this profile
+
 lint:
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint
 
@@ -118,6 +122,7 @@ test: bootstrap
 	@$(MAKE) --no-print-directory lint
 	@$(MAKE) --no-print-directory check-16bit
 	@$(MAKE) --no-print-directory cycles
+	@$(MAKE) --no-print-directory size
 	@$(MAKE) --no-print-directory coverage
 	@$(MAKE) --no-print-directory asan
 	@$(MAKE) --no-print-directory test-clang
