@@ -9,6 +9,7 @@
 
 Q15_STATIC_ASSERT((APP_TX_QUEUE_SIZE & (APP_TX_QUEUE_SIZE - 1U)) == 0U && APP_TX_QUEUE_SIZE <= 256U,
                   "APP_TX_QUEUE_SIZE must be a power of two up to 256");
+Q15_STATIC_ASSERT(APP_TEXT_UART == 0 || APP_TEXT_UART == 1, "APP_TEXT_UART must be 0 or 1");
 Q15_STATIC_ASSERT(MC_SPEED_REF_MIN_Q15 >= 0 && MC_SPEED_REF_MAX_Q15 >= MC_SPEED_REF_MIN_Q15,
                   "app_speed_from_pot assumes 0 <= SPEED_REF_MIN_RPM <= SPEED_REF_MAX_RPM");
 Q15_STATIC_ASSERT(APP_DEBOUNCE_MS < 255U, "APP_DEBOUNCE_MS must fit the uint8_t counter");
@@ -22,7 +23,6 @@ void app_init(app_t *app)
     app->ref_seq_mine = 0;
     app->fault_reported = false;
     app->status_ms = 0;
-    app->telemetry_ms = 0;
     app->run_phase = 0;
     app->fault_phase = 0;
     app->fault_shown = MC_FAULT_NONE;
@@ -30,8 +30,11 @@ void app_init(app_t *app)
     app->status.fault = MC_FAULT_NONE;
     app->status.speed_ref = 0;
     app->status.speed_est = 0;
+#if APP_TEXT_UART
+    app->telemetry_ms = 0;
     app->tx_head = 0;
     app->tx_tail = 0;
+#endif
     app->uart_client = NULL;
     app->client_tx_held = false;
     app->client_tx = 0;
@@ -151,6 +154,7 @@ static void on_s3(app_t *app)
 
 /* ---- UART -------------------------------------------------------------------- */
 
+#if APP_TEXT_UART
 static uint8_t tx_used(const app_t *app)
 {
     return (uint8_t)(((unsigned)app->tx_head - (unsigned)app->tx_tail) & (APP_TX_QUEUE_SIZE - 1U));
@@ -210,6 +214,38 @@ static void queue_telemetry(app_t *app)
     }
 }
 
+/* The text protocol's bytes out, its commands in. */
+static void service_text(app_t *app)
+{
+    uint8_t c;
+    while (app->tx_tail != app->tx_head && hal_uart_put(app->tx[app->tx_tail])) {
+        app->tx_tail = (uint8_t)((app->tx_tail + 1U) & (APP_TX_QUEUE_SIZE - 1U));
+    }
+    while (hal_uart_get(&c)) {
+        if (c == 'g') {
+            if (app_start_allowed(app)) {
+                motor_request(MC_REQUEST_START);
+            }
+        } else if (c == 's') {
+            motor_request(MC_REQUEST_STOP);
+        } else if (c == 'p') {
+            app->double_speed = false;
+            motor_request(MC_REQUEST_REF_POT);
+        }
+    }
+}
+
+/* The status line every APP_TELEMETRY_PERIOD_MS. */
+static void tick_text(app_t *app)
+{
+    app->telemetry_ms = (uint16_t)(app->telemetry_ms + 1U);
+    if (app->telemetry_ms >= APP_TELEMETRY_PERIOD_MS) {
+        app->telemetry_ms = 0;
+        queue_telemetry(app);
+    }
+}
+#endif /* APP_TEXT_UART */
+
 void app_set_uart_client(app_t *app, const app_uart_client_t *client)
 {
     app->uart_client = client;
@@ -241,26 +277,13 @@ static void service_client(app_t *app, const app_uart_client_t *cl)
 
 void app_service_uart(app_t *app)
 {
-    uint8_t c;
     if (app->uart_client != NULL) {
         service_client(app, app->uart_client);
         return;
     }
-    while (app->tx_tail != app->tx_head && hal_uart_put(app->tx[app->tx_tail])) {
-        app->tx_tail = (uint8_t)((app->tx_tail + 1U) & (APP_TX_QUEUE_SIZE - 1U));
-    }
-    while (hal_uart_get(&c)) {
-        if (c == 'g') {
-            if (app_start_allowed(app)) {
-                motor_request(MC_REQUEST_START);
-            }
-        } else if (c == 's') {
-            motor_request(MC_REQUEST_STOP);
-        } else if (c == 'p') {
-            app->double_speed = false;
-            motor_request(MC_REQUEST_REF_POT);
-        }
-    }
+#if APP_TEXT_UART
+    service_text(app);
+#endif
 }
 
 /* ---- the 1 ms work ---------------------------------------------------------- */
@@ -322,11 +345,9 @@ void app_tick_1ms(app_t *app)
         app->uart_client->tick_1ms(app->uart_client->ctx);
         return;
     }
-    app->telemetry_ms = (uint16_t)(app->telemetry_ms + 1U);
-    if (app->telemetry_ms >= APP_TELEMETRY_PERIOD_MS) {
-        app->telemetry_ms = 0;
-        queue_telemetry(app);
-    }
+#if APP_TEXT_UART
+    tick_text(app);
+#endif
 }
 
 void app_poll(app_t *app)

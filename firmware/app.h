@@ -22,7 +22,8 @@
  *   - every APP_STATUS_PERIOD_MS: the status snapshot is taken, the LEDs
  *     are set from it, and in double-speed mode the pot is read into the
  *     reference (motor_set_reference);
- *   - every APP_TELEMETRY_PERIOD_MS: one status line is queued for the UART.
+ *   - with the text protocol (APP_TEXT_UART), every APP_TELEMETRY_PERIOD_MS
+ *     one status line is queued for the UART.
  * On every pass: queued bytes go out while the UART takes them, received
  * bytes are commands.
  *
@@ -31,7 +32,7 @@
  * code: code n = n blinks (APP_BLINK_MS on, APP_BLINK_MS off), then
  * APP_FAULT_PAUSE_MS dark, repeating; off when there is no fault.
  *
- * UART (8N1, HAL_UART_BAUD): every 100 ms the line
+ * UART (8N1, HAL_UART_BAUD), the text protocol: every 100 ms the line
  *   "S<state> F<fault> R<speed_ref> W<speed_est> A<ia> D<0|1>\r\n"
  * (decimal; state = mc_state_t, speeds in Q15 of MC_SPEED_FULLSCALE_RPM,
  * ia offset-corrected in Q15 of BOARD_I_FULLSCALE_A, D = double-speed mode). Commands, one byte
@@ -39,9 +40,10 @@
  *
  * A UART client (app_set_uart_client, e.g. the X2Cscope target of
  * firmware/x2cscope, docs/x2cscope.md) takes the UART over: the status line and
- * the one-byte commands stop; received bytes go to the client while it is
- * ready for them (a byte it is not ready for stays in the UART), bytes it
- * queues go out as the UART takes them, and it gets a tick every 1 ms.
+ * the one-byte commands stop (in the X2Cscope image they are not compiled:
+ * APP_TEXT_UART 0, and the UART is idle until the client is set); received bytes go to the client
+ * while it is ready for them (a byte it is not ready for stays in the UART), bytes it queues go out
+ * as the UART takes them, and it gets a tick every 1 ms.
  */
 
 #include <stdbool.h>
@@ -57,6 +59,19 @@
 #define APP_BLINK_MS            250U
 #define APP_FAULT_PAUSE_MS      1500U
 #define APP_TX_QUEUE_SIZE       64U /* power of two, up to 256: one status line (< 48) */
+
+/* APP_TEXT_UART: the plain text protocol on the UART (a status line every
+ * APP_TELEMETRY_PERIOD_MS, the commands g, s, p) while no client owns it.
+ * 1 in a build without the X2Cscope target (APP_NO_X2CSCOPE), whose main.c
+ * sets no client; 0 otherwise, and then neither its code nor its queue is
+ * in the image. */
+#ifndef APP_TEXT_UART
+#if defined(APP_NO_X2CSCOPE)
+#define APP_TEXT_UART 1
+#else
+#define APP_TEXT_UART 0
+#endif
+#endif
 
 typedef struct {
     bool level;     /* debounced: true = held down */
@@ -75,18 +90,20 @@ typedef struct {
 
 typedef struct {
     app_button_t s2, s3;
-    bool double_speed;     /* S3 mode: the board owns the reference (app.c note) */
-    uint8_t ref_seq_mine;  /* mc_status_t.ref_seq after the app's own last reference */
-    bool fault_reported;   /* the current FLTA latch was posted to the core */
-    uint16_t status_ms;    /* counts to APP_STATUS_PERIOD_MS */
+    bool double_speed;    /* S3 mode: the board owns the reference (app.c note) */
+    uint8_t ref_seq_mine; /* mc_status_t.ref_seq after the app's own last reference */
+    bool fault_reported;  /* the current FLTA latch was posted to the core */
+    uint16_t status_ms;   /* counts to APP_STATUS_PERIOD_MS */
+    uint16_t run_phase;   /* ms into the RUN blink */
+    uint16_t fault_phase; /* ms into the FAULT pattern */
+    uint16_t fault_shown; /* fault code the pattern is showing */
+    mc_status_t status;   /* last snapshot */
+#if APP_TEXT_UART
     uint16_t telemetry_ms; /* counts to APP_TELEMETRY_PERIOD_MS */
-    uint16_t run_phase;    /* ms into the RUN blink */
-    uint16_t fault_phase;  /* ms into the FAULT pattern */
-    uint16_t fault_shown;  /* fault code the pattern is showing */
-    mc_status_t status;    /* last snapshot */
     uint8_t tx[APP_TX_QUEUE_SIZE];
-    uint8_t tx_head, tx_tail;             /* head: next free, tail: next to send */
-    const app_uart_client_t *uart_client; /* NULL: the text protocol above */
+    uint8_t tx_head, tx_tail; /* head: next free, tail: next to send */
+#endif
+    const app_uart_client_t *uart_client; /* NULL: the text protocol above (APP_TEXT_UART) */
     bool client_tx_held;                  /* client_tx holds a byte the UART refused */
     uint8_t client_tx;
 } app_t;
@@ -94,7 +111,7 @@ typedef struct {
 /* Everything to rest: buttons released, normal speed, LEDs off. */
 void app_init(app_t *app);
 
-/* Hands the UART to a client (NULL: back to the text protocol). */
+/* Hands the UART to a client (NULL: back to the text protocol, or idle without it). */
 void app_set_uart_client(app_t *app, const app_uart_client_t *client);
 
 /* May the motor start? The rule S2 and every other START source share: a

@@ -310,6 +310,7 @@ static void test_fault_led_should_blink_the_fault_code_then_pause(void **state)
 
 /* ---- UART -------------------------------------------------------------------------- */
 
+#if APP_TEXT_UART
 static void test_telemetry_should_send_one_status_line_every_100ms(void **state)
 {
     (void)state;
@@ -387,6 +388,20 @@ static void test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds(
     expect_value(motor_request, r, MC_REQUEST_START);
     app_service_uart(&app);
 }
+#else
+/* Without the text protocol (the X2Cscope image) and before the client is
+ * set, the UART stays idle: no status line, and received bytes are left
+ * for the client (the strict mocks fail on any request). */
+static void test_uart_without_the_text_protocol_should_stay_idle_until_a_client(void **state)
+{
+    (void)state;
+    fake_rx = "gsp";
+    ticks(3U * APP_TELEMETRY_PERIOD_MS);
+    app_service_uart(&app);
+    assert_int_equal(fake_tx_n, 0);
+    assert_int_equal(strlen(fake_rx), 3); /* nothing read */
+}
+#endif
 
 static void test_s3_should_yield_the_reference_to_another_side_that_sets_it(void **state)
 {
@@ -444,33 +459,36 @@ static void test_poll_should_do_the_1ms_work_only_when_a_tick_elapsed(void **sta
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup(test_s2_press_should_request_start_stop_once_after_the_debounce_time,
-                               setup),
-        cmocka_unit_test_setup(
-            test_s2_bouncing_faster_than_the_debounce_time_should_request_nothing, setup),
-        cmocka_unit_test_setup(
-            test_s2_with_the_fault_latched_should_clear_it_then_request_start_stop, setup),
-        cmocka_unit_test_setup(test_s2_while_the_fault_pin_is_still_asserted_should_start_nothing,
-                               setup),
-        cmocka_unit_test_setup(test_fault_latch_should_be_reported_to_the_core_once_per_latch,
-                               setup),
-        cmocka_unit_test_setup(test_s3_should_double_the_pot_reference_until_pressed_again, setup),
-        cmocka_unit_test_setup(test_speed_from_pot_should_map_linearly_and_clamp_when_doubled,
-                               setup),
-        cmocka_unit_test_setup(
-            test_run_led_should_be_off_stopped_blinking_in_start_up_and_on_in_closed_loop, setup),
-        cmocka_unit_test_setup(test_fault_led_should_blink_the_fault_code_then_pause, setup),
-        cmocka_unit_test_setup(test_telemetry_should_send_one_status_line_every_100ms, setup),
-        cmocka_unit_test_setup(
-            test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines, setup),
-        cmocka_unit_test_setup(test_uart_commands_should_post_start_stop_and_return_to_the_pot,
-                               setup),
-        cmocka_unit_test_setup(test_poll_should_do_the_1ms_work_only_when_a_tick_elapsed, setup),
-        cmocka_unit_test_setup(test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds,
-                               setup),
-        cmocka_unit_test_setup(test_s3_should_yield_the_reference_to_another_side_that_sets_it,
-                               setup),
+    const struct CMUnitTest tests[] =
+    { cmocka_unit_test_setup(test_s2_press_should_request_start_stop_once_after_the_debounce_time,
+                             setup),
+      cmocka_unit_test_setup(test_s2_bouncing_faster_than_the_debounce_time_should_request_nothing,
+                             setup),
+      cmocka_unit_test_setup(test_s2_with_the_fault_latched_should_clear_it_then_request_start_stop,
+                             setup),
+      cmocka_unit_test_setup(test_s2_while_the_fault_pin_is_still_asserted_should_start_nothing,
+                             setup),
+      cmocka_unit_test_setup(test_fault_latch_should_be_reported_to_the_core_once_per_latch, setup),
+      cmocka_unit_test_setup(test_s3_should_double_the_pot_reference_until_pressed_again, setup),
+      cmocka_unit_test_setup(test_speed_from_pot_should_map_linearly_and_clamp_when_doubled, setup),
+      cmocka_unit_test_setup(
+          test_run_led_should_be_off_stopped_blinking_in_start_up_and_on_in_closed_loop, setup),
+      cmocka_unit_test_setup(test_fault_led_should_blink_the_fault_code_then_pause, setup),
+#if APP_TEXT_UART
+      cmocka_unit_test_setup(test_telemetry_should_send_one_status_line_every_100ms, setup),
+      cmocka_unit_test_setup(
+          test_uart_should_keep_bytes_while_the_transmitter_is_full_and_drop_whole_lines, setup),
+      cmocka_unit_test_setup(test_uart_commands_should_post_start_stop_and_return_to_the_pot,
+                             setup),
+      cmocka_unit_test_setup(test_uart_start_should_follow_the_s2_rule_while_the_fault_pin_holds,
+                             setup),
+#else
+      cmocka_unit_test_setup(test_uart_without_the_text_protocol_should_stay_idle_until_a_client,
+                             setup),
+#endif
+      cmocka_unit_test_setup(test_poll_should_do_the_1ms_work_only_when_a_tick_elapsed, setup),
+      cmocka_unit_test_setup(test_s3_should_yield_the_reference_to_another_side_that_sets_it,
+                             setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -61,8 +61,12 @@ print)
     n_cc=$(grep -c -- ' -c ' "$f")
     echo "measured: $2: $n_cc compile lines for $n_src sources, $(grep -c 'xc16-bin2hex' "$f") bin2hex line(s)"
     [ "$n_cc" -eq "$n_src" ] || fail "$2: $n_cc compile lines, $n_src sources"
-    [ "$(grep -- ' -c ' "$f" | grep -c -- '-mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double')" -eq "$n_cc" ] ||
-      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double"
+    [ "$(grep -- ' -c ' "$f" | grep -cE -- '-mcpu=33FJ32MC204 -omf=elf -O[12] -g -fno-short-double')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O1|-O2 -g -fno-short-double"
+    # the interrupt's path at -O2, the main loop's cold files at -O1
+    grep -- ' -c firmware/mc.c ' "$f" | grep -q -- ' -O2 ' || fail "$2: mc.c not at -O2"
+    grep -- ' -c hal/dspic33f/hal_isr.c ' "$f" | grep -q -- ' -O2 ' || fail "$2: hal_isr.c not at -O2"
+    grep -- ' -c firmware/app.c ' "$f" | grep -q -- ' -O1 ' || fail "$2: app.c not at -O1"
     [ "$(grep -- ' -c ' "$f" | grep -c -- '-DMC_BOARD_MCLV -DMC_MOTOR_HURST')" -eq "$n_cc" ] ||
       fail "$2: a compile line lacks the board/motor defines"
     grep -q -- ' -c hal/dspic33f/hal_isr.c ' "$f" || fail "$2: hal_isr.c not compiled"
