@@ -706,6 +706,7 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     }
     {
         uint32_t t = mc->timer + 1U;
+        // cppcheck-suppress knownConditionTrueFalse ; at 2^32 - 1 periods (2.5 days) t wraps to 0
         if (t != 0U) {
             mc->timer = t; /* saturates at 2^32 - 1 */
         }

@@ -8,13 +8,23 @@
 
 #include "emit.h"
 #include "mc.h"
+#if defined(CYCLES_ID)
+#include "id_frames.h"
+#include "vec_id_frames.h"
+#define CYCLES_FRAMES          (ID_FRAMES_N < ID_FRAMES_RECORDED_N ? ID_FRAMES_N : ID_FRAMES_RECORDED_N)
+#define cycles_input(m, n, in) id_frames_input(m, n, in)
+#else
 #include "mc_frames.h"
 #include "vec_mc_frames.h"
+#define CYCLES_FRAMES          (MC_FRAMES_N < MC_FRAMES_RECORDED_N ? MC_FRAMES_N : MC_FRAMES_RECORDED_N)
+#define cycles_input(m, n, in) mc_frames_input(m, n, in)
+#endif
 
 /*
  * The cycle guard of make test (tools/check16/cycles runs it): the same
  * frames vec_mc.c replays (a Hurst start through calibration, lock, ramp,
- * hand-off, closed loop and the pot to full travel), built with avr-gcc
+ * hand-off, closed loop and the pot to full travel), or with CYCLES_ID the
+ * first stages of an identification (vec_id_frames.h), built with avr-gcc
  * for the ATmega2560 and run under simavr, which executes every instruction
  * with the AVR's exact cycle count. Timer 1 runs at the CPU clock; its
  * overflows are counted in an interrupt (a few dozen cycles per 65,536,
@@ -77,13 +87,13 @@ int main(void)
     emit_text("cycles begin");
     emit_section("mc_cycles");
     mc_init(&mc);
-    for (n = 0U; n < MC_FRAMES_N && n < MC_FRAMES_RECORDED_N; n++) {
+    for (n = 0U; n < CYCLES_FRAMES; n++) {
         mc_adc_frame_t in;
         mc_pwm_out_t out;
         mc_status_t st;
         uint32_t t_step;
         uint32_t t_slow;
-        mc_frames_input(&mc, n, &in);
+        cycles_input(&mc, n, &in);
         mc_status(&mc, &st); /* the state the step starts in */
         t0 = cycles_now();
         mc_step(&mc, &in, &out);
