@@ -4,6 +4,7 @@
 BOARD    ?= mclv
 MOTOR    ?= hurst
 SCENARIO ?= default
+IMAGE    ?= drive
 BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 
@@ -49,9 +50,9 @@ help:
 	@echo "make format       clang-format the sources in place (and ruff's safe fixes)"
 	@echo "make bench        instructions per call (callgrind) and avr-gcc RAM/flash of each block"
 	@echo "make robust       randomized campaign: RUNS= per profile (default 400) on three profiles, report and plots in $(BUILD)/robust/"
-	@echo "make firmware     dsPIC image with XC16 (needs XC16_DIR or xc16-gcc on PATH)"
+	@echo "make firmware     dsPIC image with XC16 (needs XC16_DIR or xc16-gcc on PATH); IMAGE=identify: the commissioning image"
 	@echo "make clean        remove $(BUILD)/"
-	@echo "variables: BOARD=$(BOARD) MOTOR=$(MOTOR) SCENARIO=$(SCENARIO) JOBS=$(JOBS)"
+	@echo "variables: BOARD=$(BOARD) MOTOR=$(MOTOR) SCENARIO=$(SCENARIO) IMAGE=$(IMAGE) JOBS=$(JOBS)"
 
 bootstrap:
 	@tools/bootstrap
@@ -115,7 +116,7 @@ robust: bootstrap
 	@tools/robust/run $(BUILD)/robust $(RUNS) $(SEED)
 
 firmware:
-	@+FIRMWARE_OUT=$(BUILD)/firmware tools/firmware_build $(if $(findstring n,$(firstword -$(MAKEFLAGS))),--print) $(BOARD) $(MOTOR)
+	@+FIRMWARE_OUT=$(BUILD)/firmware tools/firmware_build $(if $(findstring n,$(firstword -$(MAKEFLAGS))),--print) --image $(IMAGE) $(BOARD) $(MOTOR)
 
 # The plain suite runs last so the output closes on CTest's summary line.
 test: bootstrap

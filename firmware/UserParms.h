@@ -305,6 +305,16 @@
 #define MC_IDENTIFY 1
 #endif
 #endif
+
+/* MC_DRIVE: the sensorless drive (LOCK, OPEN_LOOP, CLOSED_LOOP: the
+ * estimator, the speed loop, field weakening, the current-sensor check, the
+ * lock's dead-time measurement). 0 builds the commissioning image (make
+ * firmware IMAGE=identify, docs/identify.md): the core measures the motor
+ * and nothing else, and a START (S2, MC_REQUEST_START, x2c.tune.run) starts
+ * the identification as MC_REQUEST_IDENTIFY does. Needs MC_IDENTIFY 1. */
+#ifndef MC_DRIVE
+#define MC_DRIVE 1
+#endif
 /* The largest current the measurement drives (A, peak phase): the DC level
  * at which R, the inverter's error and L are measured (1.5 times it may flow
  * for a moment while the voltage is found), a third of it turns the rotor

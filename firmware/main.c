@@ -61,7 +61,9 @@ int main(void)
     x2c_set_start_guard(&x2c, x2c_may_start, &app);
     x2c_app_client(&x2c, &x2c_client);
     app_set_uart_client(&app, &x2c_client);
-    motor_observe(x2c_observer, &x2c);
+    if (X2C_SCOPE) {
+        motor_observe(x2c_observer, &x2c); /* the scope's sampling */
+    }
 #endif
     for (;;) {
         app_poll(&app);

@@ -66,7 +66,7 @@ Q15_INLINE sincos_q15_t mc_advance(sincos_q15_t sc, sincos_q15_t a)
  * preset, a reset), so the period only turns sc and adds pred. */
 void mc_set_advance(mc_t *mc)
 {
-    q15_t w = smc_omega(&mc->smc);
+    q15_t w = mc_est_omega(mc);
     mc->adv_sc = sincos_compute(q15_mul(w, MC_ADV_K));
     mc->pred = q15_mul(w, MC_PRED_K);
 }
@@ -84,7 +84,7 @@ Q15_INLINE void mc_estimate(mc_t *mc)
     v.alpha =
         q15_dsp_mac2_r(mc->v_hist[0].alpha, MC_VEST_W_NEW, mc->v_hist[1].alpha, MC_VEST_W_OLD);
     v.beta = q15_dsp_mac2_r(mc->v_hist[0].beta, MC_VEST_W_NEW, mc->v_hist[1].beta, MC_VEST_W_OLD);
-    smc_update(&mc->smc, mc->i_ab, v);
+    mc_est_update(mc, mc->i_ab, v);
     mc->v_hist[1] = mc->v_hist[0];
     mc->v_hist[0] = mc_duty_to_voltage(mc->eff, mc->vbus);
 }
@@ -259,7 +259,7 @@ Q15_INLINE void mc_prepare(mc_t *mc)
 {
     angle_q15_t th;
     sincos_q15_t sc;
-    if (mc->state == MC_STATE_CLOSED_LOOP) {
+    if (MC_DRIVE && mc->state == MC_STATE_CLOSED_LOOP) {
         int16_t off = mc->theta_offset;
         if (off > MC_BLEED_STEP) {
             off = (int16_t)(off - MC_BLEED_STEP);
@@ -269,13 +269,13 @@ Q15_INLINE void mc_prepare(mc_t *mc)
             off = 0;
         }
         mc->theta_offset = off;
-        th = angle_add(angle_add(smc_theta(&mc->smc), off), mc->pred);
+        th = angle_add(angle_add(mc_est_theta(mc), off), mc->pred);
         sc = sincos_compute(th);
         mc->scv_next = mc_advance(sc, mc->adv_sc);
-    } else if (mc->state == MC_STATE_OPEN_LOOP) {
+    } else if (MC_DRIVE && mc->state == MC_STATE_OPEN_LOOP) {
         th = mc_forced_angle(mc, MC_RAMP_STEP_INC, &sc);
 #if MC_IDENTIFY
-    } else if (mc->state == MC_STATE_IDENTIFY) {
+    } else if (!MC_DRIVE || mc->state == MC_STATE_IDENTIFY) {
         th = mc_forced_angle(mc, mc->id_isr.inc, &sc);
 #endif
     } else { /* LOCK */
@@ -311,7 +311,7 @@ static void mc_ramp_end(mc_t *mc)
     /* the estimated speed within the tolerance of the forced one, counts per period */
     int32_t step = (int32_t)(uint16_t)(MC_RAMP_STEP_END >> 16);
     int32_t diff = (int32_t)mc->pred - step;
-    bool agrees = smc_valid(&mc->smc) && diff * 256 <= step * MC_HANDOFF_TOL_Q8 &&
+    bool agrees = mc_est_valid(mc) && diff * 256 <= step * MC_HANDOFF_TOL_Q8 &&
                   -diff * 256 <= step * MC_HANDOFF_TOL_Q8;
     mc->agree = agrees ? (uint16_t)(mc->agree + (mc->agree != 0xFFFFU)) : 0U;
     if (mc->agree > MC_HANDOFF_AGREE_PERIODS) {
@@ -336,7 +336,7 @@ static void mc_ramp_end(mc_t *mc)
 static void mc_ol_damp(mc_t *mc)
 {
     int32_t shift = 0;
-    if (smc_valid(&mc->smc)) {
+    if (mc_est_valid(mc)) {
         /* forced minus estimated speed, angle counts per period (< 2^17) */
         int32_t d = (int32_t)(uint16_t)(mc->ol_step >> 16) - (int32_t)mc->pred;
         int32_t d16 = d * 16; /* Q4, < 2^21 */
@@ -387,9 +387,11 @@ static void mc_slow_apply(mc_t *mc)
     if (!mc->slow_posted) {
         return; /* no window posted since mc_init */
     }
-    smc_apply(&mc->smc);
-    mc_set_advance(mc);
-    if (mc->state == MC_STATE_OPEN_LOOP) {
+    if (MC_DRIVE) {
+        mc_est_apply(mc);
+        mc_set_advance(mc);
+    }
+    if (MC_DRIVE && mc->state == MC_STATE_OPEN_LOOP) {
         mc_ol_damp(mc);
         mc->ol_iq = so->ol_iq;
     }
@@ -427,7 +429,7 @@ static void mc_window_end(mc_t *mc)
         mc_fault(mc, MC_FAULT_OVERRUN); /* the slow step of the last window never finished */
         return;
     }
-    smc_window_end(&mc->smc);
+    mc_est_window_end(mc);
     si->epoch = mc->epoch;
     si->state = mc->state;
     si->pot = mc->pot;
@@ -439,14 +441,14 @@ static void mc_window_end(mc_t *mc)
     si->preset_iq = mc->preset_iq;
     si->preset_speed_ref = mc->preset_speed_ref;
     si->i_ab = mc->i_ab;
-    si->theta_est = smc_theta(&mc->smc);
+    si->theta_est = mc_est_theta(mc);
     si->sens_d = mc->sens_d;
     si->sens_q = mc->sens_q;
     si->sens_qsat = mc->sens_qsat;
     si->sens_ref = mc->i_ref_frame;
-    si->est_valid = smc_valid(&mc->smc);
-    si->emf_ratio = smc_emf_ratio(&mc->smc);
-    si->speed_est = smc_omega(&mc->smc);
+    si->est_valid = mc_est_valid(mc);
+    si->emf_ratio = mc_est_emf_ratio(mc);
+    si->speed_est = mc_est_omega(mc);
     mc->sens_d = 0;
     mc->sens_q = 0;
     mc->sens_qsat = 0U;
@@ -587,15 +589,23 @@ static void mc_start(mc_t *mc, const mc_adc_frame_t *in)
  * left, and its work. Each returns true when the current loops run this
  * period (the driving states). */
 
+/* A START of the identification: MC_REQUEST_IDENTIFY, or in the
+ * commissioning image (MC_DRIVE 0) any START. CALIBRATE, IDENTIFY pending. */
+static void mc_start_identify(mc_t *mc, const mc_adc_frame_t *in)
+{
+    mc->id_status = MC_ID_RUNNING;
+    mc->id_error = MC_ID_ERROR_NONE;
+    mc_start(mc, in);
+    mc_id_started(mc);
+}
+
 static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
 {
-    if (ev->toggle || ev->start) {
+    bool start = ev->toggle || ev->start;
+    if (MC_DRIVE && start) {
         mc_start(mc, in);
-    } else if (MC_IDENTIFY && ev->identify) {
-        mc->id_status = MC_ID_RUNNING;
-        mc->id_error = MC_ID_ERROR_NONE;
-        mc_start(mc, in);
-        mc_id_started(mc);
+    } else if (MC_IDENTIFY && (start || ev->identify)) {
+        mc_start_identify(mc, in);
     }
     return false;
 }
@@ -604,7 +614,11 @@ static bool mc_on_fault(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *i
 {
     /* timer > 0: not the fault raised by this very frame. */
     if ((ev->toggle || ev->start) && mc->timer > 0U) {
-        mc_start(mc, in);
+        if (MC_DRIVE) {
+            mc_start(mc, in);
+        } else {
+            mc_start_identify(mc, in);
+        }
     }
     return false;
 }
@@ -692,8 +706,10 @@ bool mc_step_finish(mc_t *mc, mc_pwm_out_t *out)
     /* The outputs are on exactly when mc_step_control ran the loops. */
     if (mc->outputs_on) {
         mc_estimate(mc);
-        mc_sensor_sum(mc);
-        if (mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
+        if (MC_DRIVE) {
+            mc_sensor_sum(mc);
+        }
+        if (MC_DRIVE && mc->state == MC_STATE_OPEN_LOOP && mc->ol_step >= MC_RAMP_STEP_END) {
             mc_ramp_end(mc);
         }
         if (mc->sums_on) { /* the dead-time measurement's (note 4), the identification's */

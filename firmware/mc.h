@@ -423,7 +423,9 @@ typedef struct {
     sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 
     /* estimator and the voltage it is fed (note 2) */
+#if MC_DRIVE
     smc_t smc;
+#endif
     ab_q15_t v_hist[2]; /* applied voltage: [0] for the next step, [1] for this one */
     int16_t eff[3];     /* this period's effective duties (dead-time loss off), counts */
     int16_t dt_counts;  /* the dead time compensated and modelled, duty counts (mc.c note 4) */
@@ -446,7 +448,9 @@ typedef struct {
     q15_t preset_speed_ref;
     mc_handover_t ho;
 
+#if MC_DRIVE
     mc_slow_t slow; /* the slow step's */
+#endif
 
     bool sums_on;      /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
     uint8_t id_status; /* mc_id_status_t, the interrupt's view */

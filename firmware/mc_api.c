@@ -8,7 +8,9 @@
 
 /* ---- constant parameters (compile-time, mc_derived.h) --------------------- */
 
+#if MC_DRIVE
 static const smc_params_t mc_smc_params = MC_SMC_PARAMS_INIT;
+#endif
 
 static const pi_params_t mc_pi_cur_params = {
     MC_CUR_KP, MC_CUR_KP_SHIFT, MC_CUR_KI, MC_PI_KC, (q15_t)(-MC_VMAX_Q15), MC_VMAX_Q15,
@@ -71,8 +73,10 @@ void mc_init(mc_t *mc)
     memset(mc, 0, sizeof(*mc));
     pi_init(&mc->pi_d, &mc_pi_cur_params);
     pi_init(&mc->pi_q, &mc_pi_cur_params);
+#if MC_DRIVE
     mc_slow_init(&mc->slow);
     smc_init(&mc->smc, &mc_smc_params);
+#endif
     mc->mbox.gain_posted[MC_GAIN_CUR_KP] = MC_CUR_KP;
     mc->mbox.gain_posted[MC_GAIN_CUR_KI] = MC_CUR_KI;
     mc->mbox.gain_posted[MC_GAIN_SPD_KP] = MC_SPD_KP;
@@ -85,7 +89,9 @@ void mc_init(mc_t *mc)
     mc->dt_counts = MC_DT_COUNTS;
     mc->dt_slope = MC_DT_SLOPE;
     mc_outputs_off(mc);
+#if MC_DRIVE
     mc->slow.epoch = mc->epoch;
+#endif
     mc->fault = MC_FAULT_NONE;
     mc_enter(mc, MC_STATE_STOPPED);
 }
@@ -95,7 +101,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->state = mc->state;
     st->fault = mc->fault;
     st->theta_est = mc->theta;
-    st->speed_est = smc_omega(&mc->smc);
+    st->speed_est = mc_est_omega(mc);
     st->speed_ref = mc->speed_ref;
     st->id = mc->i_dq.d;
     st->iq = mc->i_dq.q;
@@ -103,14 +109,14 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->vq = mc->v_dq.q;
     st->vbus = mc->vbus;
     st->start_retries = mc->retries;
-    st->estimator_valid = smc_valid(&mc->smc);
+    st->estimator_valid = mc_est_valid(mc);
     st->id_ref = mc->i_ref.d;
     st->iq_ref = mc->i_ref.q;
     st->speed_target = mc->speed_target;
     /* In OPEN_LOOP ol_angle is already the next period's (mc_prepare). */
     st->theta_forced =
         (mc->state == MC_STATE_OPEN_LOOP) ? mc->theta : (int16_t)(uint16_t)(mc->ol_angle >> 16);
-    st->bemf = smc_emf_amplitude(&mc->smc);
+    st->bemf = mc_est_emf_amplitude(mc);
     st->ia = mc->ia;
     st->ib = mc->ib;
     st->duty[0] = mc->duty[0];

@@ -585,7 +585,7 @@ MC_CHECK_FOR(MC_ID_MIN_A, MOTOR_CURRENT_MAX_A,
 #define MC_DTM_WAIT   ((uint16_t)(0.1024 * MC_SPEED_LOOP_HZ + 0.999)) /* windows, at most */
 #define MC_DTM_SETTLE ((uint16_t)(0.005 * MC_SPEED_LOOP_HZ + 0.999))  /* windows at level 2 */
 #define MC_DTM_MEAN   32
-#define MC_DTM_ON     (MC_DEADTIME_MEASURE && PWM_DEADTIME_NS > 0)
+#define MC_DTM_ON     (MC_DRIVE && MC_DEADTIME_MEASURE && PWM_DEADTIME_NS > 0)
 /* The longest the measurement adds to the lock, periods: the first
  * window's end, the settling, the second window's wait and length, and a
  * window for the slow step's results to come back. */
@@ -773,6 +773,9 @@ MC_CHECK_FOR(MOTOR_SPEED_FW_MAX_RPM, MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_REA
 /* ---- self-commissioning (mc_id.c) -------------------------------------------------- */
 
 MC_CHECK(MC_IDENTIFY, MC_IDENTIFY == 0 || MC_IDENTIFY == 1, "must be 0 or 1");
+MC_CHECK(MC_DRIVE, MC_DRIVE == 0 || MC_DRIVE == 1, "must be 0 or 1");
+MC_CHECK(MC_DRIVE, MC_DRIVE == 1 || MC_IDENTIFY == 1,
+         "0 (the commissioning image) needs MC_IDENTIFY 1: a core with neither does nothing");
 
 MC_CHECK(MC_ID_CURRENT_A, MC_ID_CURRENT_A > 0.0, "must be > 0");
 /* the ramp may overshoot to 1.45 times the target before it is trimmed,

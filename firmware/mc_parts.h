@@ -97,6 +97,79 @@ static inline q15_t mc_id_floor(q15_t id, q15_t iq)
     return ((int32_t)id > -f) ? (q15_t)(-f) : id;
 }
 
+/* ---- the estimator, as the core uses it ----------------------------------------- */
+
+/* The drive's estimator (smc.h) through the core: without the drive
+ * (MC_DRIVE 0, the commissioning image) there is no estimator, and these
+ * are constants and no-ops the compiler drops with the code that uses them.
+ * (The core's own paths test MC_DRIVE; these keep the members out of them.) */
+#if MC_DRIVE
+Q15_INLINE q15_t mc_est_omega(const mc_t *mc)
+{
+    return smc_omega(&mc->smc);
+}
+Q15_INLINE angle_q15_t mc_est_theta(const mc_t *mc)
+{
+    return smc_theta(&mc->smc);
+}
+Q15_INLINE bool mc_est_valid(const mc_t *mc)
+{
+    return smc_valid(&mc->smc);
+}
+Q15_INLINE q15_t mc_est_emf_ratio(const mc_t *mc)
+{
+    return smc_emf_ratio(&mc->smc);
+}
+Q15_INLINE q15_t mc_est_emf_amplitude(const mc_t *mc)
+{
+    return smc_emf_amplitude(&mc->smc);
+}
+Q15_INLINE void mc_est_update(mc_t *mc, ab_q15_t i, ab_q15_t v)
+{
+    smc_update(&mc->smc, i, v);
+}
+#define mc_est_window_end(mc)    smc_window_end(&(mc)->smc)
+#define mc_est_apply(mc)         smc_apply(&(mc)->smc)
+#define mc_est_reset(mc)         smc_reset(&(mc)->smc)
+#define mc_est_preset(mc, omega) smc_preset_speed(&(mc)->smc, omega)
+#else
+Q15_INLINE q15_t mc_est_omega(const mc_t *mc)
+{
+    (void)mc;
+    return 0;
+}
+Q15_INLINE angle_q15_t mc_est_theta(const mc_t *mc)
+{
+    (void)mc;
+    return 0;
+}
+Q15_INLINE bool mc_est_valid(const mc_t *mc)
+{
+    (void)mc;
+    return false;
+}
+Q15_INLINE q15_t mc_est_emf_ratio(const mc_t *mc)
+{
+    (void)mc;
+    return 0;
+}
+Q15_INLINE q15_t mc_est_emf_amplitude(const mc_t *mc)
+{
+    (void)mc;
+    return 0;
+}
+Q15_INLINE void mc_est_update(mc_t *mc, ab_q15_t i, ab_q15_t v)
+{
+    (void)mc;
+    (void)i;
+    (void)v;
+}
+#define mc_est_window_end(mc)    ((void)(mc))
+#define mc_est_apply(mc)         ((void)(mc))
+#define mc_est_reset(mc)         ((void)(mc))
+#define mc_est_preset(mc, omega) ((void)(mc), (void)(omega))
+#endif
+
 /* ---- the changes of state (mc_state.c) -------------------------------------------- */
 
 /* s from the next period on, its timer from 0. */

@@ -7,6 +7,7 @@
 #include "sincos.h"
 #include "vlimit.h"
 
+#if MC_DRIVE
 static const pi_params_t mc_pi_spd_params = {
     MC_SPD_KP, MC_SPD_KP_SHIFT, MC_SPD_KI, MC_PI_KC, (q15_t)(-MC_IQ_MAX_Q15), MC_IQ_MAX_Q15,
 };
@@ -16,6 +17,8 @@ static const fieldweak_params_t mc_fw_params = {
     MC_Q15_RPM(MOTOR_SPEED_FW_MAX_RPM),
     MC_FW_TABLE_Q15,
 };
+
+#endif
 
 /* Speed-PI Kp schedule (mc_slow_speed_loop): factor sched in Q15 = |speed_ref| /
  * MOTOR_SPEED_KP_FULL_RPM, i.e. speed_q15 * MC_KP_SCHED_K >> 15, formed only
@@ -69,6 +72,8 @@ uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
     }
     return MC_FAULT_NONE;
 }
+
+#if MC_DRIVE
 
 /* Speed mode: the reference ramped towards the target, field weakening from
  * it (AN1078), the speed PI within what is left of the current budget. */
@@ -210,13 +215,17 @@ static void mc_slow_run(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in
     }
 }
 
+#endif /* MC_DRIVE */
+
 void mc_slow_step(mc_t *mc)
 {
     if (!mc->ho.busy) {
         return;
     }
+#if MC_DRIVE
     smc_slow_step(&mc->smc);
     mc_slow_run(&mc->slow, &mc->smc.res, &mc->ho.in, &mc->ho.out);
+#endif
 #if MC_IDENTIFY
     if (mc->ho.in.state == MC_STATE_IDENTIFY) {
         mc_id_window(&mc->id, &mc->ho.in.id, mc->ho.in.vbus, &mc->id.cmd);

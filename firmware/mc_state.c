@@ -88,7 +88,7 @@ static void mc_enter_lock(mc_t *mc)
 {
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
-    smc_reset(&mc->smc);
+    mc_est_reset(mc);
     mc_set_advance(mc);
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
@@ -113,12 +113,12 @@ static void mc_enter_lock(mc_t *mc)
 
 void mc_enter_closed_loop(mc_t *mc)
 {
-    angle_q15_t est = smc_theta(&mc->smc);
+    angle_q15_t est = mc_est_theta(mc);
     /* The forced angle stays the reference; the difference is bled off. */
     mc->theta_offset = angle_sub(mc->theta, est);
     /* The rotor turns at the forced speed on average; the estimator's
      * window speed is noisier than that, so both start from it. */
-    smc_preset_speed(&mc->smc, MC_RAMP_END_Q15);
+    mc_est_preset(mc, MC_RAMP_END_Q15);
     mc_set_advance(mc);
     mc->speed_ref =
         (MC_RAMP_END_Q15 < MC_SPEED_REF_MIN_Q15) ? MC_SPEED_REF_MIN_Q15 : MC_RAMP_END_Q15;
@@ -160,5 +160,9 @@ void mc_calibrate_end(mc_t *mc)
         mc_enter_identify(mc);
         return;
     }
-    mc_enter_lock(mc);
+    if (MC_DRIVE) {
+        mc_enter_lock(mc);
+    } else {
+        mc_stop(mc); /* the commissioning image has nothing else to run */
+    }
 }

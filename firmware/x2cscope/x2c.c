@@ -30,7 +30,9 @@ const x2c_row_t x2c_rows[] = {
     {(uint16_t)offsetof(x2c_tune_t, field), 2U, X2C_OBJ_TUNE, X2C_TUNE_FLAGS},
         X2C_TUNABLES(X2C_TUNE_ROW)
 #undef X2C_TUNE_ROW
+#if X2C_SCOPE
             {0U, X2C_SCOPE_BYTES, X2C_OBJ_SCOPE, X2C_ROW_READ},
+#endif
 #define X2C_ID_ROW(field, type, unit, fs)                                                          \
     {(uint16_t)offsetof(mc_id_result_t, field), (uint16_t)X2C_MEMBER_SIZE(mc_id_result_t, field),  \
      X2C_OBJ_ID, X2C_ROW_READ},
@@ -69,7 +71,11 @@ static const volatile uint8_t *obj_base(const x2c_t *x, uint8_t obj)
         case X2C_OBJ_ID:
             return (const volatile uint8_t *)(const volatile void *)&x->id;
         default:
+#if X2C_SCOPE
             return x->scope.buf;
+#else
+            return NULL; /* no row lies in it */
+#endif
     }
 }
 
@@ -131,10 +137,12 @@ static int16_t get_i16(const uint8_t *p)
     return (u >= 0x8000U) ? (int16_t)(-(int16_t)(0xFFFFU - u) - 1) : (int16_t)u;
 }
 
+#if X2C_SCOPE /* the scope's configuration only */
 static uint32_t get_u32(const uint8_t *p)
 {
     return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
+#endif
 
 static void put_u16(uint8_t *p, uint16_t v)
 {
@@ -387,6 +395,7 @@ static uint8_t svc_put_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     return tune_apply(x, t, v);
 }
 
+#if X2C_SCOPE
 static uint8_t svc_load_param(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
 {
     x2c_scope_run_t run;
@@ -515,6 +524,7 @@ static uint8_t svc_save_param(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     x2c_scope_start(&x->scope, &cfg);
     return X2C_ERR_OK;
 }
+#endif /* X2C_SCOPE */
 
 /* ---- the frame ---------------------------------------------------------------------- */
 
@@ -528,7 +538,9 @@ typedef struct {
 static const svc_row_t services[] = {
     {X2C_SVC_DEVICE_INFO, svc_device_info}, {X2C_SVC_GET_STATE, svc_get_state},
     {X2C_SVC_GET_RAM, svc_get_ram},         {X2C_SVC_PUT_RAM, svc_put_ram},
+#if X2C_SCOPE
     {X2C_SVC_LOAD_PARAM, svc_load_param},   {X2C_SVC_SAVE_PARAM, svc_save_param},
+#endif
 };
 
 static void tally(uint16_t *c)
@@ -568,7 +580,9 @@ void x2c_init(x2c_t *x)
 {
     lnet_rx_init(&x->rx);
     lnet_tx_init(&x->tx);
+#if X2C_SCOPE
     x2c_scope_init(&x->scope);
+#endif
     x->may_start = NULL;
     x->may_start_ctx = NULL;
     x->remote = false;

@@ -88,7 +88,9 @@ typedef struct {
     lnet_tx_t tx;
     x2c_tune_t tune;
     mc_id_result_t id; /* the identification's result as last read (X2C_ID_VARS) */
+#if X2C_SCOPE
     x2c_scope_t scope;
+#endif
     /* the motor's side, as the board's controls have it */
     bool (*may_start)(void *ctx); /* run = 1's guard (the board's start rule), NULL: none */
     void *may_start_ctx;
@@ -115,8 +117,14 @@ bool x2c_tx_byte(x2c_t *x, uint8_t *byte); /* the next byte to send, false if no
  * stored a dataset (at byte *at of its buffer, when at is not NULL). */
 static inline bool x2c_sample(x2c_t *x, uint16_t *at)
 {
+#if X2C_SCOPE
     /* idle, the common case, without the call */
     return x->scope.run.state != X2C_SCOPE_IDLE && x2c_scope_sample(&x->scope, at);
+#else
+    (void)x;
+    (void)at;
+    return false;
+#endif
 }
 
 /* The wire address of an object (x2c_obj_t). */

@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#if X2C_SCOPE /* else the target has no scope (x2c_scope.h) */
+
 #include "x2c.h"
 
 void x2c_scope_init(x2c_scope_t *s)
@@ -359,3 +361,5 @@ bool x2c_scope_sample(x2c_scope_t *s, uint16_t *at)
     }
     return true;
 }
+
+#endif /* X2C_SCOPE */

@@ -45,6 +45,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* X2C_SCOPE: the scope (1, the default). 0 leaves it out, with its RAM: the
+ * target then answers no load or save parameter service (the commissioning
+ * image, make firmware IMAGE=identify, whose client only reads and writes
+ * variables). */
+#ifndef X2C_SCOPE
+#define X2C_SCOPE 1
+#endif
+
 #ifndef X2C_SCOPE_BYTES
 /* The sample buffer, bytes. 360 = 2^3 x 3^2 x 5: whole datasets of 2, 4, 6,
  * 8, 10, 12, 18, 20 and 24 bytes fill it exactly. docs/x2cscope.md, "RAM",

@@ -31,6 +31,7 @@
  */
 
 #include "mc.h"
+#include "x2c_scope.h" /* X2C_SCOPE: whether the scope's buffer is a row */
 
 /* Full scales of the Q15 rows, engineering units per 32768 counts. */
 #define X2C_FS_RPM  (MC_SPEED_FULLSCALE_RPM)
@@ -66,11 +67,18 @@
     X(duty[1],         U, "",    X2C_FS_CODE)                   \
     X(duty[2],         U, "",    X2C_FS_CODE)                   \
     X(outputs_on,      B, "",    X2C_FS_CODE)                   \
+    X2C_ESTIMATOR_VARS(X)                                        \
+    X(dt_counts,       S, "",    X2C_FS_CODE)
+/* The estimator's, in the drive (MC_DRIVE 1); the commissioning image has none. */
+#if MC_DRIVE
+#define X2C_ESTIMATOR_VARS(X)                                    \
     X(smc.theta,       S, "deg", X2C_FS_DEG)                    \
     X(smc.omega,       S, "rpm", X2C_FS_RPM)                    \
     X(smc.emf_mag,     S, "V",   X2C_FS_EMF)                    \
-    X(smc.valid,       B, "",    X2C_FS_CODE)                   \
-    X(dt_counts,       S, "",    X2C_FS_CODE)
+    X(smc.valid,       B, "",    X2C_FS_CODE)
+#else
+#define X2C_ESTIMATOR_VARS(X)
+#endif
 /* clang-format on */
 
 /*
@@ -148,7 +156,8 @@ enum {
 #undef X2C_TUNE_INDEX
         X2C_TUNE_COUNT_
 };
-#define X2C_ROWS (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + 1U + X2C_ID_ROWS) /* + the scope buffer */
+#define X2C_ROWS                                                                                   \
+    (X2C_MOTOR_ROWS + X2C_TUNE_ROWS + (unsigned)X2C_SCOPE + X2C_ID_ROWS) /* + the scope buffer */
 
 /* The objects the rows lie in, and where each appears on the wire. */
 typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_ID, X2C_OBJ_COUNT } x2c_obj_t;

@@ -64,7 +64,12 @@ def whitelist() -> tuple[list[str], list[str], list[str]]:
             lines.append(ln)
             if not ln.rstrip().endswith("\\"):
                 break
-        return re.findall(r"\bX\(\s*([\w.\[\]]+)\s*,", " ".join(lines))
+        rows: list[str] = []
+        for tok in re.findall(r"\bX\(\s*([\w.\[\]]+)\s*,|\b(X2C_\w+_VARS)\(X\)", " ".join(lines)):
+            # a nested table (X2C_ESTIMATOR_VARS) expands to its first definition: the drive's,
+            # which the simulator is built as
+            rows += [tok[0]] if tok[0] else table(tok[1])
+        return rows
 
     return table("X2C_MOTOR_VARS"), table("X2C_TUNABLES"), table("X2C_ID_VARS")
 

@@ -4,14 +4,16 @@
 the firmware itself, and what it measured becomes the profile that then runs it.
 
 For each motor (the simulator's plant scaled: R, L, Ke, J):
-  1. identify   `sim --pty --realtime 0` (the tree's core, its own profile) with the motor as its
+  1. identify   `sim_commission --pty --realtime 0` (the commissioning image's core, as the board
+                runs it: make firmware IMAGE=identify, its own profile) with the motor as its
                 plant; an1078-identify asks the X2Cscope target to identify it and writes the
                 tools/tune description (the nameplate's rated current, the rated speed);
   2. profile    tools/tune turns the description into motor_<name>.h (when the rated speed is
                 beyond the bus, as tools/tune says, at 90 % of the most it allows: what its
                 message tells the user to do);
   3. build      the core and the simulator compiled with that profile (the same sources and
-                flags as the tree's, the profile-free libraries linked from it);
+                flags as the tree's, the profile-free libraries linked from it), in the drive
+                image's configuration (MC_IDENTIFY 0, as the dsPIC33FJ32MC204's);
   4. run        start, reach 60 % of the rated speed, take a load rising over a second to 30 %
                 of the torque the measured Ke gives at the rated current, hold: the speed over
                 the last second within 2 % of the request, no fault, closed loop at the end.
@@ -134,7 +136,7 @@ def build(conf: dict[str, Any], header: str, exe: str) -> None:
     srcs = list(conf["core"]) + [os.path.join(REPO, "tools", "sim", f)
                                  for f in ("sim_core.c", "mc_names.c", "sim_main.c")]
     incs = [f"-I{os.path.join(REPO, d)}" for d in ("firmware", "foc", "smc_estimator", os.path.join("tools", "sim"))]
-    defs = [f"-DMC_BOARD_{conf['board'].upper()}", f'-DMC_MOTOR_HEADER="{header}"']
+    defs = [f"-DMC_BOARD_{conf['board'].upper()}", f'-DMC_MOTOR_HEADER="{header}"', "-DMC_IDENTIFY=0"]
     cmd = [conf["cc"], *conf["flags"], "-O2", *incs, *defs, *srcs, "-o", exe, *conf["libs"], "-lm"]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     if p.returncode != 0:

@@ -113,7 +113,9 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     const char *name;
     FILE *truth = NULL;
     long rec_no = -1, k;
+#if X2C_SCOPE
     uint8_t scope_was = X2C_SCOPE_IDLE;
+#endif
     int pending = -1; /* a byte taken from the target that the transport did not take yet */
     struct sigaction sa;
 
@@ -178,14 +180,18 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
         for (k = 0; k < periods_per_ms; k++) {
             uint16_t at;
             simcore_step(s);
+#if X2C_SCOPE
             if (x2c.scope.run.state != X2C_SCOPE_IDLE && scope_was == X2C_SCOPE_IDLE) {
                 rec_no++; /* a capture started */
             }
+#endif
             if (x2c_sample(&x2c, &at) && truth != NULL) {
                 fprintf(truth, "%ld,%u,%.6f,%.4f,%.4f,%d\n", rec_no, (unsigned)at, s->now.t_s,
                         s->now.speed_rpm, s->now.speed_est_rpm, s->now.state);
             }
+#if X2C_SCOPE
             scope_was = x2c.scope.run.state;
+#endif
         }
         ms += 1.0;
 
