@@ -167,6 +167,77 @@ static bool same_file(const char *x, const char *y)
     return stat(x, &a) == 0 && stat(y, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
 }
 
+/* The program's name in its refusals (sim_refuse). */
+#define PROG "sim"
+
+/* An output, opened without emptying it: a refused run leaves a file as it
+ * was, and removes one it created. */
+typedef struct {
+    const char *path;
+    const char *flag;
+    FILE *f;
+    bool created;
+} sim_output_t;
+
+static int output_try(sim_output_t *o)
+{
+    struct stat st;
+    o->created = stat(o->path, &st) != 0;
+    o->f = fopen(o->path, "ab");
+    return (o->f == NULL) ? -1 : 0;
+}
+
+static void output_drop(sim_output_t *o)
+{
+    if (o->f != NULL) {
+        (void)fclose(o->f);
+        o->f = NULL;
+        if (o->created) {
+            (void)remove(o->path);
+        }
+    }
+}
+
+/* The trace (--csv) and the record (--record), each when asked for: both
+ * are opened before either is emptied, so that one that cannot be written
+ * refuses the run with the other untouched; then the trace's header and
+ * the record's are written. 0, or 2 after the one line. */
+static int open_outputs(simcore_t *s, const char *csv_path, const char *rec_path)
+{
+    char why[320], pq[256]; /* pq: a path, quoted */
+    sim_output_t out[2] = {{csv_path, "--csv", NULL, false}, {rec_path, "--record", NULL, false}};
+    size_t k;
+    for (k = 0; k < 2U; k++) {
+        if (out[k].path != NULL && output_try(&out[k]) != 0) {
+            sim_parse_msg(why, sizeof(why), "cannot write '%s'",
+                          sim_parse_quote(out[k].path, pq, sizeof(pq)));
+            output_drop(&out[0]);
+            return sim_refuse(PROG, out[k].flag, why);
+        }
+    }
+    /* both writable: emptied (freopen truncates), then their headers */
+    for (k = 0; k < 2U; k++) {
+        if (out[k].f != NULL) {
+            out[k].f = freopen(out[k].path, (k == 0U) ? "w" : "wb", out[k].f);
+        }
+    }
+    s->cfg.csv = out[0].f;
+    s->cfg.record = out[1].f;
+    if ((csv_path != NULL && s->cfg.csv == NULL) || (rec_path != NULL && s->cfg.record == NULL)) {
+        return sim_refuse(PROG, (csv_path != NULL && s->cfg.csv == NULL) ? "--csv" : "--record",
+                          "cannot reopen the file it just opened");
+    }
+    if (s->cfg.csv != NULL) {
+        sim_trace_header(s->cfg.csv);
+    }
+    if (s->cfg.record != NULL &&
+        sim_record_header(s->cfg.record, (uint16_t)MC_SLOW_STEP_PERIODS,
+                          (uint32_t)PWM_FREQUENCY_HZ) != 0) {
+        return sim_refuse(PROG, "--record", "write failed (disk full?)");
+    }
+    return 0;
+}
+
 static void usage(FILE *f)
 {
     fprintf(f, "usage: sim [options] <scenario.txt>\n"
@@ -175,9 +246,6 @@ static void usage(FILE *f)
     sim_opt_usage(f, OPTS, N_OPTS);
     fprintf(f, "profiles: %s\n", sim_profiles_list());
 }
-
-/* The program's name in its refusals (sim_refuse). */
-#define PROG "sim"
 
 /* "A,B": two offsets in ADC codes, each strictly parsed. */
 static int parse_offsets(const char *v, double *a, double *b)
@@ -454,35 +522,19 @@ int main(int argc, char **argv)
     if (simcore_init(&s, &cfg) != 0 || check_stiffness(&s) != 0) {
         return 2;
     }
-    if (csv_path != NULL) {
-        struct stat a, b;
-        if (stat(csv_path, &a) == 0 && stat(scen_path, &b) == 0 && a.st_dev == b.st_dev &&
-            a.st_ino == b.st_ino) {
-            sim_parse_msg(why, sizeof(why), "'%s' is the scenario file",
-                          sim_parse_quote(csv_path, pq, sizeof(pq)));
-            return sim_refuse(PROG, "--csv", why);
-        }
-        s.cfg.csv = fopen(csv_path, "w");
-        if (s.cfg.csv == NULL) {
-            sim_parse_msg(why, sizeof(why), "cannot write '%s'",
-                          sim_parse_quote(csv_path, pq, sizeof(pq)));
-            return sim_refuse(PROG, "--csv", why);
-        }
-        sim_trace_header(s.cfg.csv);
+    if (csv_path != NULL && same_file(csv_path, scen_path)) {
+        sim_parse_msg(why, sizeof(why), "'%s' is the scenario file",
+                      sim_parse_quote(csv_path, pq, sizeof(pq)));
+        return sim_refuse(PROG, "--csv", why);
     }
-    if (rec_path != NULL) {
-        if (same_file(rec_path, scen_path) || (csv_path != NULL && same_file(rec_path, csv_path))) {
-            sim_parse_msg(why, sizeof(why), "'%s' is the scenario file or the trace",
-                          sim_parse_quote(rec_path, pq, sizeof(pq)));
-            return sim_refuse(PROG, "--record", why);
-        }
-        s.cfg.record = fopen(rec_path, "wb");
-        if (s.cfg.record == NULL || sim_record_header(s.cfg.record, (uint16_t)MC_SLOW_STEP_PERIODS,
-                                                      (uint32_t)PWM_FREQUENCY_HZ) != 0) {
-            sim_parse_msg(why, sizeof(why), "cannot write '%s'",
-                          sim_parse_quote(rec_path, pq, sizeof(pq)));
-            return sim_refuse(PROG, "--record", why);
-        }
+    if (rec_path != NULL &&
+        (same_file(rec_path, scen_path) || (csv_path != NULL && same_file(rec_path, csv_path)))) {
+        sim_parse_msg(why, sizeof(why), "'%s' is the scenario file or the trace",
+                      sim_parse_quote(rec_path, pq, sizeof(pq)));
+        return sim_refuse(PROG, "--record", why);
+    }
+    if (open_outputs(&s, csv_path, rec_path) != 0) {
+        return 2;
     }
     c0 = clock();
     rc = simcore_run_scenario(&s, &sc, name);
