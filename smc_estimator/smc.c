@@ -17,8 +17,8 @@
 /*
  * Slow side, once per window (smc_slow_step, note 10): the lag
  * correction (one atan2), the speed scaling (note 7), K, the compensation
- * from the transfer functions (notes 3-4: two atan2 calls and about twenty
- * 16 x 16 products), the back-EMF amplitude and one 32 / 16 division for
+ * from the transfer functions (notes 3-4: two atan2 calls, seven 32 x 16
+ * and a dozen 16 x 16 products), the back-EMF amplitude and one 32 / 16 division for
  * the consistency figure.
  */
 
@@ -65,44 +65,63 @@ q15_t smc_speed_from_steps(const smc_params_t *p, int32_t sum)
     return (sum < 0) ? (q15_t)(-(int16_t)res) : (q15_t)res;
 }
 
+/* A Q30 value in 0 .. 32767.5 * 2^15 to Q15, rounded (no saturation: x^2,
+ * sin x and 1 - cos x of a Q15 x stay below it). */
+static q15_t smc_round_q15(int32_t v)
+{
+    return (q15_t)((v + (int32_t)0x4000) >> 15);
+}
+
+/* atan2_q31 once in this file: the slow side's three arctangents share one
+ * copy (its body is some hundred words; a call costs a few cycles). */
+static angle_q15_t smc_atan2(int32_t y, int32_t x)
+{
+    return atan2_q31(y, x);
+}
+
 /*
  * The phase lead (angle counts, >= 0 for the forward direction) that
  * cancels the lag of the two stages and the loop delay at the frequency x
  * (rad per period, Q15) with coefficient k (Q15): notes 3 and 4.
- *   u = 1 - exp(-j x) = (1 - cos x) + j sin x, by Taylor series in Q27
+ *   u = 1 - exp(-j x) = (1 - cos x) + j sin x
  *   D2 = K + (1 - K) u                       (second stage)
  *   D1 = K mdc + B1 u + B2 u^2               (first stage, in the loop)
  *   comp = arg D1 + arg D2 + xadv x
- * Q27 keeps every term below 16 in magnitude (|u| < 1.1, |B1| < 8,
- * mdc < 4, |B2| < 1), so no sum can overflow.
+ * The angles need u to a relative precision (at a low speed K and u are
+ * both small, and the arctangent reads their ratio), so each power of x is
+ * its exact 16 x 16 product with x plus a correction that is a few per
+ * cent of it, formed from rounded Q15 copies: sin x = x (1 + cm1) and
+ * 1 - cos x = x^2 / 2 (1 + dm1), cm1 = -x^2/6 + x^4/120 and dm1 = -x^2/12 +
+ * x^4/360 (the next terms are below 2e-4 of them at x = 1 rad). u, u^2 and
+ * D2 are Q30 (|u| < 1 for x <= 1 rad), D1 Q27 (|B1| < 8, mdc < 4, |B2| < 1:
+ * every sum below 16). Seven 32 x 16 products where a 32-bit term meets a
+ * coefficient; the rest are 16 x 16.
  */
 angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x)
 {
-    int32_t x1 = smc_shl32((int32_t)x, 12U); /* Q27 */
-    int32_t x2 = q15_dsp_mulss(x, x) >> 3;   /* Q30 -> Q27 */
-    int32_t x3 = smc_mul_q15(x2, x);
-    int32_t x4 = smc_mul_q15(x3, x);
-    int32_t x5 = smc_mul_q15(x4, x);
-    int32_t x6 = smc_mul_q15(x5, x);
-    /* 1 - cos x and sin x; the next terms, x^8 / 40320 and x^7 / 5040, are
-     * < 2e-4 rad at x = 1 and < 3e-8 rad for x <= 0.27 (the tests' sweep). */
-    int32_t ur = (x2 >> 1) - smc_mul_q15(x4, Q15(1.0 / 24.0)) + smc_mul_q15(x6, Q15(1.0 / 720.0));
-    int32_t ui = x1 - smc_mul_q15(x3, Q15(1.0 / 6.0)) + smc_mul_q15(x5, Q15(1.0 / 120.0));
-    q15_t ur15 = q15_sat((ur + (int32_t)0x800) >> 12); /* Q15 copies for u^2 */
-    q15_t ui15 = q15_sat((ui + (int32_t)0x800) >> 12);
-    int32_t u2r = smc_mul_q15(ur, ur15) - smc_mul_q15(ui, ui15);
+    int32_t xx = q15_dsp_mulss(x, x); /* x^2, Q30 exact */
+    q15_t x2 = smc_round_q15(xx);
+    q15_t x4 = q15_mul(x2, x2);
+    q15_t cm1 = (q15_t)(q15_mul(x4, Q15(1.0 / 120.0)) - q15_mul(x2, Q15(1.0 / 6.0)));
+    q15_t dm1 = (q15_t)(q15_mul(x4, Q15(1.0 / 360.0)) - q15_mul(x2, Q15(1.0 / 12.0)));
+    int32_t ui = smc_shl32((int32_t)x, 15U) + q15_dsp_mulss(x, cm1); /* sin x, Q30 */
+    int32_t ur = (xx >> 1) + (q15_dsp_mulss(x2, dm1) >> 1);          /* 1 - cos x, Q30 */
+    q15_t ui15 = smc_round_q15(ui);                                  /* Q15 copies */
+    q15_t ur15 = smc_round_q15(ur);
+    /* u^2 = (ur^2 - ui^2) + j 2 ur ui; ui^2 = x^2 (1 + cm1)^2 = x^2 + x^2 (2 cm1 + cm1^2) */
+    int32_t ui2 = xx + q15_dsp_mulss(x2, (q15_t)(2 * cm1 + q15_mul(cm1, cm1)));
+    int32_t u2r = q15_dsp_mulss(ur15, ur15) - ui2;
     int32_t u2i = smc_shl32(smc_mul_q15(ur, ui15), 1U);
     q15_t omk = (q15_t)(32768L - (int32_t)k);                 /* 1 - K; k >= 1 so <= 32767 */
     q15_t b1 = q15_add_sat(p->tf_b10, q15_mul(p->tf_b1k, k)); /* Q12 */
     q15_t b2 = q15_mul(p->tf_b2, omk);                        /* Q15 */
-    int32_t re2 = smc_shl32((int32_t)k, 12U) + smc_mul_q15(ur, omk);
+    int32_t re2 = smc_shl32((int32_t)k, 15U) + smc_mul_q15(ur, omk);
     int32_t im2 = smc_mul_q15(ui, omk);
-    /* K mdc: Q15 x Q12 = Q27. B1 u: Q27 x Q12 / 2^15 = Q24, times 8. */
-    int32_t re1 =
-        q15_dsp_mulss(k, p->tf_mdc) + smc_shl32(smc_mul_q15(ur, b1), 3U) + smc_mul_q15(u2r, b2);
-    int32_t im1 = smc_shl32(smc_mul_q15(ui, b1), 3U) + smc_mul_q15(u2i, b2);
-    angle_q15_t a1 = atan2_q31(im1, re1);
-    angle_q15_t a2 = atan2_q31(im2, re2);
+    /* K mdc: Q15 x Q12 = Q27. B1 u: Q30 x Q12 / 2^15 = Q27. B2 u^2: Q30 -> Q27. */
+    int32_t re1 = q15_dsp_mulss(k, p->tf_mdc) + smc_mul_q15(ur, b1) + (smc_mul_q15(u2r, b2) >> 3);
+    int32_t im1 = smc_mul_q15(ui, b1) + (smc_mul_q15(u2i, b2) >> 3);
+    angle_q15_t a1 = smc_atan2(im1, re1);
+    angle_q15_t a2 = smc_atan2(im2, re2);
     angle_q15_t adv = q15_mul(x, p->tf_xadv);
     return angle_add(angle_add(a1, a2), adv);
 }
@@ -292,7 +311,7 @@ void smc_slow_step(smc_t *s)
          * transients added to the angle steps (note 8). */
         int32_t wa = w->w_alpha;
         angle_q15_t lag =
-            angle_sub(atan2_q31((wa == Q31_MIN) ? Q31_MAX : -wa, w->w_beta), w->theta_raw);
+            angle_sub(smc_atan2((wa == Q31_MIN) ? Q31_MAX : -wa, w->w_beta), w->theta_raw);
         int32_t dl = sl->lag_valid ? (int32_t)angle_sub(lag, sl->lag) : 0;
         int32_t dz;
         if (dl > (int32_t)SMC_LAG_TRANSIENT || dl < -(int32_t)SMC_LAG_TRANSIENT) {

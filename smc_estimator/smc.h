@@ -225,7 +225,8 @@ void smc_apply(smc_t *s);
  * the loop delay for a positive frequency x (electrical rad per PWM period,
  * Q15, 0 <= x < 1) with stage coefficient k (Q15, >= 1): notes 2-4.
  * smc_update adds it (negated, plus pi, for reverse rotation) to theta_raw.
- * Scaling: Q27 arithmetic with 16 x 16 products only; two atan2 calls. */
+ * Scaling: u and D2 in Q30, D1 in Q27, from 16 x 16 products and seven
+ * 32 x 16 ones; two atan2 calls. */
 angle_q15_t smc_phase_lead(const smc_params_t *p, q15_t k, q15_t x);
 
 /* Speed (Q15 of omega_fs, signed, saturated at +-32767) from a window's sum
