@@ -901,11 +901,16 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
  *    by up to 5:1 for a while. A rotor stopped in CLOSED_LOOP (locked,
  *    stalled) leaves the estimate spinning on no back-EMF, and its frame
  *    turning under the current loops makes errors like a failed sensor's:
- *    while the back-EMF ratio has read below the stall check's low
- *    fraction for MC_SENSOR_DEFER_WINDOWS windows, failing windows are
- *    held and the stall check decides, unless the phases are out of
- *    balance (a stopped rotor's healthy phases are not; a sensor failed at
- *    low speed, whose estimate also loses its back-EMF, is). Failing
+ *    while the back-EMF ratio reads below the stall check's low fraction,
+ *    failing windows are held and the stall check decides (for its first
+ *    MC_SENSOR_DEFER_WINDOWS - 1 windows provisionally: they count after
+ *    all if the back-EMF comes back, as a failed sensor's swinging ratio
+ *    does), unless the phases are out of balance (a stopped rotor's
+ *    healthy phases are not; a sensor failed at low speed, whose estimate
+ *    also loses its back-EMF, is) and have been for the balance filters'
+ *    two time constants of the low back-EMF (the current's step at a
+ *    sudden stop fills them with a transient that reads as any ratio,
+ *    test_mc_sensor). Failing
  *    windows count 2, passing ones -1: MC_SENSOR_TIME_S of failure net sets
  *    slow_out.sensor_fault, applied as MC_FAULT_CURRENT_SENSOR. A phase-A
  *    sensor failed during LOCK reads what the phase carries there (the

@@ -309,7 +309,9 @@ typedef struct {
 typedef struct {
     int32_t fd, fq;  /* the window error sums low-passed over windows (at the start) */
     uint8_t cnt;     /* failing windows x 2, less passing ones */
-    uint8_t emf_low; /* consecutive windows of a back-EMF too low for the speed */
+    uint8_t emf_low; /* consecutive windows of a back-EMF too low for the speed, up to the defer */
+    uint8_t low_n;   /* the same, up to MC_SENSOR_BAL_REFILL */
+    uint8_t pend;    /* failing windows held while emf_low is below the defer */
     int32_t sa, sb;  /* ia^2 and ib^2 low-passed, Q15 of I_FS^2 << MC_SENSOR_BAL_SHIFT */
     uint8_t bal_n;   /* CLOSED_LOOP windows they have filtered, up to 2 time constants */
 } mc_sensor_t;

@@ -477,6 +477,9 @@ MC_CHECK(MC_SENSOR_ERR_FLOOR_FRACTION,
  * never reaches the first multiple needs no modulus (32767). The floor:
  * the squared half of MC_SENSOR_FLOOR_Q15. */
 #define MC_SENSOR_BAL_SHIFT 3
+/* Windows of a low back-EMF after which the balance may override the
+ * sensor check's hold: the balance filters' two time constants (16). */
+#define MC_SENSOR_BAL_REFILL (2U << MC_SENSOR_BAL_SHIFT)
 #define MC_SENSOR_BAL_SYNC_                                                                        \
     ((double)MC_SPEED_LOOP_HZ / 2.0 * 60.0 / (double)MOTOR_POLE_PAIRS /                            \
      (double)MC_SPEED_FULLSCALE_RPM * 32768.0)

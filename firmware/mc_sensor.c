@@ -22,7 +22,7 @@ static bool mc_sensor_unbalanced(mc_sensor_t *s, const mc_slow_in_t *si)
     if (r < MC_SENSOR_BAL_BAND16 || r > MC_SENSOR_BAL_UPPER16) {
         return false; /* one sample per window cannot tell the phases apart here */
     }
-    if (s->bal_n < 2U << MC_SENSOR_BAL_SHIFT) {
+    if (s->bal_n < MC_SENSOR_BAL_REFILL) {
         s->bal_n++; /* the filters fill from 0 in CLOSED_LOOP's first windows */
         return false;
     }
@@ -59,6 +59,8 @@ void mc_sensor_window(mc_sensor_t *s, const mc_slow_in_t *si, mc_slow_out_t *so)
         s->sb = 0;
         s->bal_n = 0U;
         s->emf_low = 0U;
+        s->low_n = 0U;
+        s->pend = 0U;
     }
     if (!mc_driving(si->state) || si->state == MC_STATE_IDENTIFY) {
         s->cnt = 0U;
@@ -91,23 +93,46 @@ void mc_sensor_window(mc_sensor_t *s, const mc_slow_in_t *si, mc_slow_out_t *so)
     /* A rotor stopped in CLOSED_LOOP (locked, stalled) leaves the
      * estimate spinning with no back-EMF behind it: the frame turns under
      * the current loops and their errors look like a failed sensor's. The
-     * stall check owns that case; while the back-EMF has read below
-     * MC_STALL_BEMF_LO_Q12 of the speed's for MC_SENSOR_DEFER_WINDOWS
-     * windows running, a failing window is held, neither counted nor
-     * forgiven. A failed sensor on a turning rotor leaves its back-EMF
-     * behind (the ratio swings, it does not stay low). */
+     * stall check owns that case. While the back-EMF reads below
+     * MC_STALL_BEMF_LO_Q12 of the speed's, a failing window is held,
+     * neither counted nor forgiven: provisionally for the first
+     * MC_SENSOR_DEFER_WINDOWS - 1 windows (counted after all if the
+     * back-EMF comes back: a failed sensor on a turning rotor leaves its
+     * back-EMF behind, the ratio swings, it does not stay low), for good
+     * from the MC_SENSOR_DEFER_WINDOWS-th on. The phase balance overrides
+     * the hold (a stopped rotor's healthy phases stay balanced; a sensor
+     * failed at low speed, whose estimate also loses its back-EMF, does
+     * not), but only once its filters have had two time constants of the
+     * low back-EMF's current: the current's step at a sudden stop fills
+     * them with one or two samples of a transient many times the current
+     * before it, which reads as any ratio. */
     if (si->state == MC_STATE_CLOSED_LOOP && si->emf_ratio < MC_STALL_BEMF_LO_Q12) {
         if (s->emf_low < MC_SENSOR_DEFER_WINDOWS) {
             s->emf_low++;
         }
+        if (s->low_n < MC_SENSOR_BAL_REFILL) {
+            s->low_n++;
+        }
     } else {
+        if (s->pend > 0U && s->emf_low < MC_SENSOR_DEFER_WINDOWS) {
+            /* the back-EMF came back: the held windows count after all */
+            uint8_t c = (uint8_t)(s->cnt + 2U * s->pend);
+            s->cnt = (c < MC_SENSOR_TRIP) ? c : MC_SENSOR_TRIP;
+        }
         s->emf_low = 0U;
+        s->low_n = 0U;
+        s->pend = 0U;
     }
-    if (unbalanced) {
-        bad = true; /* a stopped rotor's healthy phases stay balanced: no deferring */
-    } else if (bad && s->emf_low >= MC_SENSOR_DEFER_WINDOWS) {
+    if (unbalanced && (s->emf_low == 0U || s->low_n >= MC_SENSOR_BAL_REFILL)) {
+        bad = true; /* no deferring */
+    } else if ((bad || unbalanced) && s->emf_low > 0U) {
         bad = false;
         hold = true;
+        if (s->emf_low < MC_SENSOR_DEFER_WINDOWS) {
+            s->pend++; /* at most MC_SENSOR_DEFER_WINDOWS - 1 */
+        } else {
+            s->pend = 0U;
+        }
     }
     if (bad && MC_SENSOR_CHECK) {
         if (s->cnt < MC_SENSOR_TRIP) {
