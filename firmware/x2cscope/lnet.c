@@ -21,8 +21,10 @@ uint8_t lnet_crc_byte(uint8_t sum)
     return lnet_reserved(sum) ? (uint8_t)~sum : sum;
 }
 
-void lnet_rx_init(lnet_rx_t *rx)
+void lnet_rx_init(lnet_rx_t *rx, uint8_t *data, uint8_t cap)
 {
+    rx->data = data;
+    rx->cap = cap;
     rx->state = RX_IDLE;
     rx->size = 0U;
     rx->node = 0U;
@@ -58,7 +60,10 @@ static void rx_field(lnet_rx_t *rx, uint8_t b)
     } else if (rx->state == RX_NODE) {
         rx->node = b;
     } else {
-        rx->data[rx->n++] = b;
+        if (rx->n < rx->cap) {
+            rx->data[rx->n] = b;
+        }
+        rx->n++; /* <= rx->size <= 255 */
     }
     rx->sum = (uint8_t)(rx->sum + b);
     if (lnet_reserved(b)) {
@@ -104,7 +109,10 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
             }
             return LNET_RX_BAD_CRC;
         }
-        return (rx->node == LNET_NODE) ? LNET_RX_FRAME : LNET_RX_NONE;
+        if (rx->node != LNET_NODE) {
+            return LNET_RX_NONE;
+        }
+        return (rx->size > rx->cap) ? LNET_RX_TOO_LONG : LNET_RX_FRAME;
     }
     rx_field(rx, b);
     return LNET_RX_NONE;
@@ -112,13 +120,16 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
 
 void lnet_tx_init(lnet_tx_t *tx)
 {
-    lnet_tx_start(tx, LNET_NODE, NULL, 0U);
+    lnet_tx_start(tx, LNET_NODE, NULL, 0U, NULL, 0U);
     tx->state = TX_IDLE;
 }
 
-void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t size)
+void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t head,
+                   const volatile uint8_t *body, uint8_t size)
 {
     tx->data = data;
+    tx->body = body;
+    tx->head = head;
     tx->size = size;
     tx->node = node;
     tx->state = TX_SYN;
@@ -164,7 +175,8 @@ bool lnet_tx_next(lnet_tx_t *tx, uint8_t *byte)
             *byte = tx_field(tx, tx->node, (tx->size == 0U) ? TX_CRC : TX_DATA);
             break;
         case TX_DATA: {
-            uint8_t b = tx->data[tx->n++];
+            uint8_t b = (tx->n < tx->head) ? tx->data[tx->n] : tx->body[tx->n - tx->head];
+            tx->n++;
             *byte = tx_field(tx, b, (tx->n == tx->size) ? TX_CRC : TX_DATA);
             break;
         }

@@ -16,10 +16,13 @@
  * counted in SIZE nor summed. A 0x55 followed by anything but the fill is
  * a new SYN, so a receiver that lost its place finds the next frame.
  *
- * Neither side needs more than the one 255-byte data buffer: the receiver
- * unescapes into it, and the sender escapes from it as it hands out one
- * byte at a time, so a reply can be built in the request's buffer and sent
- * from the main loop without a second, escaped copy (up to 514 bytes for node 1).
+ * The receiver unescapes into a buffer its owner sizes: a target's for the
+ * largest request it takes, not for the largest frame (a longer one is
+ * received to its checksum and reported, without its data). The sender
+ * escapes as it hands out one byte at a time, from a head (built in the
+ * request's buffer) and a body (read where it lies, e.g. the scope's
+ * buffer), so a reply of up to 255 data bytes needs no buffer of its own
+ * and no second, escaped copy (up to 514 bytes for node 1).
  */
 
 #include <stdbool.h>
@@ -34,23 +37,27 @@
 /* ---- receiving ------------------------------------------------------------- */
 
 typedef enum {
-    LNET_RX_NONE,      /* nothing complete yet */
-    LNET_RX_FRAME,     /* a frame for this node: rx->data[0 .. rx->size - 1] */
-    LNET_RX_BAD_CRC,   /* a whole frame whose checksum did not match: dropped */
-    LNET_RX_BAD_FORMAT /* a reserved byte without its fill: dropped */
+    LNET_RX_NONE,       /* nothing complete yet */
+    LNET_RX_FRAME,      /* a frame for this node: rx->data[0 .. rx->size - 1] */
+    LNET_RX_BAD_CRC,    /* a whole frame whose checksum did not match: dropped */
+    LNET_RX_BAD_FORMAT, /* a reserved byte without its fill: dropped */
+    LNET_RX_TOO_LONG    /* a whole, valid frame for this node of more data bytes than
+                           the buffer holds: rx->size says how many, rx->data the first */
 } lnet_rx_event_t;
 
 typedef struct {
     uint8_t state;   /* where in the frame the next byte belongs (lnet.c) */
     uint8_t size;    /* SIZE of the frame being received */
     uint8_t node;    /* its NODE */
-    uint8_t n;       /* DATA bytes received so far */
+    uint8_t n;       /* DATA bytes received so far (the first cap of them stored) */
     uint8_t sum;     /* running checksum, mod 256 */
     uint8_t pending; /* the reserved byte whose fill is due next, 0: none */
-    uint8_t data[LNET_MAX_DATA];
+    uint8_t cap;     /* bytes of data */
+    uint8_t *data;   /* the owner's buffer */
 } lnet_rx_t;
 
-void lnet_rx_init(lnet_rx_t *rx);
+/* Idle, receiving into cap bytes of data (at most LNET_MAX_DATA are used). */
+void lnet_rx_init(lnet_rx_t *rx, uint8_t *data, uint8_t cap);
 
 /* One received byte. A frame addressed to another node is dropped without
  * an event. After LNET_RX_FRAME the data stay valid until the next byte is
@@ -60,8 +67,10 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t byte);
 /* ---- sending ------------------------------------------------------------------ */
 
 typedef struct {
-    const uint8_t *data; /* the frame's DATA, unescaped; must stay until it is sent */
-    uint8_t size;
+    const uint8_t *data;          /* the DATA's head, unescaped; must stay until it is sent */
+    const volatile uint8_t *body; /* its body, read as it is sent (NULL: none) */
+    uint8_t head;                 /* bytes of the head */
+    uint8_t size;                 /* of head and body */
     uint8_t node;
     uint8_t state; /* the next field to send (lnet.c) */
     uint8_t n;     /* DATA bytes sent */
@@ -72,8 +81,10 @@ typedef struct {
 /* Nothing to send. */
 void lnet_tx_init(lnet_tx_t *tx);
 
-/* Start sending one frame of size bytes of data from node. */
-void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t size);
+/* Start sending one frame from node: its DATA are head bytes of data, then
+ * size - head bytes of body (each read when it is sent), head <= size. */
+void lnet_tx_start(lnet_tx_t *tx, uint8_t node, const uint8_t *data, uint8_t head,
+                   const volatile uint8_t *body, uint8_t size);
 
 /* The next byte of the frame into *byte; false once the frame is all sent
  * (or none was started). */

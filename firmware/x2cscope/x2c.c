@@ -60,6 +60,10 @@ Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= X2C_WINDOW_MOTOR - X2C_WINDOW_SCOPE, "buffe
 Q15_STATIC_ASSERT(sizeof(mc_t) <= 0x10000UL - X2C_WINDOW_MOTOR, "mc_t exceeds the window");
 #endif
 Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= 0xFFFFU, "the buffer's size is 16-bit");
+/* save parameter: 3 + state, nch, prescaler + 6 a channel + the trigger's 12 + its level */
+Q15_STATIC_ASSERT(3U + 4U + 6U * X2C_SCOPE_CHANNELS + 12U + 4U <= X2C_REQUEST_MAX,
+                  "the request buffer cannot hold a full scope configuration");
+Q15_STATIC_ASSERT(X2C_RX_BYTES <= LNET_MAX_DATA, "a request buffer beyond a frame");
 
 static const volatile uint8_t *obj_base(const x2c_t *x, uint8_t obj)
 {
@@ -350,7 +354,11 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
         /* only here: the result's 64-bit conversions, not for every tunable's read */
         motor_identify_result(&x->id);
     }
-    if (row->obj == X2C_OBJ_MOTOR) {
+    if (row->obj == X2C_OBJ_SCOPE) {
+        x->body = p; /* sent from the buffer as it is (a client reads it stopped) */
+    } else if (2U + count > X2C_RX_BYTES) {
+        return X2C_ERR_SIZE; /* a variable is at most 4 bytes: not reached */
+    } else if (row->obj == X2C_OBJ_MOTOR) {
         motor_copy(&d[2], p, count); /* at most 4 bytes (a variable), masked */
     } else {
         uint8_t i;
@@ -550,12 +558,20 @@ static void tally(uint16_t *c)
     }
 }
 
+/* The reply: service and error in the request's buffer, then n bytes of
+ * data after them there or, when the service set x->body, read from it. */
 static void reply(x2c_t *x, uint8_t service, uint8_t err, uint8_t n)
 {
+    uint8_t size = (uint8_t)(2U + (err == X2C_ERR_OK ? n : 0U));
     x->rx.data[0] = service;
     x->rx.data[1] = err;
     tally(err == X2C_ERR_OK ? &x->answered : &x->refused);
-    lnet_tx_start(&x->tx, LNET_NODE, x->rx.data, (uint8_t)(2U + (err == X2C_ERR_OK ? n : 0U)));
+    if (err == X2C_ERR_OK && x->body != NULL) {
+        lnet_tx_start(&x->tx, LNET_NODE, x->rx.data, 2U, x->body, size);
+    } else {
+        lnet_tx_start(&x->tx, LNET_NODE, x->rx.data, size, NULL, size);
+    }
+    x->body = NULL;
 }
 
 static void dispatch(x2c_t *x)
@@ -578,7 +594,8 @@ static void dispatch(x2c_t *x)
 
 void x2c_init(x2c_t *x)
 {
-    lnet_rx_init(&x->rx);
+    lnet_rx_init(&x->rx, x->rx_buf, (uint8_t)X2C_RX_BYTES);
+    x->body = NULL;
     lnet_tx_init(&x->tx);
 #if X2C_SCOPE
     x2c_scope_init(&x->scope);
@@ -618,6 +635,9 @@ void x2c_rx_byte(x2c_t *x, uint8_t byte)
             break;
         case LNET_RX_BAD_FORMAT:
             reply(x, 0U, X2C_ERR_FORMAT, 0U);
+            break;
+        case LNET_RX_TOO_LONG:
+            reply(x, 0U, X2C_ERR_SIZE, 0U); /* longer than any request taken */
             break;
         default: /* LNET_RX_NONE */
             break;

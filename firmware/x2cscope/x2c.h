@@ -21,10 +21,13 @@
  *   ISR        x2c_sample() once per PWM period, after the duties are
  *              written: the scope (x2c_scope.h), constant time;
  *   main loop  x2c_rx_byte() for each received byte while x2c_rx_ready(),
- *              x2c_tx_byte() for the bytes of the reply. The reply is sent
- *              from the request's own buffer, so no byte is taken while one
- *              is being sent (the client waits for it anyway: LNet is
- *              strictly request / response).
+ *              x2c_tx_byte() for the bytes of the reply. The reply's head
+ *              is built in the request's own buffer and a read of the
+ *              scope's buffer is sent from where it lies, so no byte is
+ *              taken while one is being sent (the client waits for it
+ *              anyway: LNet is strictly request / response). The request
+ *              buffer holds X2C_RX_BYTES: a longer frame is answered 0x15
+ *              under service 0, the protocol's "too large for the target".
  * The motor is reached only through its mailbox (motor.h), masked; a read
  * of a motor variable is a masked copy of at most 4 bytes.
  */
@@ -54,11 +57,18 @@
 #define X2C_SVC_LOAD_PARAM  0x11U
 #define X2C_SVC_SAVE_PARAM  0x12U
 
-#define X2C_PARAM_SCOPE       1U      /* the one parameter id: the scope */
-#define X2C_PROCESSOR_ID      0x8210U /* generic dsPIC: clients use 16-bit addresses */
-#define X2C_MONITOR_VER       5U
-#define X2C_APP_VER           1U
-#define X2C_READ_MAX          (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
+#define X2C_PARAM_SCOPE  1U      /* the one parameter id: the scope */
+#define X2C_PROCESSOR_ID 0x8210U /* generic dsPIC: clients use 16-bit addresses */
+#define X2C_MONITOR_VER  5U
+#define X2C_APP_VER      1U
+#define X2C_READ_MAX     (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
+/* The largest request taken: save parameter with 8 channels and a 4-byte
+ * trigger level, 3 + 4 + 8 x 6 + 16 bytes (also without the scope, whose
+ * services then answer "not available", not "too large"). The request
+ * buffer holds it, and the largest head built over it (device info's 2 + 44). */
+#define X2C_REQUEST_MAX 71U
+#define X2C_RX_BYTES                                                                               \
+    ((X2C_REQUEST_MAX > 2U + X2C_INFO_BYTES) ? X2C_REQUEST_MAX : 2U + X2C_INFO_BYTES)
 #define X2C_INFO_BYTES        44U
 #define X2C_SCOPE_STATE_BYTES 29U
 
@@ -84,8 +94,10 @@
 #define X2C_WINDOW_MOTOR 0x1000U
 
 typedef struct {
-    lnet_rx_t rx; /* the request, and then the reply built over it */
+    lnet_rx_t rx; /* the request, and then the reply's head built over it */
     lnet_tx_t tx;
+    uint8_t rx_buf[X2C_RX_BYTES];
+    const volatile uint8_t *body; /* the reply's data read where they lie (the scope's), or NULL */
     x2c_tune_t tune;
     mc_id_result_t id; /* the identification's result as last read (X2C_ID_VARS) */
 #if X2C_SCOPE

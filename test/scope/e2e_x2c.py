@@ -251,8 +251,9 @@ class A_Services(unittest.TestCase):  # the classes run in name order
         self.assertEqual(ST.t.read_once(0x0900, 0x55), buf[:0x55])  # a count of 0x55
         self.assertEqual(ST.t.read_once(0x0955, 0x55), buf[0x55:0xAA])  # both
         self.assertEqual(ST.t.read_once(0x0900, 83), buf[:83])  # a reply of SIZE 0x55
-        # a request of SIZE 0x55: an 81-byte write (refused: the buffer is not a tunable)
-        self.assertRefused(0x14, lambda: ST.t.write(0x0900, 1, bytes(81)))
+        # a request of SIZE 0x55: an 81-byte write, longer than any request the target takes
+        # (x2c.h X2C_REQUEST_MAX): refused whole, 0x15 under service 0
+        self.assertRefused(0x15, lambda: ST.t.write(0x0900, 1, bytes(81)))
         # inverted checksums: reads whose request sums to 0x55 and to 0x02 ...
         sent0, recv0 = s.crc_inverted_sent, s.crc_inverted_received
         sums = {lnet.crc_raw(5, 1, bytes((0x09, 0x00, 0x09, n, 1))): n for n in range(1, 254)}
@@ -340,7 +341,7 @@ class A_Services(unittest.TestCase):  # the classes run in name order
         self.assertRefused(0x14, save(x2c.Channel(0x0800, 3)))  # width 3
         self.assertRefused(0x14, save(timer, trig=x2c.Trigger(0x0700, 2, "S", 0)))  # trigger outside
         self.assertRefused(0x14, save(timer, trig=x2c.Trigger(end, 1, "U", 0)))
-        self.assertRefused(0x42, save(*([timer] * 9)))  # 9 channels
+        self.assertRefused(0x15, save(*([timer] * 9)))  # 9 channels: longer than the largest request
         ring = ST.size // 4
         self.assertRefused(0x42, save(timer, trig=x2c.Trigger(timer.address, 4, "U", 5, delay=ring)))  # > the ring
         self.assertRefused(0x40, lambda: ST.t.call(x2c.SVC_LOAD_PARAM, b"\x02\x00"))  # unknown parameter id

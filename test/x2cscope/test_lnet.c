@@ -8,13 +8,16 @@
 
 #include "lnet.h"
 
+/* a receiver for any frame (a target's buffer may be smaller: test_a_frame_longer_...) */
+static uint8_t rx_buf[LNET_MAX_DATA];
+
 /* The whole frame the sender gives for data, into out; its length. */
 static size_t encode(uint8_t node, const uint8_t *data, uint8_t size, uint8_t *out)
 {
     lnet_tx_t tx;
     size_t n = 0;
     uint8_t b;
-    lnet_tx_start(&tx, node, data, size);
+    lnet_tx_start(&tx, node, data, size, NULL, size);
     while (lnet_tx_next(&tx, &b)) {
         out[n++] = b;
     }
@@ -49,7 +52,7 @@ static void test_device_info_request_should_be_the_five_bytes_the_protocol_gives
 
     lnet_rx_t rx;
     unsigned events;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     assert_int_equal(feed(&rx, want, sizeof want, &events), LNET_RX_FRAME);
     assert_int_equal(events, 1U);
     assert_int_equal(rx.size, 1U);
@@ -94,7 +97,7 @@ static void test_a_checksum_of_0x55_or_0x02_should_be_sent_inverted(void **state
     unsigned events;
     assert_int_equal(encode(LNET_NODE, d55, 1U, out), 5U);
     assert_int_equal(out[4], 0xAA);
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     assert_int_equal(feed(&rx, out, 5U, &events), LNET_RX_FRAME);
     assert_int_equal(encode(LNET_NODE, d02, 1U, out), 5U);
     assert_int_equal(out[4], 0xFD);
@@ -111,7 +114,7 @@ static void test_a_bad_checksum_should_drop_the_frame_and_keep_the_next(void **s
     static const uint8_t good[] = {0x55, 0x01, 0x01, 0x09, 0x60};
     lnet_rx_t rx;
     unsigned events;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     assert_int_equal(feed(&rx, bad, sizeof bad, &events), LNET_RX_BAD_CRC);
     assert_int_equal(feed(&rx, good, sizeof good, &events), LNET_RX_FRAME);
     assert_int_equal(rx.data[0], 0x09);
@@ -127,7 +130,7 @@ static void test_a_0x02_without_its_fill_should_be_a_format_error(void **state)
     (void)state;
     static const uint8_t bad[] = {0x55, 0x01, 0x01, 0x02, 0x05, 0x55, 0x01, 0x01, 0x09, 0x60};
     lnet_rx_t rx;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     for (size_t k = 0; k < 4U; k++) {
         assert_int_equal(lnet_rx_byte(&rx, bad[k]), LNET_RX_NONE);
     }
@@ -155,7 +158,7 @@ static void test_a_frame_cut_anywhere_should_not_cost_the_next_one(void **state)
     for (size_t cut = 1; cut < n; cut++) {
         lnet_rx_t rx;
         unsigned events;
-        lnet_rx_init(&rx);
+        lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
         (void)feed(&rx, frame, cut, &events);
         assert_int_equal(feed(&rx, next, m, &events), LNET_RX_FRAME);
         assert_int_equal(rx.size, 3U);
@@ -174,7 +177,7 @@ static void test_a_frame_for_another_node_should_be_dropped_silently(void **stat
     size_t n = encode(2U, data, 1U, out);
     lnet_rx_t rx;
     unsigned events;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     assert_int_equal(feed(&rx, out, n, &events), LNET_RX_NONE);
     assert_int_equal(events, 0U);
 }
@@ -216,7 +219,7 @@ static void test_every_size_should_round_trip(void **state)
     size_t longest = 0;
     unsigned frames = 0U;
     lnet_rx_t rx;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     for (unsigned size = 0; size <= LNET_MAX_DATA; size++) {
         for (unsigned k = 0; k < 40U; k++) {
             for (unsigned i = 0; i < size; i++) {
@@ -251,7 +254,7 @@ static void test_random_noise_should_be_survived_and_frames_after_it_should_arri
     (void)state;
     uint32_t seed = 0xBEEF01U;
     lnet_rx_t rx;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     unsigned long noise_frames = 0, bytes = 0;
     for (unsigned long k = 0; k < 1000000UL; k++) {
         if (lnet_rx_byte(&rx, rnd_byte(&seed)) == LNET_RX_FRAME) {
@@ -287,6 +290,69 @@ static void test_random_noise_should_be_survived_and_frames_after_it_should_arri
     assert_int_equal(received, sent);
 }
 
+/* A receiver whose buffer is smaller than a frame (a target sized for its largest request):
+ * the whole frame is read to its checksum, reported LNET_RX_TOO_LONG with its size and first
+ * bytes, nothing written past the buffer; a bad checksum is still BAD_CRC; the next frame that
+ * fits arrives whole. */
+static void test_a_frame_longer_than_the_buffer_should_be_reported_whole(void **state)
+{
+    uint8_t buf[9];
+    uint8_t data[40], frame[2U * 40U + 8U];
+    lnet_rx_t rx;
+    unsigned events;
+    size_t n;
+    (void)state;
+    for (unsigned k = 0; k < sizeof data; k++) {
+        data[k] = (uint8_t)(k * 37U + 2U); /* reserved bytes among them: escapes too */
+    }
+    memset(buf, 0xEE, sizeof buf);
+    lnet_rx_init(&rx, buf, 8U);
+    n = encode(LNET_NODE, data, 40U, frame);
+    assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_TOO_LONG);
+    assert_int_equal(events, 1U);
+    assert_int_equal(rx.size, 40U);
+    assert_memory_equal(buf, data, 8U);
+    assert_int_equal(buf[8], 0xEE); /* the buffer's end untouched */
+    assert_true(n > 0U && n <= sizeof frame);
+    if (n > 0U && n <= sizeof frame) {
+        frame[n - 1U] ^= 0x01U; /* the checksum */
+    }
+    assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_BAD_CRC);
+    n = encode(LNET_NODE, data, 8U, frame);
+    assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_FRAME);
+    assert_int_equal(rx.size, 8U);
+    assert_memory_equal(buf, data, 8U);
+    /* a frame for another node is dropped, long or not */
+    n = encode(2U, data, 40U, frame);
+    assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_NONE);
+}
+
+/* A frame sent from a head and a body is byte for byte the frame of the two joined, for
+ * every split, reserved bytes on both sides of it. */
+static void test_a_head_and_a_body_should_send_as_one_frame(void **state)
+{
+    static uint8_t data[LNET_MAX_DATA];
+    static uint8_t want[2U * LNET_MAX_DATA + 8U], got[2U * LNET_MAX_DATA + 8U];
+    (void)state;
+    for (unsigned k = 0; k < sizeof data; k++) {
+        data[k] = (uint8_t)((k % 3U == 0U) ? 0x55U : (k % 3U == 1U) ? 0x02U : k);
+    }
+    for (unsigned size = 0; size <= LNET_MAX_DATA; size += 17U) {
+        size_t nw = encode(LNET_NODE, data, (uint8_t)size, want);
+        for (unsigned head = 0; head <= size; head++) {
+            lnet_tx_t tx;
+            size_t ng = 0;
+            uint8_t b;
+            lnet_tx_start(&tx, LNET_NODE, data, (uint8_t)head, &data[head], (uint8_t)size);
+            while (lnet_tx_next(&tx, &b)) {
+                got[ng++] = b;
+            }
+            assert_int_equal(ng, nw);
+            assert_memory_equal(got, want, nw);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -298,6 +364,8 @@ int main(void)
         cmocka_unit_test(test_a_frame_cut_anywhere_should_not_cost_the_next_one),
         cmocka_unit_test(test_a_frame_for_another_node_should_be_dropped_silently),
         cmocka_unit_test(test_every_size_should_round_trip),
+        cmocka_unit_test(test_a_frame_longer_than_the_buffer_should_be_reported_whole),
+        cmocka_unit_test(test_a_head_and_a_body_should_send_as_one_frame),
         cmocka_unit_test(test_random_noise_should_be_survived_and_frames_after_it_should_arrive),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -559,12 +559,26 @@ static void test_scope_configurations_outside_the_rules_should_be_refused(void *
     assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_OK);
     rig_snap(&rig, &before);
 
-    cfg_begin(&c, X2C_SCOPE_SAMPLE, 9, 0); /* 9 channels */
+    cfg_begin(&c, X2C_SCOPE_SAMPLE, 9, 0); /* 9 channels asked, one given */
+    cfg_channel(&c, iq, 2);
+    cfg_trigger(&c, 0x82, 0, 0, 0, 1, 0);
+    assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_LIMIT);
+    assert_true(rig_same(&rig, &before));
+
+    /* 9 channels given: 77 bytes, longer than any request the target takes
+     * (X2C_REQUEST_MAX): the frame is refused whole, 0x15 under service 0 */
+    cfg_begin(&c, X2C_SCOPE_SAMPLE, 9, 0);
     for (int i = 0; i < 9; i++) {
         cfg_channel(&c, iq, 2);
     }
     cfg_trigger(&c, 0x82, 0, 0, 0, 1, 0);
-    assert_int_equal(rig_err(&rig, c.b, c.n), X2C_ERR_LIMIT);
+    assert_cmp(c.n, >, X2C_RX_BYTES);
+    {
+        uint8_t reply[LNET_MAX_DATA];
+        assert_int_equal(rig_req(&rig, c.b, c.n, reply), 2);
+        assert_int_equal(reply[0], 0);
+        assert_int_equal(reply[1], X2C_ERR_SIZE);
+    }
 
     {
         static const struct {

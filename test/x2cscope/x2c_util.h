@@ -13,6 +13,9 @@
 #include "sim_mailbox.h"
 #include "x2c.h"
 
+/* the client's side: a receiver for any frame (the target's takes X2C_RX_BYTES) */
+static uint8_t rx_buf[LNET_MAX_DATA];
+
 /* The motor the target's mailbox acts on, and the target. */
 typedef struct {
     mc_t mc;
@@ -63,7 +66,7 @@ static inline int rig_bytes(rig_t *r, const uint8_t *bytes, size_t n, uint8_t *r
         assert_true(x2c_rx_ready(&r->x));
         x2c_rx_byte(&r->x, bytes[k]);
     }
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     while (x2c_tx_byte(&r->x, &b)) {
         lnet_rx_event_t e = lnet_rx_byte(&rx, b);
         if (e == LNET_RX_FRAME) {

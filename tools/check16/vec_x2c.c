@@ -14,6 +14,9 @@
 #include "x2cscope/x2c.h"
 #include "../sim/sim_mailbox.h"
 
+/* the client's side: a receiver for any frame (the target's takes X2C_RX_BYTES) */
+static uint8_t rx_buf[LNET_MAX_DATA];
+
 /*
  * The wire addresses are each platform's own (the AVR's and the dsPIC's
  * real ones, the PC's window) and so are some variables' widths (an enum
@@ -71,7 +74,7 @@ static void transact(const uint8_t *d, uint8_t n, bool corrupt)
     }
     b = lnet_crc_byte(sum);
     x2c_rx_byte(&x2c, corrupt ? (uint8_t)(b == 0x54U ? 0x53U : b ^ 0x01U) : b);
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     reply_n = 0;
     while (x2c_tx_byte(&x2c, &b)) {
         if (lnet_rx_byte(&rx, b) == LNET_RX_FRAME) {

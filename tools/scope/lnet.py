@@ -479,6 +479,8 @@ class Link:
             raise LNetError(f"a reply from node {ev.node}, not {NODE}")
         if len(ev.data) < 2:
             raise LNetError(f"a reply of {len(ev.data)} byte(s): want at least service and error")
+        if ev.data[0] == 0 and ev.data[1] != 0:
+            return ev.data  # a frame-level refusal (0x15, too large for the target) comes under service 0
         if ev.data[0] != data[0]:
             raise LNetError(f"a reply for service 0x{ev.data[0]:02X} (error 0x{ev.data[1]:02X}) to a request "
                             f"for service 0x{data[0]:02X}")

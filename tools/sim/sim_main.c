@@ -230,9 +230,8 @@ static int open_outputs(simcore_t *s, const char *csv_path, const char *rec_path
     if (s->cfg.csv != NULL) {
         sim_trace_header(s->cfg.csv);
     }
-    if (s->cfg.record != NULL &&
-        sim_record_header(s->cfg.record, (uint16_t)MC_SLOW_STEP_PERIODS,
-                          (uint32_t)PWM_FREQUENCY_HZ) != 0) {
+    if (s->cfg.record != NULL && sim_record_header(s->cfg.record, (uint16_t)MC_SLOW_STEP_PERIODS,
+                                                   (uint32_t)PWM_FREQUENCY_HZ) != 0) {
         return sim_refuse(PROG, "--record", "write failed (disk full?)");
     }
     return 0;

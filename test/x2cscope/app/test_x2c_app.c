@@ -7,6 +7,9 @@
 #include "app.h"
 #include "x2c_app.h"
 
+/* the client's side: a receiver for any frame (the target's takes X2C_RX_BYTES) */
+static uint8_t rx_buf[LNET_MAX_DATA];
+
 /*
  * A fake board around a real mc_t: the motor_* mailbox calls the core,
  * the UART is two byte queues with a transmitter that takes at most
@@ -113,7 +116,7 @@ static unsigned host_replies(uint8_t reply[][LNET_MAX_DATA], uint8_t *len, unsig
 {
     lnet_rx_t rx;
     unsigned k = 0;
-    lnet_rx_init(&rx);
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
     for (size_t i = 0; i < tx_n && k < max; i++) {
         lnet_rx_event_t e = lnet_rx_byte(&rx, tx_q[i]);
         assert_true(e == LNET_RX_NONE || e == LNET_RX_FRAME);
