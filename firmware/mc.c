@@ -596,7 +596,9 @@ static void mc_start_identify(mc_t *mc, const mc_adc_frame_t *in)
     mc->id_status = MC_ID_RUNNING;
     mc->id_error = MC_ID_ERROR_NONE;
     mc_start(mc, in);
-    mc_id_started(mc);
+    if (MC_IDENTIFY) { /* the call folds away without it, at -O0 too */
+        mc_id_started(mc);
+    }
 }
 
 static bool mc_on_stopped(mc_t *mc, const mc_events_t *ev, const mc_adc_frame_t *in)
