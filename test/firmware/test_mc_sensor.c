@@ -86,21 +86,32 @@ static void test_a_healthy_drive_should_never_trip(void **state)
     assert_int_equal(sens.cnt, 0);
 }
 
-/* Failing windows on a turning rotor: the trip after MC_SENSOR_TRIP / 2 of them, the windows of
- * MC_SENSOR_TIME_S. */
-static void test_failing_windows_should_trip_after_the_sensor_time(void **state)
+/* After settling, failing windows on a turning rotor (the back-EMF at half the stall
+ * check's low fraction in windows dip_from .. dip_to, none when 0) until the trip: how many. */
+static int windows_to_trip(int dip_from, int dip_to)
 {
     int n;
-    (void)state;
     sensor_start();
     settle();
     for (n = 1; n <= 20; n++) {
         win_t w = healthy(n);
         w.err = 3.0;
+        if (n >= dip_from && n <= dip_to) {
+            w.emf = (q15_t)(MC_STALL_BEMF_LO_Q12 / 2);
+        }
         if (sensor_window(&w)) {
             break;
         }
     }
+    return n;
+}
+
+/* Failing windows on a turning rotor: the trip after MC_SENSOR_TRIP / 2 of them, the windows of
+ * MC_SENSOR_TIME_S. */
+static void test_failing_windows_should_trip_after_the_sensor_time(void **state)
+{
+    int n = windows_to_trip(0, 0);
+    (void)state;
     printf("measured: failing windows to the trip: %d (MC_SENSOR_TRIP %u)\n", n,
            (unsigned)MC_SENSOR_TRIP);
     assert_int_equal(n, (MC_SENSOR_TRIP + 1) / 2);
@@ -111,21 +122,8 @@ static void test_failing_windows_should_trip_after_the_sensor_time(void **state)
  * the dip. */
 static void test_a_short_back_emf_dip_should_not_forgive_failing_windows(void **state)
 {
-    int n;
     (void)state;
-    sensor_start();
-    settle();
-    for (n = 1; n <= 20; n++) {
-        win_t w = healthy(n);
-        w.err = 3.0;
-        if (n == 2 || n == 3) {
-            w.emf = (q15_t)(MC_STALL_BEMF_LO_Q12 / 2);
-        }
-        if (sensor_window(&w)) {
-            break;
-        }
-    }
-    assert_int_equal(n, (MC_SENSOR_TRIP + 1) / 2);
+    assert_int_equal(windows_to_trip(2, 3), (MC_SENSOR_TRIP + 1) / 2);
 }
 
 /* A rotor stopped in CLOSED_LOOP at light load: the step of the current at the stop fills the
