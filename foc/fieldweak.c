@@ -7,7 +7,7 @@
 
 void fieldweak_init(fieldweak_t *fw, const fieldweak_params_t *params)
 {
-    fw->p = *params;
+    fw->p = params;
     fw->span = 0U;
     fw->recip = 0UL;
     fw->shift = 0U;
@@ -29,22 +29,22 @@ void fieldweak_init(fieldweak_t *fw, const fieldweak_params_t *params)
 
 q15_t fieldweak_id_ref(const fieldweak_t *fw, q15_t speed)
 {
-    const q15_t *t = fw->p.id_table;
+    const q15_t *t = fw->p->id_table;
     if (fw->span == 0U) {
         return 0;
     }
     q15_t s = q15_abs_sat(speed);
-    if (s < fw->p.speed_nominal) {
+    if (s < fw->p->speed_nominal) {
         return 0;
     }
-    if (s >= fw->p.speed_max) {
+    if (s >= fw->p->speed_max) {
         return t[FIELDWEAK_TABLE_SIZE - 1];
     }
 
     /* d in 0..span-1. f ~ d / span as a Q16 fraction of the whole table,
      * within 1.5 Q16 LSB; it only seeds the segment index. */
     uint32_t span = fw->span;
-    uint32_t d = (uint32_t)((int32_t)s - (int32_t)fw->p.speed_nominal);
+    uint32_t d = (uint32_t)((int32_t)s - (int32_t)fw->p->speed_nominal);
     uint32_t f = (d * fw->recip) >> fw->shift;
     uint32_t i = (f * FIELDWEAK_SEGMENTS) >> 16;
 

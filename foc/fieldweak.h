@@ -54,13 +54,14 @@ typedef struct {
 } fieldweak_params_t;
 
 typedef struct {
-    fieldweak_params_t p; /* copy of the parameters */
+    const fieldweak_params_t *p; /* the parameters (constant: kept, not copied) */
     uint16_t span;        /* speed_max - speed_nominal, counts; 0 = disabled */
     uint32_t recip;       /* round(2^(16 + shift) / span), in [2^16, 2^17) */
     uint8_t shift;        /* 0..15 */
 } fieldweak_t;
 
-/* Copy params and precompute the reciprocal (one division, here only). */
+/* Keep params (which must outlive fw: a constant table, 36 bytes not copied
+ * into RAM) and precompute the reciprocal (one division, here only). */
 void fieldweak_init(fieldweak_t *fw, const fieldweak_params_t *params);
 
 /* Id reference (Q15 current) for a speed (Q15, either sign). No division. */
