@@ -55,9 +55,9 @@ typedef struct {
 
 typedef struct {
     const fieldweak_params_t *p; /* the parameters (constant: kept, not copied) */
-    uint16_t span;        /* speed_max - speed_nominal, counts; 0 = disabled */
-    uint32_t recip;       /* round(2^(16 + shift) / span), in [2^16, 2^17) */
-    uint8_t shift;        /* 0..15 */
+    uint16_t span;               /* speed_max - speed_nominal, counts; 0 = disabled */
+    uint32_t recip;              /* round(2^(16 + shift) / span), in [2^16, 2^17) */
+    uint8_t shift;               /* 0..15 */
 } fieldweak_t;
 
 /* Keep params (which must outlive fw: a constant table, 36 bytes not copied
