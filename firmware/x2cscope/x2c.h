@@ -36,6 +36,7 @@
 #include <stdint.h>
 
 #include "lnet.h"
+#include "version.h"
 #include "x2c_scope.h"
 #include "x2c_vars.h"
 
@@ -60,7 +61,7 @@
 #define X2C_PARAM_SCOPE  1U      /* the one parameter id: the scope */
 #define X2C_PROCESSOR_ID 0x8210U /* generic dsPIC: clients use 16-bit addresses */
 #define X2C_MONITOR_VER  5U
-#define X2C_APP_VER      1U
+#define X2C_APP_VER      AN1078_VERSION_U16   /* VERSION, as 0xMMmp (version.h) */
 #define X2C_READ_MAX     (LNET_MAX_DATA - 2U) /* 253: a reply is service, error, data */
 /* The largest request taken: save parameter with 8 channels and a 4-byte
  * trigger level, 3 + 4 + 8 x 6 + 16 bytes (also without the scope, whose
