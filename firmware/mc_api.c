@@ -3,6 +3,7 @@
 /* mc_api.c - the main loop's side of the seam: mc_init, the mailbox, the status. */
 #include <string.h>
 
+#include "mc_contract.h"
 #include "mc_parts.h"
 #include "ripple.h"
 
@@ -26,6 +27,7 @@ bool mc_reference_held(const mc_status_t *st, uint8_t seq)
 void mc_request(mc_t *mc, mc_request_t r)
 {
     mc_mailbox_t *b = &mc->mbox;
+    MC_REQUIRE((unsigned)r < (unsigned)MC_REQUEST_COUNT); /* the chip ignores another */
     if (r == MC_REQUEST_REF_POT) {
         /* a choice of reference like mc_set_reference, on the same
          * sequence: of the two, the later one wins even within a period */

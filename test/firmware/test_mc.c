@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mc.h"
+#include "mc_contract.h"
 #include "mc_internal.h"
 
 /* ---- helpers ---------------------------------------------------------------- */
@@ -102,11 +103,20 @@ test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_fra
     }
 }
 
-static void test_mc_request_out_of_range_should_be_ignored(void **state)
+/* The core's contracts (mc_contract.h) report to cmocka here, so a test can
+ * expect one to break; the library's own handler aborts. */
+void mc_contract_fail(const char *what, const char *file, int line)
+{
+    mock_assert(0, what, file, line);
+}
+
+static void test_mc_request_out_of_range_should_break_its_contract_and_change_nothing(void **state)
 {
     (void)state;
-    mc_request(&mc, MC_REQUEST_COUNT);
-    mc_request(&mc, (mc_request_t)200);
+    uint8_t seq = mc.mbox.req_seq;
+    expect_assert_failure(mc_request(&mc, MC_REQUEST_COUNT));
+    expect_assert_failure(mc_request(&mc, (mc_request_t)200));
+    assert_int_equal(mc.mbox.req_seq, seq);
     steps(10, nominal());
     assert_int_equal(st.state, MC_STATE_STOPPED);
 }
@@ -863,7 +873,8 @@ int main(void)
         cmocka_unit_test_setup(
             test_mc_step_in_stopped_should_give_half_duties_and_outputs_off_whatever_the_frame,
             setup),
-        cmocka_unit_test_setup(test_mc_request_out_of_range_should_be_ignored, setup),
+        cmocka_unit_test_setup(
+            test_mc_request_out_of_range_should_break_its_contract_and_change_nothing, setup),
         cmocka_unit_test_setup(
             test_start_should_discard_the_first_conversions_calibrate_the_offsets_then_lock, setup),
         cmocka_unit_test_setup(test_calibration_should_fault_when_an_offset_is_beyond_the_limit,

@@ -2,8 +2,8 @@
 /* Copyright 2026 The open AN1078 authors */
 /* vec_id.c - 16-bit check vectors for self-commissioning: the sequence, its math, its results. */
 /* check16-requires: firmware/mc.c firmware/mc_state.c firmware/mc_slow.c firmware/mc_sensor.c
- * firmware/mc_dtm.c firmware/mc_api.c firmware/mc_id_isr.c firmware/mc_id_units.c firmware/mc_id.c
- * smc_estimator/smc.c */
+ * firmware/mc_dtm.c firmware/mc_api.c firmware/mc_contract.c firmware/mc_id_isr.c
+ * firmware/mc_id_units.c firmware/mc_id.c smc_estimator/smc.c */
 #include "emit.h"
 
 #include <string.h>

@@ -2,8 +2,8 @@
 /* Copyright 2026 The open AN1078 authors */
 /* vec_mc.c - 16-bit check vectors for the motor-control core: mc_step over a recorded start. */
 /* check16-requires: firmware/mc.c firmware/mc_state.c firmware/mc_slow.c firmware/mc_sensor.c
- * firmware/mc_dtm.c firmware/mc_api.c firmware/mc_id_isr.c firmware/mc_id_units.c firmware/mc_id.c
- * smc_estimator/smc.c */
+ * firmware/mc_dtm.c firmware/mc_api.c firmware/mc_contract.c firmware/mc_id_isr.c
+ * firmware/mc_id_units.c firmware/mc_id.c smc_estimator/smc.c */
 /* check16-cflags: -DMOTOR_LOCK_TIME_S=0.02 -DMOTOR_RAMP_TIME_S=0.15 -DMC_HANDOFF_WAIT_S=0.05 */
 /* check16-cflags: -DMC_HANDOFF_AGREE_S=0.005 */
 #include "emit.h"

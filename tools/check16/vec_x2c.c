@@ -4,7 +4,7 @@
  */
 /* (tools/check16/run reads the first directive line only: kept whole) */
 /* clang-format off */
-/* check16-requires: firmware/mc.c firmware/mc_state.c firmware/mc_slow.c firmware/mc_sensor.c firmware/mc_dtm.c firmware/mc_api.c firmware/mc_id_isr.c firmware/mc_id_units.c firmware/mc_id.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
+/* check16-requires: firmware/mc.c firmware/mc_state.c firmware/mc_slow.c firmware/mc_sensor.c firmware/mc_dtm.c firmware/mc_api.c firmware/mc_contract.c firmware/mc_id_isr.c firmware/mc_id_units.c firmware/mc_id.c smc_estimator/smc.c firmware/x2cscope/lnet.c firmware/x2cscope/x2c.c firmware/x2cscope/x2c_scope.c tools/sim/sim_mailbox.c */
 /* clang-format on */
 #include "emit.h"
 
