@@ -224,9 +224,12 @@
 #ifndef MC_SPEED_KP_MIN_FRACTION
 #define MC_SPEED_KP_MIN_FRACTION 0.25
 #endif
-/* Cut-off of the estimated-speed filter (the speed loop's feedback). */
+/* Cut-off of the estimated-speed filter (the speed loop's feedback): a
+ * tenth of the speed-loop rate, 100 Hz at 1 kHz, the rule tools/tune
+ * writes into every profile (docs/estimator.md: it converges fastest from
+ * a wrong state at that window). */
 #ifndef MC_SPEED_FILTER_HZ
-#define MC_SPEED_FILTER_HZ 50.0
+#define MC_SPEED_FILTER_HZ ((double)MC_SPEED_LOOP_HZ / 10.0)
 #endif
 
 /* ---- protections ------------------------------------------------------------------- */
