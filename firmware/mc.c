@@ -326,42 +326,14 @@ static void mc_ramp_end(mc_t *mc)
     }
 }
 
-/* OPEN_LOOP, with the estimator's speed fresh (mc_slow_apply): the forced
- * angle moved back by MOTOR_OL_DAMP_S times the rotor's swing speed while
- * the estimate is valid (note 1), the previous shift taken out. The swing
- * speed is forced minus estimated speed less its slow mean (a high-pass,
- * seeded at the first valid window): a steady difference, the estimate's
- * bias under a model mismatch, is no swing, and damping it takes torque
- * the load needs. */
-static void mc_ol_damp(mc_t *mc)
+/* OPEN_LOOP, with the slow step's results (mc_slow_apply): the forced
+ * angle moved by the damping's shift for the window (note 1), the previous
+ * shift taken out. The slow step forms it (mc_slow.c), so its 32-bit
+ * arithmetic stays out of the interrupt. */
+Q15_INLINE void mc_ol_damp(mc_t *mc, int16_t shift)
 {
-    int32_t shift = 0;
-    if (mc_est_valid(mc)) {
-        /* forced minus estimated speed, angle counts per period (< 2^17) */
-        int32_t d = (int32_t)(uint16_t)(mc->ol_step >> 16) - (int32_t)mc->pred;
-        int32_t d16 = d * 16; /* Q4, < 2^21 */
-        if (!mc->ol_dlive) {
-            mc->ol_dmean = d16;
-            mc->ol_dlive = true;
-        }
-        mc->ol_dmean += (d16 - mc->ol_dmean) / MC_OL_DAMP_MEAN_N;
-        d = (d16 - mc->ol_dmean) / 16; /* |d| < 2^18: held to 2^17 so d K fits */
-        if (d > 131071L) {
-            d = 131071L;
-        } else if (d < -131071L) {
-            d = -131071L;
-        }
-        shift = d * MC_OL_DAMP_K / 16; /* K <= 16000: |d K| < 2^31 */
-        if (shift > MC_OL_DAMP_MAX) {
-            shift = MC_OL_DAMP_MAX;
-        } else if (shift < -MC_OL_DAMP_MAX) {
-            shift = -MC_OL_DAMP_MAX;
-        }
-    } else {
-        mc->ol_dlive = false;
-    }
-    mc->ol_angle += (uint32_t)(shift - (int32_t)mc->ol_damp) << 16;
-    mc->ol_damp = (int16_t)shift;
+    mc->ol_angle += (uint32_t)((int32_t)shift - (int32_t)mc->ol_damp) << 16;
+    mc->ol_damp = shift;
 }
 
 /* Current-sensor plausibility (note 5), every period with the outputs
@@ -392,7 +364,9 @@ static void mc_slow_apply(mc_t *mc)
         mc_set_advance(mc);
     }
     if (MC_DRIVE && mc->state == MC_STATE_OPEN_LOOP) {
-        mc_ol_damp(mc);
+        if (so->epoch == mc->epoch) {
+            mc_ol_damp(mc, so->ol_shift);
+        }
         mc->ol_iq = so->ol_iq;
     }
     mc->speed_target = so->speed_target;
@@ -440,6 +414,7 @@ static void mc_window_end(mc_t *mc)
     si->preset = mc->preset_pending;
     si->preset_iq = mc->preset_iq;
     si->preset_speed_ref = mc->preset_speed_ref;
+    si->ol_step = mc->ol_step;
     si->i_ab = mc->i_ab;
     si->theta_est = mc_est_theta(mc);
     si->sens_d = mc->sens_d;
@@ -789,13 +764,14 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
  *    Open-loop damping: a rotor pulled by a current at a forced angle is an
  *    undamped spring and mass; with little friction it swings about the
  *    forced angle for the whole ramp, and a hand-off that meets it swinging
- *    stalls (docs/tuning.md, "Behind the defaults"). Once the estimate is valid, each window moves
- *    the forced angle back by MOTOR_OL_DAMP_S times the rotor's excess
- *    speed (mc_ol_damp): the torque then falls as the rotor runs ahead and
- *    rises as it falls behind, a viscous damping of the swing. The excess
- *    is taken less its mean over MC_OL_DAMP_MEAN_WINDOWS: under a model
- *    mismatch the estimate reads steadily high or low, and damping that
- *    bias held the forced angle back by a steady amount, the torque a
+ *    stalls (docs/tuning.md, "Behind the defaults"). Once the estimate is
+ *    valid, each window moves the forced angle back by MOTOR_OL_DAMP_S
+ *    times the rotor's excess speed (mc_slow_ol_damp forms the shift,
+ *    mc_ol_damp applies it): the torque then falls as the rotor runs ahead
+ *    and rises as it falls behind, a viscous damping of the swing. The
+ *    excess is taken less its mean over MC_OL_DAMP_MEAN_WINDOWS: under a
+ *    model mismatch the estimate reads steadily high or low, and damping
+ *    that bias held the forced angle back by a steady amount, the torque a
  *    loaded start needed.
  *
  * 2. Stall detection runs at the speed-loop rate in CLOSED_LOOP; each

@@ -248,6 +248,7 @@ typedef struct {
     bool preset;            /* closed loop entered in this window: */
     q15_t preset_iq;        /* the speed PI's integral, Q15 current */
     q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
+    uint32_t ol_step;       /* OPEN_LOOP: the forced angle's step (mc_t.ol_step) ... */
     ab_q15_t i_ab;          /* the window end's current (OPEN_LOOP, the sensor check) ... */
     angle_q15_t theta_est;  /* ... and estimated angle (the load's share, mc.c note 1) */
     int32_t lock_va;        /* LOCK: the window's sums of the estimator's alpha and beta */
@@ -276,6 +277,7 @@ typedef struct {
     q15_t speed_target;  /* the reference before the ramp (every state) */
     q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
     q15_t ol_iq;         /* OPEN_LOOP: the torque current, low-passed (mc.c note 1) */
+    int16_t ol_shift;    /* OPEN_LOOP: the damping's shift of the forced angle, counts */
     q15_t lock_iq;       /* LOCK: the lock's current reference (mc.c note 4) */
     bool sensor_fault;   /* the current-sensor check failed (mc.c note 5) */
     bool lock_done;      /* LOCK: the dead-time measurement is done: */
@@ -338,6 +340,8 @@ typedef struct {
     uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
     uint8_t epoch;         /* the run the slow step's state belongs to */
     int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
+    int32_t ol_dmean;      /* OPEN_LOOP: forced - estimated step, mean, Q4 counts/period */
+    bool ol_dlive;         /* OPEN_LOOP: ol_dmean holds a valid estimate's history */
     mc_sensor_t sensor;    /* the current-sensor check */
     mc_dtm_t dtm;          /* LOCK: the dead-time measurement */
 } mc_slow_t;
@@ -419,8 +423,6 @@ typedef struct {
     uint32_t ol_step;       /* open-loop angle increment per period, 32-bit binary angle */
     int16_t theta_offset;   /* theta_forced - theta_est at hand-off, bled to 0 */
     int16_t ol_damp;        /* OPEN_LOOP: the damping shift in ol_angle, angle counts */
-    bool ol_dlive;          /* OPEN_LOOP: ol_dmean holds a valid estimate's history */
-    int32_t ol_dmean;       /* OPEN_LOOP: forced - estimated step, mean, Q4 counts/period */
     q15_t ol_iq;            /* OPEN_LOOP: the load's torque current (slow_out.ol_iq), Q15 */
     sincos_q15_t adv_sc;    /* sin/cos of CLOSED_LOOP's voltage advance (mc_set_advance) */
 

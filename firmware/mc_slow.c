@@ -161,6 +161,51 @@ void mc_slow_init(mc_slow_t *sl)
     sl->spd_ref = MC_SPEED_REF_MIN_Q15;
 }
 
+/* OPEN_LOOP: the damping's shift of the forced angle for this window (mc.c
+ * note 1), applied by the interrupt with the window's results
+ * (mc_slow_apply). It moves the forced angle back by MOTOR_OL_DAMP_S times
+ * the rotor's swing speed while the estimate is valid: the forced minus the
+ * estimated speed less its slow mean (a high-pass, seeded at the first
+ * valid window), so a steady difference, the estimate's bias under a model
+ * mismatch, is no swing, and damping it takes torque the load needs. The
+ * forced step is the one the interrupt will have when it applies the
+ * shift, MC_SLOW_APPLY_PERIODS steps of the ramp after the window end (the
+ * ramp holds at its end step), and the estimated one is what the interrupt
+ * derives from the same result (mc_set_advance's pred). */
+static int16_t mc_slow_ol_damp(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in_t *si)
+{
+    int32_t shift = 0;
+    if (si->state == MC_STATE_OPEN_LOOP && est->valid) {
+        uint32_t step = si->ol_step + (uint32_t)MC_SLOW_APPLY_PERIODS * MC_RAMP_STEP_INC;
+        if (step > MC_RAMP_STEP_END) {
+            step = MC_RAMP_STEP_END;
+        }
+        /* forced minus estimated speed, angle counts per period (< 2^17) */
+        int32_t d = (int32_t)(uint16_t)(step >> 16) - (int32_t)q15_mul(est->omega, MC_PRED_K);
+        int32_t d16 = d * 16; /* Q4, < 2^21 */
+        if (!sl->ol_dlive) {
+            sl->ol_dmean = d16;
+            sl->ol_dlive = true;
+        }
+        sl->ol_dmean += (d16 - sl->ol_dmean) / MC_OL_DAMP_MEAN_N;
+        d = (d16 - sl->ol_dmean) / 16; /* |d| < 2^18: held to 2^17 so d K fits */
+        if (d > 131071L) {
+            d = 131071L;
+        } else if (d < -131071L) {
+            d = -131071L;
+        }
+        shift = d * MC_OL_DAMP_K / 16; /* K <= 16000: |d K| < 2^31 */
+        if (shift > MC_OL_DAMP_MAX) {
+            shift = MC_OL_DAMP_MAX;
+        } else if (shift < -MC_OL_DAMP_MAX) {
+            shift = -MC_OL_DAMP_MAX;
+        }
+    } else {
+        sl->ol_dlive = false;
+    }
+    return (int16_t)shift;
+}
+
 /* One window's work on the slow step's own state, from the window's
  * inputs and the estimator's fresh result, into the results. */
 static void mc_slow_run(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in_t *si,
@@ -207,6 +252,7 @@ static void mc_slow_run(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in
         sl->ol_iq_acc = 0;
     }
     so->ol_iq = (q15_t)(sl->ol_iq_acc / 32);
+    so->ol_shift = mc_slow_ol_damp(sl, est, si);
     if (MC_DTM_ON && si->state == MC_STATE_LOCK) {
         mc_dtm_window(&sl->dtm, si, so);
     }

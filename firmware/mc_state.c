@@ -93,8 +93,6 @@ static void mc_enter_lock(mc_t *mc)
     mc->epoch = (uint8_t)(mc->epoch + 1U);
     mc->ol_angle = 0U;
     mc->ol_damp = 0;
-    mc->ol_dlive = false;
-    mc->ol_dmean = 0;
     mc->agree = 0U;
     mc->ol_iq = 0;
     mc->lock_done = false;
