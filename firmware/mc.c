@@ -430,7 +430,7 @@ static void mc_window_end(mc_t *mc)
     if (MC_IDENTIFY && mc->state == MC_STATE_IDENTIFY) {
         mc_id_post(mc);
     }
-    if (MC_DTM_ON) {
+    if (MC_DTM_ON && mc->state == MC_STATE_LOCK) { /* mc_dtm_window's inputs, LOCK's only */
         si->lock_va = mc->lock_va;
         si->lock_vb = mc->lock_vb;
         si->timer = mc->timer;

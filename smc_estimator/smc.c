@@ -275,24 +275,6 @@ void smc_apply(smc_t *s)
     }
 }
 
-void smc_window_end(smc_t *s)
-{
-    smc_window_t *w = &s->win;
-    w->dtheta_sum = s->dtheta_sum;
-    w->w_alpha = s->w_alpha.state;
-    w->w_beta = s->w_beta.state;
-    w->ef_alpha = s->ef_alpha.state;
-    w->ef_beta = s->ef_beta.state;
-    w->theta_raw = s->theta_raw;
-    w->epoch = s->epoch;
-    w->full = (s->count == s->p->irp_percalc);
-    w->preset = s->preset_pending;
-    w->preset_omega = s->preset_omega;
-    s->preset_pending = false;
-    s->dtheta_sum = 0;
-    s->count = 0U;
-}
-
 void smc_slow_step(smc_t *s)
 {
     const smc_params_t *p = s->p;

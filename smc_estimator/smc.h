@@ -207,8 +207,9 @@ void smc_preset_speed(smc_t *s, q15_t omega);
 Q15_INLINE void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied);
 
 /* Fast side, every irp_percalc periods, after smc_update: snapshots this
- * window for the slow side (note 10). */
-void smc_window_end(smc_t *s);
+ * window for the slow side (note 10). Inline (smc_update.h): it runs in the
+ * window's period of the interrupt, the longest. */
+Q15_INLINE void smc_window_end(smc_t *s);
 
 /* Slow side, once after each smc_window_end and before the next one: the
  * speed (with the lag correction of note 8), K, the compensation (two

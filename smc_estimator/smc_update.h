@@ -117,4 +117,22 @@ Q15_INLINE void smc_update(smc_t *s, ab_q15_t i_meas, ab_q15_t v_applied)
     s->theta = angle_add(s->theta_raw, s->comp);
 }
 
+Q15_INLINE void smc_window_end(smc_t *s)
+{
+    smc_window_t *w = &s->win;
+    w->dtheta_sum = s->dtheta_sum;
+    w->w_alpha = s->w_alpha.state;
+    w->w_beta = s->w_beta.state;
+    w->ef_alpha = s->ef_alpha.state;
+    w->ef_beta = s->ef_beta.state;
+    w->theta_raw = s->theta_raw;
+    w->epoch = s->epoch;
+    w->full = (s->count == s->p->irp_percalc);
+    w->preset = s->preset_pending;
+    w->preset_omega = s->preset_omega;
+    s->preset_pending = false;
+    s->dtheta_sum = 0;
+    s->count = 0U;
+}
+
 #endif /* SMC_UPDATE_H */
