@@ -24,6 +24,7 @@ uint32_t q15_isqrt_u32(uint32_t n)
     uint16_t y;
     uint16_t j;
     uint16_t r;
+    uint32_t sq;
     if (n < 2UL) {
         return n;
     }
@@ -67,10 +68,15 @@ uint32_t q15_isqrt_u32(uint32_t n)
     } else {
         r = (uint16_t)(y << 1);
     }
-    while (n > (uint32_t)r * r + r) {
+    /* sq = r^2 from one 16 x 16 product, then stepped with r: (r +- 1)^2 =
+     * r^2 +- 2r + 1 (32-bit adds, no further product). */
+    sq = (uint32_t)r * r;
+    while (n > sq + r) {
+        sq += 2U * (uint32_t)r + 1U;
         r++;
     }
-    while ((uint32_t)r * r - r >= n) {
+    while (sq - r >= n) {
+        sq -= 2U * (uint32_t)r - 1U;
         r--;
     }
     return r;
