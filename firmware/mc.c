@@ -110,9 +110,9 @@ Q15_INLINE void mc_duty_set(mc_t *mc, uint8_t k, int16_t d, int16_t dt, int16_t 
     mc->eff[k] = (int16_t)(d - dt);
 }
 
-/* The q current PI's step against +-vq_max (the circle limit, note 3). Its
- * three call sites are the three ways to that limit: each inlined, so the
- * near-circle path does not pay for saving the integral the redo needs. */
+/* The q current PI's step against +-vq_max (the circle limit, note 3): at
+ * +-Vmax away from the circle, at the limit near it and for a redo, the
+ * two inlined copies the three ways need. */
 Q15_INLINE q15_t mc_q_step(mc_t *mc, q15_t err_q, q15_t vq_max)
 {
     pi_set_limits(&mc->pi_q, (q15_t)(-vq_max), vq_max);
@@ -156,18 +156,19 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
     mc->sens_d += err_d;
     mc->sens_q += err_q;
     v.d = pi_step(&mc->pi_d, err_d);
-    if (near) {
-        v.q = mc_q_step(mc, err_q, vlimit_vq_max(v.d, MC_VMAX_Q15));
-    } else {
+    if (!near) {
         q31_t sum_q = mc->pi_q.sum;
         v.q = mc_q_step(mc, err_q, MC_VMAX_Q15);
         if (q15_dsp_mulss(v.q, v.q) > MC_VMAX_SQ - q15_dsp_mulss(v.d, v.d)) {
-            mc->pi_q.sum = sum_q;
-            v.q = mc_q_step(mc, err_q, vlimit_vq_max(v.d, MC_VMAX_Q15));
+            mc->pi_q.sum = sum_q; /* redone below, against the limit */
+            near = true;
             if (mc->circle_redos != UINT16_MAX) {
                 mc->circle_redos++;
             }
         }
+    }
+    if (near) {
+        v.q = mc_q_step(mc, err_q, vlimit_vq_max(v.d, MC_VMAX_Q15));
     }
     if (MC_VOLTAGE_RIPPLE) {
         /* The gain mc_prepare formed from the previous sample's bus. */
