@@ -108,6 +108,25 @@ static int32_t id_ratio(int32_t n, int32_t d, uint8_t q)
     return neg ? -(int32_t)r : (int32_t)r;
 }
 
+/* A 32-bit pattern as the int32 it encodes (two's complement), without the
+ * implementation-defined conversion. */
+static int32_t id_s32(uint32_t r)
+{
+    return (r >= 0x80000000UL) ? (int32_t)(r - 0x80000000UL) - INT32_MAX - 1 : (int32_t)r;
+}
+
+int32_t mc_id_mac2_shr(int32_t a1, uint16_t b1, int32_t a2, uint16_t b2, uint8_t s)
+{
+    /* a = h 2^16 + l (h signed, l = 0..65535): a b = h b 2^16 + l b, and
+     * floor((H 2^16 + L) / 2^s) = H 2^(16 - s) + floor(L / 2^s) exactly,
+     * H = h1 b1 + h2 b2 (|H| <= 2^31 - 2^16), L = l1 b1 + l2 b2 < 2^32. */
+    int16_t h1 = (int16_t)(uint16_t)((uint32_t)a1 >> 16);
+    int16_t h2 = (int16_t)(uint16_t)((uint32_t)a2 >> 16);
+    uint32_t l = (uint32_t)(uint16_t)a1 * b1 + (uint32_t)(uint16_t)a2 * b2;
+    int32_t h = (int32_t)h1 * (int32_t)b1 + (int32_t)h2 * (int32_t)b2;
+    return id_s32(((uint32_t)h << (16U - s)) + (l >> s));
+}
+
 static int32_t id_abs(int32_t x)
 {
     return (x < 0) ? -x : x;
@@ -126,7 +145,7 @@ static q15_t id_mean(const mc_id_t *id, int32_t sum)
 static void id_gains(const mc_id_t *id, mc_id_cmd_t *c, int32_t l, int32_t r)
 {
     /* Kp = l wcTs / 2^12 in Z_FS units; in Q15: l wcTs / 2^12 */
-    int32_t kp = (int32_t)(((int64_t)l * id->p->wc_ts) >> 12); /* Q15, may exceed 1 */
+    int32_t kp = mc_id_mac2_shr(l, (uint16_t)id->p->wc_ts, 0, 0U, 12U); /* Q15, may exceed 1 */
     uint8_t sh = 0;
     int32_t ki;
     while (kp > 32767L && sh < 7U) {
@@ -136,7 +155,7 @@ static void id_gains(const mc_id_t *id, mc_id_cmd_t *c, int32_t l, int32_t r)
     c->kp = q15_sat(kp);
     c->kp_shift = sh;
     if (r >= 0) {
-        ki = (int32_t)(((int64_t)r * id->p->wc_ts) >> 16); /* R wc Ts: Q15 */
+        ki = mc_id_mac2_shr(r, (uint16_t)id->p->wc_ts, 0, 0U, 16U); /* R wc Ts: Q15 */
     } else {
         ki = (int32_t)(((int64_t)l * id->p->wc_ts * id->p->wc_ts) >> (12 + 15 + 3));
     }
@@ -326,8 +345,11 @@ static int32_t id_l_trap(const mc_id_t *id, uint8_t ax)
     int32_t zm = c[0] / 2 + c[1] / 2;
     /* the interval's voltage: the two commands weighted as they act, 0.54 / 0.46 (Q15) */
     int32_t zu =
-        (int32_t)(((int64_t)c[2] * id->p->w_new + (int64_t)c[3] * (32768 - id->p->w_new)) >> 15);
-    return id_ratio(zu - (int32_t)(((int64_t)zm * id->r_q16) >> 16), c[0] - c[1], 12);
+        mc_id_mac2_shr(c[2], (uint16_t)id->p->w_new, c[3], (uint16_t)(32768 - id->p->w_new), 15U);
+    /* zm R: R = rh 2^16 + rl (R >= 0, at most ID_R_MAX_Q16), zm rh exact */
+    uint32_t zr = (uint32_t)zm * (uint32_t)((uint32_t)id->r_q16 >> 16) +
+                  (uint32_t)mc_id_mac2_shr(zm, (uint16_t)id->r_q16, 0, 0U, 16U);
+    return id_ratio(id_s32((uint32_t)zu - zr), c[0] - c[1], 12);
 }
 
 static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
@@ -430,11 +452,16 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         id->l_dq[0] = ld;
         id->l_dq[1] = lq;
         {
-            /* Lq cos^2 + Ld sin^2 was measured: Lq = (lq (d^2 + q^2) - ld q^2) / d^2 */
-            int32_t d = id->lq_i[0] / 256, q = id->lq_i[1] / 256;
-            int64_t d2 = (int64_t)d * d, q2 = (int64_t)q * q;
-            if (d2 > 0) {
-                lq = (int32_t)((((int64_t)lq * (d2 + q2)) - (int64_t)ld * q2) / d2);
+            /* Lq cos^2 + Ld sin^2 was measured: Lq = lq + (lq - ld) q^2 / d^2,
+             * with (q / d)^2 in Q15 from one 32-bit ratio (q is a quarter of
+             * d by design; a q as large as d is no such measurement and
+             * left uncorrected, as is a d of 0) */
+            int32_t d = id_abs(id->lq_i[0]), q = id_abs(id->lq_i[1]);
+            if (d > 0 && q < d) {
+                int32_t t = id_ratio(q, d, 15); /* q / d, Q15, < 2^15 */
+                uint16_t rho = (uint16_t)(((uint32_t)t * (uint32_t)t + 16384U) >> 15);
+                int32_t dl = id_s32((uint32_t)lq - (uint32_t)ld);
+                lq = id_s32((uint32_t)lq + (uint32_t)mc_id_mac2_shr(dl, rho, 0, 0U, 15U));
             }
         }
         if (ld <= 0 || lq <= 0) {

@@ -191,4 +191,11 @@ uint32_t mc_id_neg_ln_q24(uint32_t a_q30);
 /* exp(-x), x = x_q24 / 2^24 >= 0, as Q30. */
 uint32_t mc_id_exp_neg_q30(uint32_t x_q24);
 
+/* floor((a1 b1 + a2 b2) / 2^s), b1 and b2 in 0..32768, s in 1..16, modulo
+ * 2^32 as an int32 (what the int64 expression cast to int32 gives; the
+ * callers' results fit). Four 16 x 16 products and 32-bit adds: the slow
+ * step's windows carry no 64-bit multiply, whose helper is a loop on the
+ * dsPIC (docs/identify.md). */
+int32_t mc_id_mac2_shr(int32_t a1, uint16_t b1, int32_t a2, uint16_t b2, uint8_t s);
+
 #endif /* MC_ID_H */

@@ -15,6 +15,63 @@
 
 /* ---- the math -------------------------------------------------------------- */
 
+/* floor((a1 b1 + a2 b2) / 2^s) as the int64 expression gives it, bit for
+ * bit: every shift, the b's edges, a's sign and 16-bit boundaries, and
+ * 10^6 drawn operands whose result fits 32 bits. */
+static int64_t mac2_ref(int32_t a1, uint16_t b1, int32_t a2, uint16_t b2, uint8_t s)
+{
+    int64_t p = (int64_t)a1 * b1 + (int64_t)a2 * b2;
+    return (p - (((p % ((int64_t)1 << s)) + ((int64_t)1 << s)) % ((int64_t)1 << s))) /
+           ((int64_t)1 << s); /* floor, without shifting a negative */
+}
+
+static void test_mac2_shr_should_equal_the_64_bit_product_shifted(void **state)
+{
+    (void)state;
+    static const int32_t as[] = {0,         1,          -1,          65535,      65536,
+                                 -65536,    -65537,     32767,       -32768,     0x7FFFFFFF,
+                                 INT32_MIN, 0x12345678, -0x12345678, 0x0000FFFF, -0x0000FFFF};
+    static const uint16_t bs[] = {0U, 1U, 2U, 16384U, 32767U, 32768U};
+    uint32_t seed = 12345U, n = 0, k;
+    uint8_t s;
+    size_t i, j, m;
+    for (s = 1U; s <= 16U; s++) {
+        for (i = 0; i < sizeof as / sizeof as[0]; i++) {
+            for (j = 0; j < sizeof bs / sizeof bs[0]; j++) {
+                for (m = 0; m < sizeof bs / sizeof bs[0]; m++) {
+                    int32_t a2 = as[(i + m) % (sizeof as / sizeof as[0])];
+                    int64_t want = mac2_ref(as[i], bs[j], a2, bs[m], s);
+                    if (want < INT32_MIN || want > INT32_MAX) {
+                        continue;
+                    }
+                    assert_int_equal(mc_id_mac2_shr(as[i], bs[j], a2, bs[m], s), (int32_t)want);
+                    n++;
+                }
+            }
+        }
+    }
+    for (k = 0; k < 1000000U; k++) {
+        int32_t a1, a2;
+        uint16_t b1, b2;
+        int64_t want;
+        seed = seed * 1664525U + 1013904223U;
+        a1 = (int32_t)(seed ^ 0x5A5A5A5AU) >> (seed % 13U);
+        seed = seed * 1664525U + 1013904223U;
+        a2 = (int32_t)seed >> (seed % 17U);
+        seed = seed * 1664525U + 1013904223U;
+        b1 = (uint16_t)((seed >> 8) % 32769U);
+        b2 = (uint16_t)((seed >> 3) % 32769U);
+        s = (uint8_t)(1U + (seed >> 27) % 16U);
+        want = mac2_ref(a1, b1, a2, b2, s);
+        if (want < INT32_MIN || want > INT32_MAX) {
+            continue;
+        }
+        assert_int_equal(mc_id_mac2_shr(a1, b1, a2, b2, s), (int32_t)want);
+        n++;
+    }
+    printf("mc_id_mac2_shr: %u cases bit-identical to the 64-bit expression\n", (unsigned)n);
+}
+
 /* -ln(a), a in (0, 1] Q30, into Q24: within 2^-22 (4 counts) of the double. */
 static void test_neg_ln_should_match_double_over_its_range(void **state)
 {
@@ -252,6 +309,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_drawn_windows_should_keep_the_command_within_its_limits),
+        cmocka_unit_test(test_mac2_shr_should_equal_the_64_bit_product_shifted),
         cmocka_unit_test(test_neg_ln_should_match_double_over_its_range),
         cmocka_unit_test(test_exp_neg_should_match_double_over_its_range),
         cmocka_unit_test(test_the_ramp_should_raise_the_voltage_until_the_target_current),
