@@ -68,7 +68,7 @@ void mc_set_advance(mc_t *mc)
 {
     q15_t w = mc_est_omega(mc);
     mc->adv_sc = sincos_compute(q15_mul(w, MC_ADV_K));
-    mc->pred = q15_mul(w, MC_PRED_K);
+    mc->pred = mc_pred_counts(w);
 }
 
 /* ---- pieces of the step ---------------------------------------------------------------- */

@@ -47,6 +47,13 @@ MC_CHECK(MC_SPEED_FULLSCALE_RPM, MC_PRED_K_ < 1.0,
          "one period at full speed must be < pi (PWM too slow for the speed range)");
 #define MC_PRED_K      Q15(MC_PRED_K_)
 #define MC_ADV_PERIODS Q15(MC_ADV_PERIODS_)
+
+/* One period of an estimated speed (Q15), angle counts: the interrupt's
+ * prediction (mc_set_advance) and the slow step's damping compare with it. */
+Q15_INLINE int16_t mc_pred_counts(q15_t omega)
+{
+    return q15_mul(omega, MC_PRED_K);
+}
 /* The open-loop step per period (binary angle counts) must stay below 2^15
  * for the advance's Q15 product: the ramp's end below half the PWM rate. */
 MC_CHECK(MOTOR_RAMP_END_RPM, (double)MOTOR_RAMP_END_RPM *MOTOR_POLE_PAIRS / 60.0 * MC_TS_S < 0.5,

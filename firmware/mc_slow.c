@@ -181,7 +181,7 @@ static int16_t mc_slow_ol_damp(mc_slow_t *sl, const smc_result_t *est, const mc_
             step = MC_RAMP_STEP_END;
         }
         /* forced minus estimated speed, angle counts per period (< 2^17) */
-        int32_t d = (int32_t)(uint16_t)(step >> 16) - (int32_t)q15_mul(est->omega, MC_PRED_K);
+        int32_t d = (int32_t)(uint16_t)(step >> 16) - (int32_t)mc_pred_counts(est->omega);
         int32_t d16 = d * 16; /* Q4, < 2^21 */
         if (!sl->ol_dlive) {
             sl->ol_dmean = d16;
