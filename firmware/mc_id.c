@@ -72,17 +72,43 @@
 #define ID_HOLD_TURNS       20L            /* ... and electrical turns, ... */
 #define ID_HOLD_WINDOWS_MAX 3000           /* ... but no more windows than this */
 #define ID_SPIN_WINDOWS_MAX 8000U
-#define ID_TWO_PI_Q12       25736L /* 2 pi x 4096 */
-#define ID_SPIN_START       20U    /* windows the loops settle at the spin's start */
-#define ID_JERK             32U    /* windows the spin's acceleration takes to change */
-#define ID_A_UNIT           32     /* the J fit's unit of acceleration: the spin's = 32 */
-#define ID_DAMP_LP          64     /* windows: the low-pass that finds the swing's mean */
+#define ID_TWO_PI_Q12       25736L         /* 2 pi x 4096 */
+#define ID_WL_MAX           (256L * 4096L) /* w L at most 256 Z_FS (Q12) */
+#define ID_SPIN_START       20U            /* windows the loops settle at the spin's start */
+#define ID_JERK             32U            /* windows the spin's acceleration takes to change */
+#define ID_A_UNIT           32             /* the J fit's unit of acceleration: the spin's = 32 */
+#define ID_DAMP_LP          64             /* windows: the low-pass that finds the swing's mean */
 #define ID_DAMP_F           8 /* windows: the damping's own low-pass, against the loop's delay */
 #define ID_DAMP_ANGLE_MAX   16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
 
 #define N_ ((int32_t)id->p->n)
 
 /* ---- helpers ---------------------------------------------------------------------- */
+
+uint32_t mc_id_udiv(uint32_t x, uint32_t d)
+{
+    uint16_t n, hi, qh;
+    if (d > 0xFFFFU) {
+        return x / d;
+    }
+    /* long division in two 32 / 16 steps (div.ud): the first a 16-bit
+     * one, whose remainder below d keeps the second's quotient in 16 bits */
+    n = (uint16_t)d;
+    hi = (uint16_t)(x >> 16);
+    qh = (uint16_t)(hi / n);
+    hi = (uint16_t)(hi - qh * n);
+    return ((uint32_t)qh << 16) | q15_dsp_divud(((uint32_t)hi << 16) | (x & 0xFFFFU), n);
+}
+
+uint32_t mc_id_mulhi(uint32_t a, uint32_t b)
+{
+    uint16_t al = (uint16_t)a, ah = (uint16_t)(a >> 16);
+    uint16_t bl = (uint16_t)b, bh = (uint16_t)(b >> 16);
+    uint32_t lh = (uint32_t)al * bh, hl = (uint32_t)ah * bl;
+    /* the carry out of the low 32 bits: three terms below 2^16 each */
+    uint32_t mid = (((uint32_t)al * bl) >> 16) + (lh & 0xFFFFU) + (hl & 0xFFFFU);
+    return (uint32_t)ah * bh + (lh >> 16) + (hl >> 16) + (mid >> 16);
+}
 
 /* round(n 2^q / d), d > 0: n is shifted left as far as it goes, d right
  * for the rest, so the quotient comes out of 32-bit arithmetic with at least
@@ -101,7 +127,7 @@ static int32_t id_ratio(int32_t n, int32_t d, uint8_t q)
     if (ud == 0U) {
         return neg ? -INT32_MAX : INT32_MAX;
     }
-    r = (un + ud / 2U) / ud;
+    r = mc_id_udiv(un + ud / 2U, ud);
     if (r > (uint32_t)INT32_MAX) {
         r = (uint32_t)INT32_MAX;
     }
@@ -132,10 +158,31 @@ static int32_t id_abs(int32_t x)
     return (x < 0) ? -x : x;
 }
 
-/* The window mean of a sum over the window's periods, rounded. */
+/* x / d truncated toward zero, d > 0 (a 16-bit d takes mc_id_udiv's
+ * hardware divisions). */
+static int32_t id_sdiv(int32_t x, int32_t d)
+{
+    uint32_t q = mc_id_udiv((x < 0) ? (uint32_t)0 - (uint32_t)x : (uint32_t)x, (uint32_t)d);
+    return (x < 0) ? -(int32_t)q : (int32_t)q;
+}
+
+/* floor(a b / 2^s), s in 1..16, |a| < 2^31, the result within int32: the
+ * product is the same with both signs turned, which mc_id_mac2_shr's
+ * b >= 0 takes. */
+static int32_t id_mul_shr(int32_t a, int16_t b, uint8_t s)
+{
+    return (b < 0) ? mc_id_mac2_shr(-a, (uint16_t)(-(int32_t)b), 0, 0U, s)
+                   : mc_id_mac2_shr(a, (uint16_t)b, 0, 0U, s);
+}
+
+/* The window mean of a sum over the window's periods, rounded half away
+ * from zero and held to Q15: one 32 / 16 division where it fits, as the
+ * quotient below 2^15 does. */
 static q15_t id_mean(const mc_id_t *id, int32_t sum)
 {
-    return q15_sat((sum + ((sum < 0) ? -(N_ / 2) : N_ / 2)) / N_);
+    uint32_t u = ((sum < 0) ? (uint32_t)0 - (uint32_t)sum : (uint32_t)sum) + id->p->n / 2U;
+    int32_t m = (u >= (uint32_t)id->p->n << 15) ? 32768 : (int32_t)q15_dsp_divud(u, id->p->n);
+    return q15_sat((sum < 0) ? -m : m);
 }
 
 /* The PI gains for a loop crossing over at p->wc_ts (wc Ts, Q15): Kp = L wc
@@ -433,11 +480,11 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
          * rotor turns by atan(1/4) to the current, the correction for which
          * is in the result (mc.c mc_identify_result). Its voltage: R i and,
          * of the inverter's error, Vd 2/3 = v0 / sqrt(3) (Q15 18919) */
-        int32_t v0 = id->v0 / (ID_R_WINDOWS * N_);
+        int32_t v0 = id_sdiv(id->v0, ID_R_WINDOWS * N_);
         id->inj_set = c->inj;
         c->inj = 0;
         c->inj_q = 1U;
-        c->v_q = q15_sat((int32_t)(((int64_t)id->r_q16 * (id->i_dc / 4)) >> 16) +
+        c->v_q = q15_sat(id_mul_shr(id->r_q16, (int16_t)(id->i_dc / 4), 16U) +
                          (int32_t)((v0 * 18919L) >> 15));
         id_stage(id, MC_ID_STAGE_LQ);
         return;
@@ -477,7 +524,7 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         id_gains(id, c, id->l_q12, id->r_q16);
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts =
-            (int16_t)((id->v0 / (ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
+            (int16_t)((id_sdiv(id->v0, ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
         c->i_ref.d = (q15_t)(id->i_dc / 3);
         c->i_ref.q = 0;
         id->goal = (int32_t)id->p->accel;
@@ -552,10 +599,11 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         id->r_q16 = id_ratio(dvp, dip, 16);
     }
     if (lev < 3U) {
-        /* the voltage for 3/4 (then 1/2) of the top current: v_top - R (i_top - i) */
-        int32_t di = id->li[0] / ((lev == 1U) ? 4 : 2) / (ID_R_WINDOWS * N_);
-        c->v_d = q15_sat((int32_t)(id->lv[0] / (ID_R_WINDOWS * N_)) -
-                         (int32_t)(((int64_t)id->r_q16 * di) >> 16));
+        /* the voltage for 3/4 (then 1/2) of the top current: v_top - R (i_top - i),
+         * i_top - i a quarter (then a half) of the top mean: within int16 */
+        int32_t di = id_sdiv(id->li[0] / ((lev == 1U) ? 4 : 2), ID_R_WINDOWS * N_);
+        c->v_d = q15_sat(id_sdiv(id->lv[0], ID_R_WINDOWS * N_) -
+                         id_mul_shr(id->r_q16, (int16_t)di, 16U));
         id->sub++;
         id->ok = 0U;
         return;
@@ -592,12 +640,26 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
         id->v0 = id->lv[0] - (int32_t)(((int64_t)id->r_q16 * id->li[0]) >> 16);
         /* the inductances at the lowest level's current (half the top's):
          * out of the band, and room for the injection under the limit */
-        c->v_d = q15_sat(id->lv[2] / (ID_R_WINDOWS * N_));
+        c->v_d = q15_sat(id_sdiv(id->lv[2], ID_R_WINDOWS * N_));
         id_stage(id, MC_ID_STAGE_LD);
     }
 }
 
 /* ---- the spin (note 5) ---------------------------------------------------------------------- */
+
+/* w L in Z_FS units, Q12, for a forced speed of step (2^32 a turn per
+ * period) and l = L / (Ts Z_FS) in Q12: step 2 pi / 2^32 x l, as
+ * floor(8 step x 2 l / 2^32) x 2 pi 2^12 / 2^16 (within a count of the
+ * exact product), without a 64-bit multiply; a step past 1/8 turn a period,
+ * or w L past 256 Z_FS, is held there (none is a motor this measures). */
+static int32_t id_wl(const mc_id_t *id, uint32_t step)
+{
+    uint32_t a = (step < 0x20000000UL) ? step << 3 : 0xFFFFFFFFUL;
+    uint32_t u = mc_id_mulhi(a, (uint32_t)id->l_q12 << 1);
+    int32_t wl = mc_id_mac2_shr((int32_t)((u > 0x7FFFFFFFUL) ? 0x7FFFFFFFUL : u),
+                                (uint16_t)ID_TWO_PI_Q12, 0, 0U, 16U);
+    return (wl > ID_WL_MAX) ? ID_WL_MAX : wl;
+}
 
 /* The window's back-EMF in the frame, E = u - R i - j w L i (means), its
  * magnitude into *mag (Q15 V_FS) and the current along it (the torque
@@ -605,13 +667,10 @@ static void id_resistance(mc_id_t *id, const mc_id_win_t *w)
 static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *it)
 {
     q15_t id_ = id_mean(id, w->i_d), iq = id_mean(id, w->i_q);
-    /* w L in Z_FS units, Q12: step (2^32 a turn) 2 pi / 2^32 x l / 2^12 */
-    int32_t wl = (int32_t)(((int64_t)(w->step >> 8) * id->l_q12 * ID_TWO_PI_Q12) >> (24 + 12));
+    int32_t wl = id_wl(id, w->step);
     int32_t r = id->r_q16;
-    int32_t ed = (int32_t)id_mean(id, w->u_d) - (int32_t)(((int64_t)r * id_) >> 16) +
-                 (int32_t)(((int64_t)wl * iq) >> 12);
-    int32_t eq = (int32_t)id_mean(id, w->u_q) - (int32_t)(((int64_t)r * iq) >> 16) -
-                 (int32_t)(((int64_t)wl * id_) >> 12);
+    int32_t ed = (int32_t)id_mean(id, w->u_d) - id_mul_shr(r, id_, 16U) + id_mul_shr(wl, iq, 12U);
+    int32_t eq = (int32_t)id_mean(id, w->u_q) - id_mul_shr(r, iq, 16U) - id_mul_shr(wl, id_, 12U);
     uint32_t m2;
     ed = q15_sat(ed);
     eq = q15_sat(eq);
@@ -625,7 +684,7 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
         /* the projection of i on E: the two products of values within
          * +-32768 sum below 2^31; the quotient is below |i| < 46341, more
          * than Q15 where both axes are near full scale (and mag clamped) */
-        int32_t t = ((int32_t)id_ * ed + (int32_t)iq * eq) / (int32_t)*mag;
+        int32_t t = id_sdiv((int32_t)id_ * ed + (int32_t)iq * eq, *mag);
         *it = q15_sat(t);
     }
 }
@@ -635,8 +694,8 @@ static void id_emf(const mc_id_t *id, const mc_id_win_t *w, q15_t *mag, q15_t *i
 static int32_t id_volts2(const mc_id_t *id, const mc_id_win_t *w)
 {
     q15_t i_d = id_mean(id, w->i_d), i_q = id_mean(id, w->i_q);
-    int32_t vd = 2 * (int32_t)id_mean(id, w->u_d) - (int32_t)(((int64_t)id->r_q16 * i_d) >> 16);
-    int32_t vq = 2 * (int32_t)id_mean(id, w->u_q) - (int32_t)(((int64_t)id->r_q16 * i_q) >> 16);
+    int32_t vd = 2 * (int32_t)id_mean(id, w->u_d) - id_mul_shr(id->r_q16, i_d, 16U);
+    int32_t vq = 2 * (int32_t)id_mean(id, w->u_q) - id_mul_shr(id->r_q16, i_q, 16U);
     vd = (vd > 46340) ? 46340 : (vd < -46340) ? -46340 : vd; /* squares below 2^31 */
     vq = (vq > 46340) ? 46340 : (vq < -46340) ? -46340 : vq;
     return (int32_t)q15_isqrt_u32((uint32_t)(vd * vd) + (uint32_t)(vq * vq));
@@ -686,7 +745,8 @@ static void id_damp(mc_id_t *id, const mc_id_win_t *w, q15_t mag, q15_t it, bool
         id->it_lp = sn * 64;
         id->ang_f = 0;
     }
-    ang = -(int32_t)(((int64_t)id->p->damp * ang) >> 15);
+    /* ang within +-ID_DAMP_ANGLE_MAX; p->damp some 2^21 */
+    ang = -id_mul_shr((int32_t)id->p->damp, (int16_t)ang, 15U);
     id->damp_goal = (ang > lim) ? lim : (ang < -lim) ? -lim : ang;
 }
 
@@ -772,9 +832,12 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
                     id->m2 = m;
                     id->x2 = w->step;
                     /* |E| / speed at both speeds must agree (note 5) */
-                    if (id_abs((int32_t)(((int64_t)id->m1 * (int64_t)(id->x2 >> 8)) /
-                                         (int64_t)(id->x1 >> 8)) -
-                               id->m2) > id->m2 / 8) {
+                    /* m1 x2 / x1 from the speeds' ratio in Q13 (x2 is about
+                     * 2 x1: at most 4, so 32768) */
+                    int32_t k = id_ratio((int32_t)(id->x2 >> 8), (int32_t)(id->x1 >> 8), 13U);
+                    k = (k > 32768) ? 32768 : k;
+                    if (id_abs(mc_id_mac2_shr(id->m1, (uint16_t)k, 0, 0U, 13U) - id->m2) >
+                        id->m2 / 8) {
                         mc_id_fail(id, MC_ID_ERROR_NO_SYNC);
                         return;
                     }
@@ -820,7 +883,7 @@ static void id_ease(mc_id_t *id)
 {
     int32_t step = (int32_t)(id->p->accel / ID_JERK) + 1;
     int32_t a = id->ramp;
-    int32_t d = (id->damp_goal - id->damp) / N_; /* the damping's offset over the window */
+    int32_t d = id_sdiv(id->damp_goal - id->damp, N_); /* the damping's offset over the window */
     a += (id->goal > a + step) ? step : (id->goal < a - step) ? -step : id->goal - a;
     id->ramp = a;
     id->damp += d * N_;

@@ -72,6 +72,48 @@ static void test_mac2_shr_should_equal_the_64_bit_product_shifted(void **state)
     printf("mc_id_mac2_shr: %u cases bit-identical to the 64-bit expression\n", (unsigned)n);
 }
 
+/* x / d and the high half of a b against 64-bit arithmetic: every 16-bit
+ * divisor against edge dividends, 32-bit divisors (the plain path), and
+ * 10^6 drawn operands of each. */
+static void test_udiv_and_mulhi_should_equal_64_bit_arithmetic(void **state)
+{
+    (void)state;
+    static const uint32_t xs[] = {0U,          1U,          0xFFFFU,     0x10000U,    0x1FFFFU,
+                                  0x7FFFFFFFU, 0x80000000U, 0xFFFEFFFFU, 0xFFFFFFFFU, 12345678U};
+    uint32_t seed = 777U, n = 0, d, k;
+    size_t i, j;
+    for (d = 1U; d <= 0xFFFFU; d++) {
+        for (i = 0; i < sizeof xs / sizeof xs[0]; i++) {
+            assert_int_equal(mc_id_udiv(xs[i], d), xs[i] / d);
+            assert_int_equal(mc_id_udiv(xs[i] - xs[i] % d, d), xs[i] / d); /* exact multiples */
+            n += 2U;
+        }
+    }
+    for (i = 0; i < sizeof xs / sizeof xs[0]; i++) {
+        for (j = 0; j < sizeof xs / sizeof xs[0]; j++) {
+            if (xs[j] > 0xFFFFU) {
+                assert_int_equal(mc_id_udiv(xs[i], xs[j]), xs[i] / xs[j]);
+            }
+            assert_int_equal(mc_id_mulhi(xs[i], xs[j]),
+                             (uint32_t)(((uint64_t)xs[i] * xs[j]) >> 32));
+            n++;
+        }
+    }
+    for (k = 0; k < 1000000U; k++) {
+        uint32_t a, b;
+        seed = seed * 1664525U + 1013904223U;
+        a = seed;
+        seed = seed * 1664525U + 1013904223U;
+        b = seed >> (seed % 31U);
+        assert_int_equal(mc_id_mulhi(a, b), (uint32_t)(((uint64_t)a * b) >> 32));
+        if (b != 0U) {
+            assert_int_equal(mc_id_udiv(a, b), a / b);
+        }
+        n += 2U;
+    }
+    printf("mc_id_udiv, mc_id_mulhi: %u cases equal to 64-bit arithmetic\n", (unsigned)n);
+}
+
 /* -ln(a), a in (0, 1] Q30, into Q24: within 2^-22 (4 counts) of the double. */
 static void test_neg_ln_should_match_double_over_its_range(void **state)
 {
@@ -310,6 +352,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_drawn_windows_should_keep_the_command_within_its_limits),
         cmocka_unit_test(test_mac2_shr_should_equal_the_64_bit_product_shifted),
+        cmocka_unit_test(test_udiv_and_mulhi_should_equal_64_bit_arithmetic),
         cmocka_unit_test(test_neg_ln_should_match_double_over_its_range),
         cmocka_unit_test(test_exp_neg_should_match_double_over_its_range),
         cmocka_unit_test(test_the_ramp_should_raise_the_voltage_until_the_target_current),
