@@ -19,13 +19,15 @@
 
 /*
  * One motor per seed, drawn around the build's profile: R, L and Ke each
- * log-uniform over SPAN:1 (20:1, the issue's range) centred on the
- * profile's, the inertia 0.5 to 3 times, the dead time 0.5 to 3 us, ADC
- * noise 0.5 to 3 codes and amplifier offsets up to 30 codes, the rotor at
- * any angle, the inverter averaged (its dead-time shape linear, hard or
- * ripple) or switching (ideal devices: a switch's resistance and a diode's
- * drop are part of what the drive sees, R and the dead time, not of the
- * motor). The same seed gives the same motor on every machine (xorshift64*,
+ * log-uniform over SPAN:1 (20:1) centred on the profile's; or, for the
+ * share --small-motors gives of the seeds (default none), a small motor: R and L together a
+ * SMALL_LO to 1 / sqrt(SPAN) share of the profile's (the small 24 V
+ * motors whose R and L are a tenth to a fifth of the Hurst's), each
+ * within SMALL_SPREAD of that and Ke as above; the inertia 0.5 to 3 times, the dead time 0.5 to 3
+ * us, ADC noise 0.5 to 3 codes and amplifier offsets up to 30 codes, the rotor at any angle, the
+ * inverter averaged (its dead-time shape linear, hard or ripple) or switching (ideal devices: a
+ * switch's resistance and a diode's drop are part of what the drive sees, R and the dead time, not
+ * of the motor). The same seed gives the same motor on every machine (xorshift64*,
  * sim_rand_uniform).
  *
  * The identification is requested at T_REQUEST and must end in STOPPED
@@ -33,15 +35,17 @@
  * the envelope below of the plant's parameters and the phase currents
  * stayed under I_PEAK_FRAC times MC_ID_CURRENT_A.
  */
-#define SPAN        20.0
-#define T_REQUEST   0.05
-#define T_LIMIT     40.0
-#define ENV_R       5.0 /* per cent */
-#define ENV_L       5.0 /* Ld, Lq and their mean */
-#define ENV_KE      3.0
-#define ENV_J       20.0
-#define ENV_DT      15.0
-#define I_PEAK_FRAC 1.6 /* mc_derived.h: the trip sits above 1.6 x MC_ID_CURRENT_A */
+#define SPAN         20.0
+#define SMALL_LO     0.1
+#define SMALL_SPREAD 1.5
+#define T_REQUEST    0.05
+#define T_LIMIT      40.0
+#define ENV_R        5.0 /* per cent */
+#define ENV_L        5.0 /* Ld, Lq and their mean */
+#define ENV_KE       3.0
+#define ENV_J        20.0
+#define ENV_DT       15.0
+#define I_PEAK_FRAC  1.6 /* mc_derived.h: the trip sits above 1.6 x MC_ID_CURRENT_A */
 
 typedef struct {
     uint32_t seed;
@@ -68,7 +72,7 @@ static double log_uni(uint64_t *r, double lo, double hi)
     return exp(uni(r, log(lo), log(hi)));
 }
 
-static void draw(uint32_t seed, const char *motor, const char *board, draw_t *d)
+static void draw(uint32_t seed, const char *motor, const char *board, double small, draw_t *d)
 {
     uint64_t r = 0x9E3779B97F4A7C15ULL ^ ((uint64_t)seed * 0x2545F4914F6CDD1DULL);
     double h = sqrt(SPAN);
@@ -82,8 +86,14 @@ static void draw(uint32_t seed, const char *motor, const char *board, draw_t *d)
     d->cfg.motor = motor;
     d->cfg.board = board;
     d->cfg.progress = false;
-    d->cfg.rs_scale = log_uni(&r, 1.0 / h, h);
-    d->cfg.l_scale = log_uni(&r, 1.0 / h, h);
+    if (small > 0.0 && sim_rand_uniform(&r) < small) {
+        double s = log_uni(&r, SMALL_LO, 1.0 / h);
+        d->cfg.rs_scale = s * log_uni(&r, 1.0 / SMALL_SPREAD, SMALL_SPREAD);
+        d->cfg.l_scale = s * log_uni(&r, 1.0 / SMALL_SPREAD, SMALL_SPREAD);
+    } else {
+        d->cfg.rs_scale = log_uni(&r, 1.0 / h, h);
+        d->cfg.l_scale = log_uni(&r, 1.0 / h, h);
+    }
     d->cfg.ke_scale = log_uni(&r, 1.0 / h, h);
     d->cfg.j_scale = uni(&r, 0.5, 3.0);
     d->cfg.theta0_rad = uni(&r, 0.0, 2.0 * M_PI);
@@ -212,7 +222,7 @@ static void summary_line(const char *name, double *v, int n, double lim)
     free(a);
 }
 
-enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_SEED, OPT_FROM, OPT_COUNT, OPT_PASS_MIN };
+enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_SEED, OPT_FROM, OPT_COUNT, OPT_PASS_MIN, OPT_SMALL };
 
 /* clang-format off */
 static const sim_opt_t OPTS[] = {
@@ -232,6 +242,10 @@ static const sim_opt_t OPTS[] = {
      .range = {"pass-min", "%", 0.0, 100.0, 0u},
      .help = "with --from: exit 1 only below this share of motors inside the envelope (default "
              "100), or when one was not identified"},
+    {.id = OPT_SMALL, .name = "--small-motors", .type = SIM_OPT_NUMBER, .value = "PCT",
+     .range = {"small-motors", "%", 0.0, 100.0, 0u},
+     .help = "this share of the draws small motors, R and L together 0.1 to 0.22 of the "
+             "profile's (default 0)"},
 };
 /* clang-format on */
 
@@ -242,7 +256,7 @@ static void usage(FILE *f)
 {
     fprintf(
         f, "usage: identify_campaign [--motor NAME] [--board NAME] (--seed N | --from N --count N\n"
-           "                         [--pass-min PCT])\n"
+           "                         [--pass-min PCT] [--small-motors PCT])\n"
            "  one CSV row per motor on stdout, the distribution on stderr (docs/identify.md);\n"
            "  exit status 1 if a motor failed (--pass-min: if fewer passed, or one was not\n"
            "  identified)\n");
@@ -253,7 +267,7 @@ int main(int argc, char **argv)
 {
     const char *motor = "hurst", *board = "mclv";
     long long from = -1, count = 0, one = -1;
-    double pass_min = 100.0;
+    double pass_min = 100.0, small = 0.0;
     double *e[7];
     int i, k, failed = 0, done = 0;
     for (i = 1; i < argc; i++) {
@@ -284,6 +298,9 @@ int main(int argc, char **argv)
             case OPT_FROM:
                 from = (long long)x;
                 break;
+            case OPT_SMALL:
+                small = x / 100.0;
+                break;
             case OPT_COUNT:
                 count = (long long)x;
                 break;
@@ -310,7 +327,7 @@ int main(int argc, char **argv)
     if (one >= 0) {
         draw_t d;
         outcome_t o;
-        draw((uint32_t)one, motor, board, &d);
+        draw((uint32_t)one, motor, board, small, &d);
         if (run_one(&d, &o, true) != 0) {
             return 2;
         }
@@ -329,7 +346,7 @@ int main(int argc, char **argv)
     for (i = 0; i < (int)count; i++) {
         draw_t d;
         outcome_t o;
-        draw((uint32_t)(from + i), motor, board, &d);
+        draw((uint32_t)(from + i), motor, board, small, &d);
         if (run_one(&d, &o, false) != 0) {
             return 2;
         }
