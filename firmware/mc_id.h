@@ -199,8 +199,8 @@ uint32_t mc_id_exp_neg_q30(uint32_t x_q24);
 int32_t mc_id_mac2_shr(int32_t a1, uint16_t b1, int32_t a2, uint16_t b2, uint8_t s);
 
 /* x / d truncated, d > 0: a d below 2^16 by two 32 / 16 hardware divisions
- * (div.ud) instead of the 32 / 32 helper, so the windows' means and ratios
- * cost some 50 cycles each on the dsPIC. */
+ * (div.ud) instead of the 32 / 32 helper's loop, for the windows' means and
+ * ratios (docs/performance.md has what the windows take). */
 uint32_t mc_id_udiv(uint32_t x, uint32_t d);
 
 /* floor(a b / 2^32): the high half of the 64-bit product, from four 16 x 16
