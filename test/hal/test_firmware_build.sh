@@ -72,6 +72,11 @@ print)
     grep -q -- ' -c hal/dspic33f/hal_isr.c ' "$f" || fail "$2: hal_isr.c not compiled"
     grep -- '--script=p33FJ32MC204.gld' "$f" | grep -q -- '-mcpu=33FJ32MC204 -omf=elf' ||
       fail "$2: no link line with the device linker script"
+    # a function no image calls is not linked: one section a function, and the linker drops the unused
+    [ "$(grep -- ' -c ' "$f" | grep -c -- ' -ffunction-sections ')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -ffunction-sections"
+    grep -- '--script=p33FJ32MC204.gld' "$f" | grep -q -- ',--gc-sections,' ||
+      fail "$2: the link line does not remove unused sections (--gc-sections)"
     grep -q -- 'xc16-bin2hex .*mclv.elf -a -omf=elf' "$f" || fail "$2: no xc16-bin2hex line"
   }
   "${clean_env[@]}" PATH=/usr/bin:/bin "$root/tools/firmware_build" --print mclv hurst >"$tmp/print" ||
