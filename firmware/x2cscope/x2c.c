@@ -96,15 +96,17 @@ uint16_t x2c_wire(const x2c_t *x, x2c_obj_t obj)
 }
 
 /* The row that holds all of [addr, addr + n), n >= 1, with the pointer to
- * addr's byte; NULL if none does. */
-static const x2c_row_t *find_row(const x2c_t *x, uint32_t addr, uint16_t n,
+ * addr's byte; NULL if none does. Wire addresses are 16-bit (every object
+ * lies below 0x10000 on the wire: the PC's window, the dsPIC's RAM), and
+ * the comparison never forms addr + n, so nothing wraps. */
+static const x2c_row_t *find_row(const x2c_t *x, uint16_t addr, uint16_t n,
                                  const volatile uint8_t **p)
 {
     uint8_t i;
     for (i = 0; i < X2C_ROWS; i++) {
         const x2c_row_t *r = &x2c_rows[i];
-        uint32_t start = (uint32_t)x2c_wire(x, (x2c_obj_t)r->obj) + r->offset;
-        if (addr >= start && addr + n <= start + r->size) {
+        uint16_t start = (uint16_t)(x2c_wire(x, (x2c_obj_t)r->obj) + r->offset);
+        if (addr >= start && n <= r->size && (uint16_t)(addr - start) <= r->size - n) {
             *p = obj_base(x, r->obj) + r->offset + (uint16_t)(addr - start);
             return r;
         }
@@ -119,15 +121,15 @@ typedef struct {
     uint8_t c;
     uint16_t w;
 } word_align_t;
-#define X2C_WORD_ALIGN ((uint32_t)offsetof(word_align_t, w))
+#define X2C_WORD_ALIGN ((uint16_t)offsetof(word_align_t, w))
 
 /* An access of n bytes of width w at addr: whole elements, aligned. */
-static uint8_t access_check(uint32_t addr, uint16_t n, uint8_t w)
+static uint8_t access_check(uint16_t addr, uint16_t n, uint8_t w)
 {
     if ((w != 1U && w != 2U && w != 4U) || n == 0U || n % w != 0U) {
         return X2C_ERR_FORMAT;
     }
-    if (w > 1U && addr % X2C_WORD_ALIGN != 0UL) {
+    if (w > 1U && addr % X2C_WORD_ALIGN != 0U) {
         return X2C_ERR_FORMAT; /* a word at an odd address traps on the dsPIC */
     }
     return X2C_ERR_OK;
@@ -330,12 +332,12 @@ static uint8_t svc_get_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
 {
     const volatile uint8_t *p;
     const x2c_row_t *row;
-    uint32_t addr;
+    uint16_t addr;
     uint8_t count, err;
     if (n != 5U) {
         return X2C_ERR_FORMAT;
     }
-    addr = (uint32_t)d[1] | ((uint32_t)d[2] << 8);
+    addr = (uint16_t)((uint16_t)d[1] | (uint16_t)((uint16_t)d[2] << 8));
     count = d[3];
     err = access_check(addr, count, d[4]);
     if (err != X2C_ERR_OK) {
@@ -375,14 +377,14 @@ static uint8_t svc_put_ram(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
 {
     const volatile uint8_t *p;
     const x2c_row_t *row;
-    uint32_t addr;
+    uint16_t addr;
     uint8_t count, err, t;
     int16_t v;
     (void)out;
     if (n < 5U) {
         return X2C_ERR_FORMAT;
     }
-    addr = (uint32_t)d[1] | ((uint32_t)d[2] << 8);
+    addr = (uint16_t)((uint16_t)d[1] | (uint16_t)((uint16_t)d[2] << 8));
     count = (uint8_t)(n - 4U);
     err = access_check(addr, count, d[3]);
     if (err != X2C_ERR_OK) {
@@ -436,10 +438,11 @@ static const volatile uint8_t *resolve(const x2c_t *x, uint8_t source_type, uint
 {
     const volatile uint8_t *p;
     const x2c_row_t *row;
-    if (source_type != 0U || addr > 0xFFFFUL || access_check(addr, width, width) != X2C_ERR_OK) {
+    if (source_type != 0U || addr > 0xFFFFUL ||
+        access_check((uint16_t)addr, width, width) != X2C_ERR_OK) {
         return NULL;
     }
-    row = find_row(x, addr, width, &p);
+    row = find_row(x, (uint16_t)addr, width, &p);
     return (row != NULL && (row->flags & X2C_ROW_CHANNEL) != 0U) ? p : NULL;
 }
 

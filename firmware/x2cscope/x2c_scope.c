@@ -4,6 +4,7 @@
 #include "x2c_scope.h"
 
 #include <stddef.h>
+#include <string.h>
 
 #if X2C_SCOPE /* else the target has no scope (x2c_scope.h) */
 
@@ -11,36 +12,11 @@
 
 void x2c_scope_init(x2c_scope_t *s)
 {
-    uint16_t i;
-    s->run.state = X2C_SCOPE_IDLE;
-    s->cfg.state = X2C_SCOPE_IDLE;
-    s->cfg.nch = 0;
-    s->cfg.prescaler = 0;
-    s->cfg.trig_src = NULL;
-    s->cfg.trig_dtype = 0;
-    s->cfg.trig_level = 0;
+    /* idle (X2C_SCOPE_IDLE is 0), no channel (NULL), an empty buffer; then what is not zero */
+    memset(s, 0, sizeof *s);
     s->cfg.rising = true;
-    s->cfg.delay = 0;
-    for (i = 0; i < X2C_SCOPE_CHANNELS; i++) {
-        s->cfg.src[i] = NULL;
-        s->cfg.size[i] = 0;
-    }
     s->dataset = 1;
     s->used = X2C_SCOPE_BYTES;
-    s->nwords = 0;
-    for (i = 0; i < 2U * X2C_SCOPE_CHANNELS; i++) {
-        s->word[i] = NULL;
-    }
-    s->run.wr = 0;
-    s->run.trig_pos = 0;
-    s->run.left = 0;
-    s->run.wait = 0;
-    s->run.div = 0;
-    s->run.prev = 0;
-    s->run.primed = false;
-    for (i = 0; i < X2C_SCOPE_BYTES; i++) {
-        s->buf[i] = 0;
-    }
 }
 
 static uint8_t dataset_of(const x2c_scope_cfg_t *cfg)
