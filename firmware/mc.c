@@ -295,8 +295,9 @@ Q15_INLINE void mc_prepare(mc_t *mc)
  * readings over MC_CALIB_PERIODS (mc_calibrate, before the duties); the
  * period that took the last one ends it after the duties
  * (mc_calibrate_end, from mc_step_finish), so its divisions and the lock's
- * preparation never delay a duty write. */
-static void mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
+ * preparation never delay a duty write. A call, not inlined: its 32-bit
+ * sums would otherwise be copied into each of its three callers. */
+static __attribute__((noinline)) void mc_calibrate(mc_t *mc, const mc_adc_frame_t *in)
 {
     if (mc->timer >= mc->calib_wait && mc->timer - mc->calib_wait < (uint32_t)MC_CALIB_PERIODS) {
         mc->offset_acc_a += in->ia;
@@ -547,8 +548,9 @@ static void mc_protect(mc_t *mc, const mc_events_t *ev)
  * whose first period this is. The bus is checked here too: from STOPPED
  * the overvoltage protection has already tripped, but in FAULT it records
  * nothing (the first cause stays), so a START with the bus still out of
- * its window enters FAULT again with that cause. */
-static void mc_start(mc_t *mc, const mc_adc_frame_t *in)
+ * its window enters FAULT again with that cause. Once a start, so a call
+ * rather than a copy in each state handler that starts. */
+static __attribute__((noinline)) void mc_start(mc_t *mc, const mc_adc_frame_t *in)
 {
     if (mc->vbus <= MC_VBUS_UV_Q15 || mc->vbus >= MC_VBUS_OV_Q15) {
         mc_enter_fault(mc,
