@@ -25,19 +25,18 @@
  *
  * The segment width is never computed in Q15 (AN1078's Q15(a - b + 1)
  * overflowed 16 bits): fieldweak_init takes the span D = max - nominal
- * (1..32767 counts) and stores a normalised reciprocal recip = round(2^(16 +
- * shift) / D) in [2^16, 2^17). fieldweak_id_ref then divides nothing: the
- * segment index comes from one multiply by recip and is made exact with the
- * integer remainder r = 15 (s - nominal) - i D (corrected by one step if
- * needed); the fraction f = r / D is r * recip >> shift, a Q16 fraction.
+ * (1..32767 counts). fieldweak_id_ref divides 15 (s - nominal) by D for the
+ * segment index i and the remainder r = 15 (s - nominal) - i D, both exact,
+ * and r 2^16 by D for the fraction f = r / D as a Q16 value, rounded: two
+ * 32 / 16 divisions (the dsPIC's div.ud).
  *
  * Scaling and overflow: speeds Q15 in the caller's speed units, currents
  * Q15 of the current full scale. All intermediates are unsigned 32-bit
- * products of a 16-bit and a 17-bit value (< 2^32); the interpolation
+ * (fieldweak.c note 2); the interpolation
  * step (up to 65535 LSB between adjacent entries) is applied in 32 bits
  * and rounded once (nearest, ties up). The result lies between the two
  * bracketing table entries, so it cannot overflow.
- * Accuracy: |Id_ref - exact interpolation| <= 0.5 LSB + |step| / 65536 LSB
+ * Accuracy: |Id_ref - exact interpolation| <= 0.5 LSB + |step| / 131072 LSB
  * (step = difference of the bracketing entries); at table points, below
  * nominal and above max exact. test/foc/test_fieldweak.c checks it over
  * every speed -32768..32767 for an AN1078-like falling table (0 to -0.7)
@@ -56,15 +55,13 @@ typedef struct {
 typedef struct {
     const fieldweak_params_t *p; /* the parameters (constant: kept, not copied) */
     uint16_t span;               /* speed_max - speed_nominal, counts; 0 = disabled */
-    uint32_t recip;              /* round(2^(16 + shift) / span), in [2^16, 2^17) */
-    uint8_t shift;               /* 0..15 */
 } fieldweak_t;
 
 /* Keep params (which must outlive fw: a constant table, 36 bytes not copied
- * into RAM) and precompute the reciprocal (one division, here only). */
+ * into RAM) and the span. */
 void fieldweak_init(fieldweak_t *fw, const fieldweak_params_t *params);
 
-/* Id reference (Q15 current) for a speed (Q15, either sign). No division. */
+/* Id reference (Q15 current) for a speed (Q15, either sign). */
 q15_t fieldweak_id_ref(const fieldweak_t *fw, q15_t speed);
 
 #endif /* FIELDWEAK_H */

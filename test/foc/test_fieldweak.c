@@ -31,7 +31,7 @@ static double ref_id(const fieldweak_params_t *p, q15_t speed)
     return (double)p->id_table[i] + f * ((double)p->id_table[i + 1] - (double)p->id_table[i]);
 }
 
-/* fieldweak.h: |error| <= 0.5 + |step| / 65536 LSB, step = the difference
+/* fieldweak.h: |error| <= 0.5 + |step| / 131072 LSB, step = the difference
  * of the two bracketing entries. */
 static double bound_at(const fieldweak_params_t *p, q15_t speed)
 {
@@ -45,7 +45,7 @@ static double bound_at(const fieldweak_params_t *p, q15_t speed)
         return 0.0; /* table end or zero: exact */
     }
     int i = (int)floor(15.0 * (s - nom) / (max - nom));
-    return 0.5 + fabs((double)p->id_table[i + 1] - (double)p->id_table[i]) / 65536.0 + 1e-9;
+    return 0.5 + fabs((double)p->id_table[i + 1] - (double)p->id_table[i]) / 131072.0 + 1e-9;
 }
 
 /* A falling Id table like AN1078's dqKfw0..15 (0 down to -0.7 of full scale,
@@ -101,7 +101,7 @@ static void test_fieldweak_id_ref_should_match_linear_interpolation_over_every_s
     printf("measured: fieldweak AN1078-like: largest |err| minus its bound: %.4f LSB\n",
            worst_excess);
     assert_cmp(worst_excess, <=, 0.0);
-    assert_cmp(e.max_abs, <=, 0.5 + 23000.0 / 65536.0);
+    assert_cmp(e.max_abs, <=, 0.5 + 23000.0 / 131072.0);
 }
 
 static void test_fieldweak_id_ref_should_stay_in_bound_for_random_and_extreme_tables(void **state)
@@ -131,10 +131,10 @@ static void test_fieldweak_id_ref_should_stay_in_bound_for_random_and_extreme_ta
     }
     err_stats_print("fieldweak random/alternating +-full-scale tables, 40 x 65536 speeds", &e,
                     "LSB");
-    printf("measured: fieldweak: largest |err| minus its bound 0.5 + |step|/65536: %.4f LSB\n",
+    printf("measured: fieldweak: largest |err| minus its bound 0.5 + |step|/131072: %.4f LSB\n",
            worst_excess);
     assert_cmp(worst_excess, <=, 0.0);
-    assert_cmp(e.max_abs, <=, 0.5 + 65535.0 / 65536.0);
+    assert_cmp(e.max_abs, <=, 0.5 + 65535.0 / 131072.0);
 }
 
 /* Speeds at the table points (15 (s - nominal) a multiple of the span)

@@ -837,8 +837,6 @@ static void vec_fieldweak(void)
         emit_i16(p.speed_max);
         emit_sep();
         emit_u16(fw.span);
-        emit_u32(fw.recip);
-        emit_u8(fw.shift);
         emit_end();
         for (i = 0U; i < 100U; i++) {
             int16_t speed;
