@@ -60,6 +60,8 @@ Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= X2C_WINDOW_MOTOR - X2C_WINDOW_SCOPE, "buffe
 Q15_STATIC_ASSERT(sizeof(mc_t) <= 0x10000UL - X2C_WINDOW_MOTOR, "mc_t exceeds the window");
 #endif
 Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= 0xFFFFU, "the buffer's size is 16-bit");
+Q15_STATIC_ASSERT((long)(MC_SPEED_FULLSCALE_RPM + 0.5) < 65536L,
+                  "speed_ref_rpm's conversion divides by the full scale in 16 bits");
 /* save parameter: 3 + state, nch, prescaler + 6 a channel + the trigger's 12 + its level */
 Q15_STATIC_ASSERT(3U + 4U + 6U * X2C_SCOPE_CHANNELS + 12U + 4U <= X2C_REQUEST_MAX,
                   "the request buffer cannot hold a full scope configuration");
@@ -203,10 +205,15 @@ static uint8_t set_speed(x2c_t *x, int16_t rpm)
         return X2C_ERR_LIMIT;
     }
     {
-        const int32_t fs = (int32_t)(MC_SPEED_FULLSCALE_RPM + 0.5);
-        /* rpm * 32768 / fs, rounded: 0 < rpm < 2^15, so the product fits in 31 bits */
-        int32_t q = ((int32_t)rpm * (int32_t)32768 + fs / 2) / fs;
-        x->ref_seq_mine = motor_set_reference((int16_t)(q > 32767 ? 32767 : q));
+        /* rpm * 32768 / fs, rounded, by the 32 / 16 divider: below fs the
+         * quotient is below 2^15; from fs up it would not be, and is full
+         * scale anyway */
+        const uint16_t fs = (uint16_t)(MC_SPEED_FULLSCALE_RPM + 0.5);
+        int16_t q = 32767;
+        if ((uint16_t)rpm < fs) {
+            q = (int16_t)q15_dsp_divud(((uint32_t)(uint16_t)rpm << 15) + fs / 2U, fs);
+        }
+        x->ref_seq_mine = motor_set_reference(q);
         x->remote = true;
         return X2C_ERR_OK;
     }

@@ -8,6 +8,7 @@
 
 #if X2C_SCOPE /* else the target has no scope (x2c_scope.h) */
 
+#include "q15_dsp.h"
 #include "x2c.h"
 
 void x2c_scope_init(x2c_scope_t *s)
@@ -26,6 +27,24 @@ static uint8_t dataset_of(const x2c_scope_cfg_t *cfg)
         n = (uint8_t)(n + cfg->size[i]);
     }
     return n;
+}
+
+/* |v| as unsigned (|INT32_MIN| included). */
+static uint32_t mag_of(int32_t v)
+{
+    return (v < 0) ? (uint32_t)0U - (uint32_t)v : (uint32_t)v;
+}
+
+/* |v| mod d for d in 1..255, by two 32 / 16 divisions (each quotient fits
+ * 16 bits: the high half's is below 2^16, the second's dividend below
+ * d 2^16), so no 32-bit division helper is linked. */
+static uint16_t mag_rem(int32_t v, uint8_t d)
+{
+    uint32_t m = mag_of(v);
+    uint16_t hi = (uint16_t)(m >> 16);
+    uint16_t r = (uint16_t)(hi - (uint16_t)(q15_dsp_divud(hi, d) * d));
+    uint32_t lo = ((uint32_t)r << 16) | (uint16_t)m;
+    return (uint16_t)(lo - (uint32_t)q15_dsp_divud(lo, d) * d);
 }
 
 static bool width_ok(uint8_t n)
@@ -58,7 +77,7 @@ uint8_t x2c_scope_check(const x2c_scope_cfg_t *cfg)
         if (!width_ok(n) || ((cfg->trig_dtype & X2C_TRIG_FLOAT) != 0U && n != 4U)) {
             return X2C_ERR_FORMAT;
         }
-        if (cfg->delay % (int32_t)dataset != 0) {
+        if (mag_rem(cfg->delay, dataset) != 0U) {
             return X2C_ERR_FORMAT; /* the client sends whole datasets */
         }
         if (cfg->delay >= (int32_t)used) {
@@ -119,8 +138,11 @@ void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
     } else {
         s->run.left = (cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
     }
-    /* the negative delay in datasets, divided here, not in the interrupt */
-    s->run.wait = (cfg->delay < 0) ? (uint32_t)(-(cfg->delay / (int32_t)s->dataset)) : (uint32_t)0;
+    /* the negative delay in datasets, divided here, not in the interrupt;
+     * x2c_scope_check bounds it by X2C_SCOPE_WAIT_MAX datasets, so the
+     * quotient fits the 32 / 16 divider's 16 bits */
+    s->run.wait =
+        (cfg->delay < 0) ? (uint32_t)q15_dsp_divud(mag_of(cfg->delay), s->dataset) : (uint32_t)0;
     s->run.div = 0;
     s->run.prev = 0;
     s->run.primed = false;
