@@ -59,7 +59,8 @@ Q15_STATIC_ASSERT(sizeof(mc_id_result_t) <= X2C_WINDOW_SCOPE - X2C_WINDOW_ID, "r
 Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= X2C_WINDOW_MOTOR - X2C_WINDOW_SCOPE, "buffer overlaps");
 Q15_STATIC_ASSERT(sizeof(mc_t) <= 0x10000UL - X2C_WINDOW_MOTOR, "mc_t exceeds the window");
 #endif
-Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= 0xFFFFU, "the buffer's size is 16-bit");
+Q15_STATIC_ASSERT(X2C_SCOPE_BYTES <= X2C_ROW_SIZE_MAX, "the buffer's size exceeds a row's");
+Q15_STATIC_ASSERT(X2C_OBJ_COUNT <= 4U, "a row's object is 2 bits");
 Q15_STATIC_ASSERT((long)(MC_SPEED_FULLSCALE_RPM + 0.5) < 65536L,
                   "speed_ref_rpm's conversion divides by the full scale in 16 bits");
 /* save parameter: 3 + state, nch, prescaler + 6 a channel + the trigger's 12 + its level */

@@ -167,12 +167,16 @@ typedef enum { X2C_OBJ_MOTOR, X2C_OBJ_TUNE, X2C_OBJ_SCOPE, X2C_OBJ_ID, X2C_OBJ_C
 #define X2C_ROW_TUNE    0x02U /* writable, through the mailbox (x2c.c, tune_apply) */
 #define X2C_ROW_CHANNEL 0x04U /* a scope channel or trigger source (not the scope's own buffer) */
 
+/* Four bytes a row (the table is in flash: 2 of every 3 bytes of a program
+ * word hold it): the size in 11 bits (the scope's buffer, the largest row,
+ * is checked against it in x2c.c), the object in 2, the flags in 3. */
 typedef struct {
-    uint16_t offset; /* in its object, bytes */
-    uint16_t size;   /* bytes */
-    uint8_t obj;     /* x2c_obj_t */
-    uint8_t flags;   /* X2C_ROW_* */
+    uint16_t offset;    /* in its object, bytes */
+    uint16_t size : 11; /* bytes */
+    uint16_t obj : 2;   /* x2c_obj_t */
+    uint16_t flags : 3; /* X2C_ROW_* */
 } x2c_row_t;
+#define X2C_ROW_SIZE_MAX 2047U
 
 /* The rows, in the order above (const: program memory on the dsPIC). */
 extern const x2c_row_t x2c_rows[X2C_ROWS];
