@@ -36,6 +36,17 @@
  * what the alternatives cost).
  */
 
+/* The dead-time compensation's linear band now (mc_internal.h
+ * mc_deadtime_counts): the build's, MC_DT_BAND_Q15, but while an
+ * identification runs the one its command sets (mc_id_cmd_t.dt_band),
+ * which mc_id_stop puts back; an image without the identification has the
+ * constant, its code as before. */
+#if MC_IDENTIFY
+#define MC_DT_BAND_NOW(mc) ((mc)->id_isr.dt_band)
+#else
+#define MC_DT_BAND_NOW(mc) MC_DT_BAND_Q15
+#endif
+
 #define MC_VMAX_SQ  ((int32_t)MC_VMAX_Q15 * (int32_t)MC_VMAX_Q15)
 #define MC_VNEAR_SQ ((int32_t)(MC_VMAX_Q15 * 7L / 8L) * (int32_t)(MC_VMAX_Q15 * 7L / 8L))
 
@@ -192,9 +203,9 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
 
     /* 16-bit arithmetic: PWM_DUTY_MAX plus the dead-time counts fits int16
      * (mc_derived.h checks it). */
-    int16_t dt0 = mc_deadtime_counts(iph[0], mc->dt_counts, mc->dt_slope);
-    int16_t dt1 = mc_deadtime_counts(iph[1], mc->dt_counts, mc->dt_slope);
-    int16_t dt2 = mc_deadtime_counts(iph[2], mc->dt_counts, mc->dt_slope);
+    int16_t dt0 = mc_deadtime_counts(iph[0], mc->dt_counts, mc->dt_slope, MC_DT_BAND_NOW(mc));
+    int16_t dt1 = mc_deadtime_counts(iph[1], mc->dt_counts, mc->dt_slope, MC_DT_BAND_NOW(mc));
+    int16_t dt2 = mc_deadtime_counts(iph[2], mc->dt_counts, mc->dt_slope, MC_DT_BAND_NOW(mc));
     int16_t d0 = (int16_t)sv.duty[0];
     int16_t d1 = (int16_t)sv.duty[1];
     int16_t d2 = (int16_t)sv.duty[2];

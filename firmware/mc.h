@@ -369,6 +369,8 @@ typedef struct {
     uint32_t zh;     /* ... the signs of the commands before, one bit a period (1: +) */
     q15_t i_prev;    /* the injected axis's current at the previous sample */
     q15_t u_prev;    /* ... and the voltage commanded two periods ago */
+    q15_t dt_band;   /* the dead-time compensation's band, Q15 I_FS (MC_DT_BAND_Q15 but while
+                        the sequence's command sets another) */
     bool open;       /* the last command was open loop */
     bool pending;    /* CALIBRATE before IDENTIFY */
 } mc_id_isr_t;

@@ -90,6 +90,9 @@ void mc_init(mc_t *mc)
     mc->ripple_gain = RIPPLE_ONE;
     mc->dt_counts = MC_DT_COUNTS;
     mc->dt_slope = MC_DT_SLOPE;
+#if MC_IDENTIFY
+    mc->id_isr.dt_band = MC_DT_BAND_Q15;
+#endif
     mc_outputs_off(mc);
 #if MC_DRIVE
     mc->slow.epoch = mc->epoch;

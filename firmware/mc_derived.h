@@ -816,7 +816,7 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
             (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */         \
             (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */            \
             MC_ID_WC_TS, (uint16_t)MC_SLOW_STEP_PERIODS, (int16_t)PWM_DUTY_MAX, Q15(MC_SAMPLE_AT), \
-            MC_ID_ACCEL, MC_ID_STEP_MAX, MC_ID_DAMP                                                \
+            MC_ID_ACCEL, MC_ID_STEP_MAX, MC_ID_DAMP, MC_DT_BAND_Q15                                \
     }
 /* the spin's damping (mc_id.c note 5): the forced speed moved by
  * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */

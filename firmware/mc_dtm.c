@@ -115,7 +115,7 @@ void mc_dtm_window(mc_dtm_t *m, const mc_slow_in_t *si, mc_slow_out_t *so)
                     int16_t dt = (m->slow && !still) ? si->dt_counts
                                                      : mc_deadtime_from_lock(si->dt_counts, avg, d);
                     so->dt_counts = dt;
-                    so->dt_slope = mc_deadtime_slope(dt); /* dt < MC_DT_BAND_Q15 */
+                    so->dt_slope = mc_deadtime_slope(dt, MC_DT_BAND_Q15); /* dt < the band */
                     so->lock_done = true;
                     m->phase = MC_DTM_DONE;
                 }

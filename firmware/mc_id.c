@@ -308,6 +308,7 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->p = p;
     id->r_q16 = -1; /* R unknown */
     id->cmd.v_d = ID_V_START;
+    id->cmd.dt_band = p->dt_band; /* the build's band, for the whole run */
     id->cmd.inj_half = ID_HALF_MIN;
     id->cmd.open_loop = true;
     id_stage(id, MC_ID_STAGE_RAMP);

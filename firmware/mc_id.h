@@ -89,6 +89,7 @@ typedef struct {
     uint32_t step_max; /* its speed limit (MC_ID_SPEED_MAX_RPM), 2^32 a turn per period */
     uint32_t damp;     /* the spin's damping: forced speed per radian of the rotor's swing
                           (MC_ID_DAMP_HZ), 2^32 a turn per period */
+    q15_t dt_band;     /* the build's dead-time band (MC_DT_BAND_Q15), Q15 I_FS */
 } mc_id_params_t;
 
 /* What the interrupt summed over one window (MC_SLOW_STEP_PERIODS periods). */
@@ -121,6 +122,7 @@ typedef struct {
     uint8_t inj_half;  /* periods per half cycle of the injected square wave */
     int32_t accel;     /* change of the forced speed per period, 2^32 a turn per period */
     int16_t dt_counts; /* dead-time compensation, duty counts (0 while measuring it) */
+    q15_t dt_band;     /* ... its linear band, Q15 I_FS, above dt_counts */
     bool open_loop;    /* the PI integrals are set to v_d, v_q (and the injection) */
     bool end;          /* the sequence is over: outputs off, STOPPED */
 } mc_id_cmd_t;

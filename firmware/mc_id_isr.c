@@ -42,9 +42,11 @@ void mc_id_apply(mc_t *mc, const mc_id_cmd_t *c)
     mc->id_isr.half = c->inj_half;
     mc->i_ref = c->i_ref;
     mc->id_isr.inc = (uint32_t)c->accel;
-    if (c->dt_counts != mc->dt_counts) {
+    if (c->dt_counts != mc->dt_counts || c->dt_band != mc->id_isr.dt_band) {
+        /* the command's band is above its dead time: the slope below 2^15 */
         mc->dt_counts = c->dt_counts;
-        mc->dt_slope = mc_deadtime_slope(c->dt_counts);
+        mc->id_isr.dt_band = c->dt_band;
+        mc->dt_slope = mc_deadtime_slope(c->dt_counts, c->dt_band);
     }
 }
 
@@ -93,6 +95,7 @@ void mc_id_stop(mc_t *mc, uint16_t error)
     mc->pi_q.p.kp_shift = MC_CUR_KP_SHIFT;
     mc->dt_counts = MC_DT_COUNTS;
     mc->dt_slope = MC_DT_SLOPE;
+    mc->id_isr.dt_band = MC_DT_BAND_Q15;
 }
 
 bool mc_id_pending(const mc_t *mc)

@@ -8,31 +8,34 @@
 
 /*
  * Dead-time correction of one phase, in duty counts: +dt for a current at
- * or above +MC_DT_BAND_Q15 (into the motor: during the dead time the
- * low-side diode conducts and the phase sits at the negative rail, so the
- * inverter applies less than commanded), -dt at or below -MC_DT_BAND_Q15,
- * and linear in between: (i * slope) >> 15 (rounded), so the correction
- * does not chatter around a zero crossing. dt: the dead time in use, duty
- * counts (MC_DT_COUNTS, or what the lock measured); slope: dt * 2^15 /
- * MC_DT_BAND_Q15, rounded, below 2^15.
- * i: Q15 of BOARD_I_FULLSCALE_A. Result in [-dt, dt].
+ * or above +band (into the motor: during the dead time the low-side diode
+ * conducts and the phase sits at the negative rail, so the inverter
+ * applies less than commanded), -dt at or below -band, and linear in
+ * between: (i * slope) >> 15 (rounded), so the correction does not chatter
+ * around a zero crossing. dt: the dead time in use, duty counts
+ * (MC_DT_COUNTS, or what the lock measured); band: the linear band, Q15 of
+ * BOARD_I_FULLSCALE_A, above dt (MC_DT_BAND_Q15; the identification's
+ * spin, one from the inductance it measured: mc_id.c note 7); slope:
+ * mc_deadtime_slope(dt, band), below 2^15. i: Q15 of BOARD_I_FULLSCALE_A.
+ * Result in [-dt, dt].
  */
-Q15_INLINE int16_t mc_deadtime_counts(q15_t i, int16_t dt, q15_t slope)
+Q15_INLINE int16_t mc_deadtime_counts(q15_t i, int16_t dt, q15_t slope, q15_t band)
 {
-    if (i >= MC_DT_BAND_Q15) {
+    if (i >= band) {
         return dt;
     }
-    if (i <= (q15_t)(-MC_DT_BAND_Q15)) {
+    if (i <= (q15_t)(-band)) {
         return (int16_t)(-dt);
     }
     return q15_mul(i, slope); /* round(i slope / 2^15), |.| < dt + 1 */
 }
 
-/* The in-band slope of a dead time dt (duty counts, below MC_DT_BAND_Q15):
- * dt * 2^15 / MC_DT_BAND_Q15, rounded; below 2^15. */
-Q15_INLINE q15_t mc_deadtime_slope(int16_t dt)
+/* The in-band slope of a dead time dt (duty counts, 0 <= dt < band) and a
+ * band (Q15 of BOARD_I_FULLSCALE_A, > 0): dt * 2^15 / band, rounded; below
+ * 2^15. */
+Q15_INLINE q15_t mc_deadtime_slope(int16_t dt, q15_t band)
 {
-    return q15_dsp_divsd(((int32_t)dt << 15) + MC_DT_BAND_Q15 / 2, MC_DT_BAND_Q15);
+    return q15_dsp_divsd(((int32_t)dt << 15) + band / 2, band);
 }
 
 /*

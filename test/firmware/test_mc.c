@@ -681,9 +681,9 @@ static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_ba
     const int16_t dts[3] = {MC_DT_COUNTS, MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX};
     for (int k = 0; k < 3; k++) {
         int16_t dt = dts[k];
-        q15_t slope = (k == 0) ? MC_DT_SLOPE : mc_deadtime_slope(dt);
+        q15_t slope = (k == 0) ? MC_DT_SLOPE : mc_deadtime_slope(dt, MC_DT_BAND_Q15);
         if (k == 0) { /* the run-time slope of the programmed dead time is the constant */
-            assert_int_equal(mc_deadtime_slope(dt), MC_DT_SLOPE);
+            assert_int_equal(mc_deadtime_slope(dt, MC_DT_BAND_Q15), MC_DT_SLOPE);
         }
         err_stats_t e;
         err_stats_init(&e);
@@ -696,21 +696,79 @@ static void test_deadtime_counts_should_follow_the_current_sign_with_a_linear_ba
             } else {
                 ref = (double)dt * i / MC_DT_BAND_Q15;
             }
-            int16_t got = mc_deadtime_counts((q15_t)i, dt, slope);
+            int16_t got = mc_deadtime_counts((q15_t)i, dt, slope, MC_DT_BAND_Q15);
             assert_cmp(got, >=, -dt);
             assert_cmp(got, <=, dt);
             err_stats_add(&e, got - ref, (double)i);
         }
         err_stats_print("dead-time correction vs sign with linear band", &e, "counts");
         assert_cmp(e.max_abs, <=, 0.51);
-        assert_int_equal(mc_deadtime_counts(0, dt, slope), 0);
-        assert_int_equal(mc_deadtime_counts(32767, dt, slope), dt);
-        assert_int_equal(mc_deadtime_counts(-32768, dt, slope), -dt);
+        assert_int_equal(mc_deadtime_counts(0, dt, slope, MC_DT_BAND_Q15), 0);
+        assert_int_equal(mc_deadtime_counts(32767, dt, slope, MC_DT_BAND_Q15), dt);
+        assert_int_equal(mc_deadtime_counts(-32768, dt, slope, MC_DT_BAND_Q15), -dt);
     }
     printf("measured: dead time %d counts = %.2f %% of the period (a lock may set %d..%d), band %d "
            "LSB = %.3f A\n",
            MC_DT_COUNTS, 100.0 * MC_DT_COUNTS / PWM_DUTY_MAX, MC_DT_COUNTS_MIN, MC_DT_COUNTS_MAX,
            MC_DT_BAND_Q15, MC_DT_BAND_Q15 * BOARD_I_FULLSCALE_A / 32768.0);
+}
+
+/* A run-time band (the identification's spin sets one from the inductance
+ * it measured, dt + 1 .. 8192): against the double reference dt i / band
+ * for every dead time the identification may set up to twice the largest
+ * a lock may (0 included), bands from dt + 1 (the slope's largest, just
+ * below 2^15) in steps of a tenth up to 8192, the build's and the
+ * largest q15; every current within two of the band's edges, and out to
+ * full scale in steps. The slope is rounded to half an LSB: in the band
+ * that adds up to |i| / 2^16 < band / 2^16 counts to the product's
+ * half. */
+static void test_deadtime_counts_should_follow_a_run_time_band(void **state)
+{
+    (void)state;
+    long cases = 0;
+    double worst = 0.0;
+    for (int32_t dt = 0; dt <= 2 * MC_DT_COUNTS_MAX; dt = (dt < 8) ? dt + 1 : dt + 1 + dt / 16) {
+        int32_t bands[80];
+        int nb = 0;
+        for (int32_t b = dt + 1; b <= 8192 && nb < 76; b = (b < dt + 4) ? b + 1 : b + b / 10) {
+            bands[nb++] = b;
+        }
+        bands[nb++] = 8192;
+        bands[nb++] = MC_DT_BAND_Q15;
+        bands[nb++] = 32767;
+        for (int k = 0; k < nb; k++) {
+            int32_t band = bands[k];
+            if (band <= dt) {
+                continue; /* the build's band below a dead time the identification may set */
+            }
+            q15_t slope = mc_deadtime_slope((int16_t)dt, (q15_t)band);
+            double tol = 0.5 + (double)band / 65536.0 + 1e-9;
+            assert_cmp(slope, <, 32768);
+            assert_cmp(fabs(slope - (double)dt * 32768.0 / band), <=, 0.5);
+            for (int32_t i = -32768; i <= 32767; i += (i >= -band - 2 && i <= band + 2) ? 1 : 97) {
+                double ref = (i >= band) ? dt : (i <= -band) ? -dt : (double)dt * i / band;
+                int16_t got = mc_deadtime_counts((q15_t)i, (int16_t)dt, slope, (q15_t)band);
+                double e = fabs(got - ref);
+                assert_cmp(got, >=, -dt);
+                assert_cmp(got, <=, dt);
+                if (e > tol) {
+                    fail_msg("dt %ld band %ld i %ld: %d against %.3f", (long)dt, (long)band,
+                             (long)i, got, ref);
+                }
+                worst = (e - (double)band / 65536.0 > worst) ? e - (double)band / 65536.0 : worst;
+                cases++;
+                if (i < -band - 2 && i + 97 > -band - 2) {
+                    i = -band - 2 - 97; /* onto the band's edge */
+                }
+            }
+            assert_int_equal(mc_deadtime_counts((q15_t)band, (int16_t)dt, slope, (q15_t)band), dt);
+            assert_int_equal(mc_deadtime_counts((q15_t)-band, (int16_t)dt, slope, (q15_t)band),
+                             -dt);
+        }
+    }
+    printf("measured: %ld cases of mc_deadtime_counts with a run-time band, error at most %.3f "
+           "counts beyond the slope's rounding\n",
+           cases, worst);
 }
 
 static void test_deadtime_from_lock_should_scale_the_dead_time_by_the_missed_voltage(void **state)
@@ -918,6 +976,7 @@ int main(void)
                                setup),
         cmocka_unit_test_setup(
             test_deadtime_counts_should_follow_the_current_sign_with_a_linear_band, setup),
+        cmocka_unit_test(test_deadtime_counts_should_follow_a_run_time_band),
         cmocka_unit_test(test_deadtime_from_lock_should_scale_the_dead_time_by_the_missed_voltage),
         cmocka_unit_test_setup(
             test_duty_to_voltage_should_match_the_double_precision_reconstruction, setup),

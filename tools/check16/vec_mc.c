@@ -153,7 +153,7 @@ static void helpers(void)
         emit_i16(vb);
         emit_i16(dt);
         emit_sep();
-        emit_i16(mc_deadtime_counts(i, dt, slope));
+        emit_i16(mc_deadtime_counts(i, dt, slope, MC_DT_BAND_Q15));
         emit_i16(mc_deadtime_from_lock(dt, 3 * (int32_t)i, vb));
         emit_i16(v.alpha);
         emit_i16(v.beta);
