@@ -808,6 +808,19 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
 /* (the angle steps in 2^8 units before the shift: a 32-bit double holds them exactly, note 1) */
 #define MC_ID_STEP_MAX                                                                             \
     ((uint32_t)((double)MC_ID_SPEED_MAX_RPM * MOTOR_POLE_PAIRS / 60.0 * MC_TS_S * 16777216.0) << 8)
+/* The spin's dead-time band from the inductance measured (mc_id.c note 7):
+ * the ripple Vbus / (12 L fpwm), with the bus in Q15 of BOARD_VBUS_FULLSCALE_V
+ * and L in Q12 of Ts Z_FS, is ((vbus k) >> 4) / l in Q15 of I_FS for
+ * k = BOARD_VBUS_FULLSCALE_V / (12 MC_VOLTAGE_FULLSCALE_V) in Q16 (mclv:
+ * 20810, mchv: 11824). */
+#define MC_ID_BAND_K_ ((double)BOARD_VBUS_FULLSCALE_V / (12.0 * MC_VOLTAGE_FULLSCALE_V) * 65536.0)
+#if MC_IDENTIFY
+MC_CHECK_FOR(BOARD_VBUS_FULLSCALE_V, BOARD_VBUS_NOMINAL_V,
+             MC_ID_BAND_K_ >= 1.0 && MC_ID_BAND_K_ < 65535.0,
+             "the identification's band constant (mc_derived.h MC_ID_BAND_K) must fit 16 bits: "
+             "the bus's full scale below 6.9 times its nominal");
+#endif
+#define MC_ID_BAND_K ((uint16_t)(MC_ID_BAND_K_ + 0.5))
 /* mc_id_params_t's initializer (mc_id.h), in its order: the build's values
  * the sequence runs with (mc.c; the tests and check-16bit take the same) */
 #define MC_ID_PARAMS_INIT                                                                          \
@@ -816,7 +829,7 @@ MC_CHECK_FOR(MC_ID_CURRENT_A, BOARD_ADC_BITS, MC_ID_I_Q15 >= 2L * (16L << (16 - 
             (q15_t)((int32_t)MC_VMAX_Q15 * 7L / 10L), /* DC up to 70 % of the limit ... */         \
             (q15_t)(MC_VMAX_Q15 / 4),                 /* ... and the injection: 95 % */            \
             MC_ID_WC_TS, (uint16_t)MC_SLOW_STEP_PERIODS, (int16_t)PWM_DUTY_MAX, Q15(MC_SAMPLE_AT), \
-            MC_ID_ACCEL, MC_ID_STEP_MAX, MC_ID_DAMP, MC_DT_BAND_Q15                                \
+            MC_ID_ACCEL, MC_ID_STEP_MAX, MC_ID_DAMP, MC_DT_BAND_Q15, MC_ID_BAND_K                  \
     }
 /* the spin's damping (mc_id.c note 5): the forced speed moved by
  * -2 pi MC_ID_DAMP_HZ rad/s per radian the load angle swings */

@@ -81,6 +81,7 @@
 #define ID_DAMP_F           8 /* windows: the damping's own low-pass, against the loop's delay */
 #define ID_DAMP_ANGLE_MAX   16384 /* the swing's angle the damping acts on, at most 0.5 rad (Q15) */
 #define ID_SPIN_SWING_MAX   4096  /* the swing's angle the first speed is taken at, at most (Q15) */
+#define ID_DT_BAND_MAX      8192U /* the spin's dead-time band at most: a quarter of I_FS */
 
 #define N_ ((int32_t)id->p->n)
 
@@ -309,11 +310,23 @@ void mc_id_begin(mc_id_t *id, const mc_id_params_t *p, mc_id_cmd_t *cmd)
     id->p = p;
     id->r_q16 = -1; /* R unknown */
     id->cmd.v_d = ID_V_START;
-    id->cmd.dt_band = p->dt_band; /* the build's band, for the whole run */
+    id->cmd.dt_band = p->dt_band; /* the build's band until the spin (note 7) */
     id->cmd.inj_half = ID_HALF_MIN;
     id->cmd.open_loop = true;
     id_stage(id, MC_ID_STAGE_RAMP);
     *cmd = id->cmd;
+}
+
+q15_t mc_id_dt_band(int16_t dt, q15_t vbus, int32_t l, uint16_t k)
+{
+    /* vbus k < 2^31; >> 4: Q15 x Q16 / Q12 -> Q15 */
+    uint32_t n = ((uint32_t)((vbus > 0) ? vbus : 0) * k) >> 4;
+    uint32_t b = mc_id_udiv(n, (uint32_t)l);
+    int32_t lo = (dt > 0) ? (int32_t)dt + 1 : 1;
+    if (b > ID_DT_BAND_MAX) {
+        b = ID_DT_BAND_MAX;
+    }
+    return (q15_t)(((int32_t)b < lo) ? lo : (int32_t)b);
 }
 
 /* ---- RAMP ------------------------------------------------------------------------------ */
@@ -527,6 +540,8 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts =
             (int16_t)((id_sdiv(id->v0, ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
+        /* ... over the band of this motor's PWM ripple (note 7) */
+        c->dt_band = mc_id_dt_band(c->dt_counts, id->vbus, id->l_q12, id->p->band_k);
         c->i_ref.d = (q15_t)(id->i_dc / 3);
         c->i_ref.q = 0;
         id->goal = (int32_t)id->p->accel;
@@ -1026,6 +1041,25 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    reach a quarter of it. (LQ's q bias is no test: on a small R it is
  *    mostly the dead-time voltage phase A's current, in the band, does not
  *    see in full.)
+ *
+ * 7. The spin's dead-time band. The compensation (mc_internal.h
+ *    mc_deadtime_counts) adds the full dead time for a phase current out of
+ *    a band around zero and a share of it inside, where the current's PWM
+ *    ripple reverses it within the period and the inverter loses only part
+ *    of its dead time. The build's band (MC_DEADTIME_BAND_A) is the
+ *    profile's motor's ripple; a motor of a sixth of that inductance has
+ *    six times the ripple, and the band of the profile makes the
+ *    compensation switch the full dead time on currents the inverter
+ *    loses only a part of it on: an error of the voltage that turns with
+ *    the current's phase, which the back-EMF (Ke) takes in (+10 % on a
+ *    motor of R and L x0.15 on the switching inverter). Once L is known
+ *    (the end of LQ) the spin's band is the ripple of that L, Vbus / (12 L
+ *    fpwm) as UserParms.h sizes the build's, from the bus measured while R
+ *    was: ((vbus k) >> 4) / l (mc_derived.h MC_ID_BAND_K), which at the
+ *    profile's L and nominal bus is the build's band (the Hurst: 388
+ *    against MC_DT_BAND_Q15 388), held above the dead time (the slope
+ *    below 2^15) and at most a quarter of I_FS. mc_id_stop puts the
+ *    build's back.
  */
 
 #else

@@ -89,7 +89,8 @@ typedef struct {
     uint32_t step_max; /* its speed limit (MC_ID_SPEED_MAX_RPM), 2^32 a turn per period */
     uint32_t damp;     /* the spin's damping: forced speed per radian of the rotor's swing
                           (MC_ID_DAMP_HZ), 2^32 a turn per period */
-    q15_t dt_band;     /* the build's dead-time band (MC_DT_BAND_Q15), Q15 I_FS */
+    q15_t dt_band;     /* the build's dead-time band (MC_DT_BAND_Q15), Q15 I_FS: until the spin */
+    uint16_t band_k;   /* the spin's band from L (mc_id.c note 7): V_bus_FS / (12 V_FS), Q16 */
 } mc_id_params_t;
 
 /* What the interrupt summed over one window (MC_SLOW_STEP_PERIODS periods). */
@@ -122,7 +123,7 @@ typedef struct {
     uint8_t inj_half;  /* periods per half cycle of the injected square wave */
     int32_t accel;     /* change of the forced speed per period, 2^32 a turn per period */
     int16_t dt_counts; /* dead-time compensation, duty counts (0 while measuring it) */
-    q15_t dt_band;     /* ... its linear band, Q15 I_FS, above dt_counts */
+    q15_t dt_band;     /* ... its linear band, Q15 I_FS, above dt_counts (mc_id.c note 7) */
     bool open_loop;    /* the PI integrals are set to v_d, v_q (and the injection) */
     bool end;          /* the sequence is over: outputs off, STOPPED */
 } mc_id_cmd_t;
@@ -184,6 +185,14 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
 
 /* Ends the sequence with an error (a fault or a stop of the core). */
 void mc_id_fail(mc_id_t *id, uint8_t error);
+
+/* The spin's dead-time band (mc_id.c note 7), Q15 of I_FS: the PWM ripple's
+ * amplitude Vbus / (12 L fpwm) of the inductance measured, ((vbus k) >> 4)
+ * / l, held to [dt + 1, 8192] (the slope dt 2^15 / band below 2^15; at
+ * most a quarter of I_FS). dt: the dead time compensated, duty counts (a
+ * dt below 0 counts as 0); vbus: Q15 of BOARD_VBUS_FULLSCALE_V (below 0
+ * counts as 0); l: L / (Ts Z_FS), Q12, > 0; k: p->band_k. */
+q15_t mc_id_dt_band(int16_t dt, q15_t vbus, int32_t l, uint16_t k);
 
 /* -ln(a), a = a_q30 / 2^30 in (0, 1], as Q24 (0 for a outside): the
  * inductance's exact discrete model (mc.c mc_identify_result). 64-bit

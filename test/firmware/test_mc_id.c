@@ -162,9 +162,69 @@ static void test_exp_neg_should_match_double_over_its_range(void **state)
     assert_int_equal(mc_id_exp_neg_q30(0U), 1UL << 30);
 }
 
-/* ---- the stages fed windows of a resistive motor at rest -------------------- */
-
 static const mc_id_params_t params = MC_ID_PARAMS_INIT;
+
+/* The spin's dead-time band (mc_id.c note 7) against the ripple
+ * Vbus / (12 L fpwm) in double precision from the physical units: the bus
+ * (Q15 of BOARD_VBUS_FULLSCALE_V) from 0 to full scale, L (Q12 of Ts Z_FS)
+ * from 1 LSB to 2^30 in steps of 1/64, dead times from below 0 to beyond
+ * the band's floor; within a count (the division truncates; k's rounding
+ * adds below 2^-14 of the band), never below dt + 1 nor above 8192. At the
+ * profile's L and nominal bus it is the build's band. */
+static double band_ref(int16_t dt, q15_t vbus, int32_t l)
+{
+    double v = (vbus > 0 ? vbus : 0) / 32768.0 * BOARD_VBUS_FULLSCALE_V;
+    double z_fs = MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A;
+    double l_h = l / 4096.0 * z_fs / (double)PWM_FREQUENCY_HZ;
+    double b = v / (12.0 * l_h * (double)PWM_FREQUENCY_HZ) / BOARD_I_FULLSCALE_A * 32768.0;
+    double lo = (dt > 0) ? dt + 1.0 : 1.0;
+    return (b > 8192.0) ? ((lo > 8192.0) ? lo : 8192.0) : (b < lo) ? lo : b;
+}
+
+static void test_the_spin_band_should_be_the_ripple_of_the_measured_inductance(void **state)
+{
+    static const int16_t dts[] = {-7,  0,   1, 2, MC_DT_COUNTS_MIN, MC_DT_COUNTS, MC_DT_COUNTS_MAX,
+                                  400, 2000};
+    long n = 0;
+    double worst = 0.0;
+    (void)state;
+    assert_int_equal(
+        params.band_k,
+        (uint16_t)floor(BOARD_VBUS_FULLSCALE_V / (12.0 * MC_VOLTAGE_FULLSCALE_V) * 65536.0 + 0.5));
+    for (unsigned k = 0; k < sizeof dts / sizeof dts[0]; k++) {
+        for (int32_t vb = 0; vb <= 32767; vb += (vb < 64) ? 1 : 61 + vb / 64) {
+            for (double lf = 1.0; lf < 1073741824.0; lf *= 1.0 + 1.0 / 64.0) {
+                int32_t l = (int32_t)lf;
+                q15_t got = mc_id_dt_band(dts[k], (q15_t)vb, l, params.band_k);
+                double ref = band_ref(dts[k], (q15_t)vb, l);
+                double e = got - ref;
+                if (fabs(e) > 1.0 + ref / 16384.0) {
+                    fail_msg("dt %d vbus %ld l %ld: %d against %.3f", dts[k], (long)vb, (long)l,
+                             got, ref);
+                }
+                assert_true(got > dts[k] && got >= 1);
+                assert_true(got <= 8192 || got == dts[k] + 1);
+                worst = (fabs(e) > worst) ? fabs(e) : worst;
+                n++;
+            }
+        }
+    }
+    {
+        /* the profile's motor on the nominal bus: the build's band */
+        q15_t vnom = MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V);
+        int32_t l = (int32_t)floor(MOTOR_LS_H * (double)PWM_FREQUENCY_HZ /
+                                       (MC_VOLTAGE_FULLSCALE_V / BOARD_I_FULLSCALE_A) * 4096.0 +
+                                   0.5);
+        q15_t b = mc_id_dt_band(MC_DT_COUNTS, vnom, l, params.band_k);
+        printf("measured: %ld cases of the spin's band, |error| at most %.3f LSB; the profile's L "
+               "(%ld Q12) on %.1f V: %d against MC_DT_BAND_Q15 %d (ratio %.4f)\n",
+               n, worst, (long)l, (double)BOARD_VBUS_NOMINAL_V, b, MC_DT_BAND_Q15,
+               (double)b / MC_DT_BAND_Q15);
+        assert_true(fabs((double)b / MC_DT_BAND_Q15 - 1.0) < 0.01);
+    }
+}
+
+/* ---- the stages fed windows of a resistive motor at rest -------------------- */
 
 /* One window at the command's open-loop voltage on a motor of R (Z_FS
  * units) at rest: i = v / R on d, iq on q; returns the stage after it. */
@@ -355,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_udiv_and_mulhi_should_equal_64_bit_arithmetic),
         cmocka_unit_test(test_neg_ln_should_match_double_over_its_range),
         cmocka_unit_test(test_exp_neg_should_match_double_over_its_range),
+        cmocka_unit_test(test_the_spin_band_should_be_the_ripple_of_the_measured_inductance),
         cmocka_unit_test(test_the_ramp_should_raise_the_voltage_until_the_target_current),
         cmocka_unit_test(test_no_current_at_the_largest_voltage_should_be_an_open_circuit),
         cmocka_unit_test(test_a_small_current_at_the_largest_voltage_should_be_too_small),
