@@ -261,35 +261,6 @@ void vec_id(void)
 }
 
 #else
-static void vec_band(void)
-{
-    static const int16_t dts[6] = {-3, 0, 1, MC_DT_COUNTS, MC_DT_COUNTS_MAX, 8191};
-    uint32_t k;
-    emit_section("id_band");
-    emit_i16(params.dt_band);
-    emit_u16(params.band_k);
-    emit_end();
-    for (k = 0; k < 1200U; k++) {
-        int16_t dt = dts[k % 6U];
-        q15_t vb;
-        int32_t l;
-        if (k < 600U) { /* the bus in steps, L a power of two (k / 6 % 31) */
-            vb = (q15_t)((k / 6U % 9U) * 4095U);
-            l = (int32_t)1 << (k / 6U % 31U);
-        } else {
-            vb = (q15_t)vec_rand_between(0, 32767);
-            l = (int32_t)(vec_rand_u32() >> (1U + vec_rand_u16() % 30U));
-            l = (l < 1) ? 1 : l;
-        }
-        emit_i16(dt);
-        emit_i16(vb);
-        emit_i32(l);
-        emit_sep();
-        emit_i16(mc_id_dt_band(dt, vb, l, params.band_k));
-        emit_end();
-    }
-}
-
 void vec_id(void)
 {
     emit_section("id_absent");
