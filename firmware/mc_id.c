@@ -321,12 +321,18 @@ q15_t mc_id_dt_band(int16_t dt, q15_t vbus, int32_t l, uint16_t k)
 {
     /* vbus k < 2^31; >> 4: Q15 x Q16 / Q12 -> Q15 */
     uint32_t n = ((uint32_t)((vbus > 0) ? vbus : 0) * k) >> 4;
-    uint32_t b = mc_id_udiv(n, (uint32_t)l);
+    uint32_t d = (uint32_t)l;
     int32_t lo = (dt > 0) ? (int32_t)dt + 1 : 1;
-    if (b > ID_DT_BAND_MAX) {
-        b = ID_DT_BAND_MAX;
+    int32_t b;
+    /* one 32 / 16 division (div.ud): an l past 16 bits loses its low bits
+     * with n's (the quotient, below 2^11 there, by less than 2^-15 of it) */
+    while (d > 0xFFFFU) {
+        d >>= 1;
+        n >>= 1;
     }
-    return (q15_t)(((int32_t)b < lo) ? lo : (int32_t)b);
+    b = (n >= (uint32_t)ID_DT_BAND_MAX * d) ? (int32_t)ID_DT_BAND_MAX
+                                            : (int32_t)q15_dsp_divud(n, (uint16_t)d);
+    return (q15_t)((b < lo) ? lo : b);
 }
 
 /* ---- RAMP ------------------------------------------------------------------------------ */
@@ -540,8 +546,6 @@ static void id_inductance(mc_id_t *id, const mc_id_win_t *w)
         /* Vd = sqrt(3)/2 v0 = v0 / 32768 Vnom / 2 volts, in duty counts of the bus */
         c->dt_counts =
             (int16_t)((id_sdiv(id->v0, ID_R_WINDOWS * N_) * id->p->duty_max + 32768L) / 65536L);
-        /* ... over the band of this motor's PWM ripple (note 7) */
-        c->dt_band = mc_id_dt_band(c->dt_counts, id->vbus, id->l_q12, id->p->band_k);
         c->i_ref.d = (q15_t)(id->i_dc / 3);
         c->i_ref.q = 0;
         id->goal = (int32_t)id->p->accel;
@@ -776,6 +780,10 @@ static void id_spin(mc_id_t *id, const mc_id_win_t *w)
     id_damp(id, w, mag, it, id->stage != MC_ID_STAGE_SPIN1 || id->wins > ID_SPIN_START);
     switch (id->stage) {
         case MC_ID_STAGE_SPIN1:
+            if (id->wins == 1U) {
+                /* the dead time over the band of this motor's PWM ripple (note 7) */
+                c->dt_band = mc_id_dt_band(c->dt_counts, id->vbus, id->l_q12, id->p->band_k);
+            }
             if (id->wins <= ID_SPIN_START) {
                 return;
             }
@@ -1056,9 +1064,13 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    (the end of LQ) the spin's band is the ripple of that L, Vbus / (12 L
  *    fpwm) as UserParms.h sizes the build's, from the bus measured while R
  *    was: ((vbus k) >> 4) / l (mc_derived.h MC_ID_BAND_K), which at the
- *    profile's L and nominal bus is the build's band (the Hurst: 388
+ *    profile's L and nominal bus is the build's band (the Hurst: 387
  *    against MC_DT_BAND_Q15 388), held above the dead time (the slope
- *    below 2^15) and at most a quarter of I_FS. mc_id_stop puts the
+ *    below 2^15) and at most a quarter of I_FS. It is computed in the
+ *    spin's first window and acts from its second, long before the loops
+ *    have settled (ID_SPIN_START): not in LQ's last window, the slow
+ *    step's heaviest, whose AVR figure the call alone raised by 1,000
+ *    cycles (avr-gcc's register use in mc_id_window). mc_id_stop puts the
  *    build's back.
  */
 
