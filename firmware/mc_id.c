@@ -1069,9 +1069,7 @@ void mc_id_window(mc_id_t *id, const mc_id_win_t *w, q15_t vbus, mc_id_cmd_t *cm
  *    below 2^15) and at most a quarter of I_FS. It is computed in the
  *    spin's first window and acts from its second, long before the loops
  *    have settled (ID_SPIN_START): not in LQ's last window, the slow
- *    step's heaviest, whose AVR figure the call alone raised by 1,000
- *    cycles (avr-gcc's register use in mc_id_window). mc_id_stop puts the
- *    build's back.
+ *    step's heaviest already. mc_id_stop puts the build's back.
  */
 
 #else
