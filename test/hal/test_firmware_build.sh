@@ -61,12 +61,18 @@ print)
     n_cc=$(grep -c -- ' -c ' "$f")
     echo "measured: $2: $n_cc compile lines for $n_src sources, $(grep -c 'xc16-bin2hex' "$f") bin2hex line(s)"
     [ "$n_cc" -eq "$n_src" ] || fail "$2: $n_cc compile lines, $n_src sources"
-    [ "$(grep -- ' -c ' "$f" | grep -cE -- '-mcpu=33FJ32MC204 -omf=elf -O[12] -g -fno-short-double')" -eq "$n_cc" ] ||
-      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O1|-O2 -g -fno-short-double"
-    # the interrupt's path at -O2, the main loop's cold files at -O1
-    grep -- ' -c firmware/mc.c ' "$f" | grep -q -- ' -O2 ' || fail "$2: mc.c not at -O2"
-    grep -- ' -c hal/dspic33f/hal_isr.c ' "$f" | grep -q -- ' -O2 ' || fail "$2: hal_isr.c not at -O2"
-    grep -- ' -c firmware/app.c ' "$f" | grep -q -- ' -O1 ' || fail "$2: app.c not at -O1"
+    [ "$(grep -- ' -c ' "$f" | grep -cE -- '-mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -mcpu=33FJ32MC204 -omf=elf -O2 -g -fno-short-double"
+    # every file without the block copies; the interrupt's path with -O2's inlining, the
+    # cold files without the small functions' (tools/firmware_build, "Code size")
+    [ "$(grep -- ' -c ' "$f" | grep -c -- ' -fno-reorder-blocks ')" -eq "$n_cc" ] ||
+      fail "$2: a compile line lacks -fno-reorder-blocks"
+    grep -- ' -c firmware/mc.c ' "$f" | grep -q -- ' -fno-inline-small-functions ' &&
+      fail "$2: mc.c, the interrupt's path, without -O2's inlining"
+    grep -- ' -c hal/dspic33f/hal_isr.c ' "$f" | grep -q -- ' -fno-inline-small-functions ' &&
+      fail "$2: hal_isr.c without -O2's inlining"
+    grep -- ' -c firmware/app.c ' "$f" | grep -q -- ' -fno-inline-small-functions -fno-tree-ch -fno-tree-pre ' ||
+      fail "$2: app.c without the cold files' flags"
     [ "$(grep -- ' -c ' "$f" | grep -c -- '-DMC_BOARD_MCLV -DMC_MOTOR_HURST')" -eq "$n_cc" ] ||
       fail "$2: a compile line lacks the board/motor defines"
     grep -q -- ' -c hal/dspic33f/hal_isr.c ' "$f" || fail "$2: hal_isr.c not compiled"
@@ -148,9 +154,15 @@ mplabx)
   cc_line=$("${clean_env[@]}" "$root/tools/firmware_build" --print mclv hurst | grep ' -c ' | head -1)
   for flag in -fno-short-double -std=gnu99; do
     case " $cc_line " in *" $flag "*) ;; *) fail "make firmware lacks $flag" ;; esac
-    [ "$(grep -c "<appendMe value=\"[^\"]*$flag" "$committed")" -eq 2 ] ||
-      fail "the MPLAB X project does not append $flag in C30 and C30-LD"
+    [ "$(grep -c "<appendMe value=\"[^\"]*$flag" "$committed")" -eq "$(grep -c '<appendMe ' "$committed")" ] ||
+      fail "the MPLAB X project does not append $flag in every appendMe (C30, C30-LD, the cold files)"
   done
+  n_cold=$(grep -c '<item path=' "$committed")
+  [ "$(grep -c '<appendMe value="[^"]* -fno-reorder-blocks' "$committed")" -eq $((n_cold + 1)) ] ||
+    fail "the MPLAB X project does not compile every file with -fno-reorder-blocks"
+  [ "$(grep -c '<appendMe value="[^"]* -fno-inline-small-functions -fno-tree-ch -fno-tree-pre"' "$committed")" -eq "$n_cold" ] ||
+    fail "the MPLAB X project's cold files lack their flags"
+  echo "measured: MPLAB X project: $n_cold cold files with their own flags"
   grep -q 'key="oXC16ld-stackguard" value="16"' "$committed" || fail "stack guard key"
   grep -q 'key="fno-short-double"' "$committed" && fail "fno-short-double is no MPLAB X key"
   echo "measured: MPLAB X appends -fno-short-double -std=gnu99 to the compiler and the linker"
