@@ -147,7 +147,7 @@ Q15_INLINE void mc_current_control(mc_t *mc, sincos_q15_t sc, sincos_q15_t scv)
         ab_q15_t r;
         r.alpha = mc->i_ref.d;
         r.beta = mc->i_ref.q;
-        ref = park_forward(r, sincos_compute(mc->theta_offset));
+        ref = park_forward(r, sincos_call(mc->theta_offset));
     }
     mc->i_ref_frame = ref;
 

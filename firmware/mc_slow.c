@@ -246,7 +246,7 @@ static void mc_slow_run(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in
      * on the estimated q axis low-passed over 32 windows (the hand-off's
      * preset, mc_enter_closed_loop). */
     if (si->state == MC_STATE_OPEN_LOOP) {
-        q15_t iq = park_forward(si->i_ab, sincos_compute(si->theta_est)).q;
+        q15_t iq = park_forward(si->i_ab, sincos_call(si->theta_est)).q;
         sl->ol_iq_acc += (int32_t)iq - sl->ol_iq_acc / 32; /* |acc| <= 32 * 32768 */
     } else {
         sl->ol_iq_acc = 0;

@@ -44,3 +44,8 @@ const q15_t sincos_table[SINCOS_TABLE_SIZE] = {
                                                                              read only with fraction
                                                                              0 */
 };
+
+sincos_q15_t sincos_call(angle_q15_t theta)
+{
+    return sincos_compute(theta);
+}
