@@ -207,9 +207,12 @@ static int16_t mc_slow_ol_damp(mc_slow_t *sl, const smc_result_t *est, const mc_
 }
 
 /* One window's work on the slow step's own state, from the window's
- * inputs and the estimator's fresh result, into the results. */
-static void mc_slow_run(mc_slow_t *sl, const smc_result_t *est, const mc_slow_in_t *si,
-                        mc_slow_out_t *so)
+ * inputs and the estimator's fresh result, into the results. A call, not
+ * inlined into mc_slow_step: inlined, its saved registers and locals stay
+ * on the stack under the estimator's slow step too, the deepest path of
+ * the Timer 2 interrupt (docs/performance.md). */
+static __attribute__((noinline)) void mc_slow_run(mc_slow_t *sl, const smc_result_t *est,
+                                                  const mc_slow_in_t *si, mc_slow_out_t *so)
 {
     if (MC_TORQUE_MODE) {
         so->speed_target = MC_SPEED_REF_MIN_Q15;
