@@ -68,8 +68,8 @@ Q15_INLINE sincos_q15_t sincos_compute(angle_q15_t theta)
 }
 
 /* sincos_compute as a call, bit for bit: for the paths that run once a
- * window or outside CLOSED_LOOP's periods, where one copy of the body (36
- * instruction words on the dsPIC) matters more than the call's cycles. */
+ * window or outside CLOSED_LOOP's periods, where one copy of the body
+ * matters more than the call's cycles (docs/performance.md, "fourth round"). */
 sincos_q15_t sincos_call(angle_q15_t theta);
 
 #endif /* SINCOS_H */
