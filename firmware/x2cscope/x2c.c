@@ -478,28 +478,28 @@ static uint8_t svc_save_param(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
         return X2C_ERR_FORMAT;
     }
     cfg.state = c[0];
-    cfg.nch = c[1];
-    cfg.prescaler = (uint16_t)((uint16_t)c[2] | (uint16_t)((uint16_t)c[3] << 8));
+    cfg.set.nch = c[1];
+    cfg.set.prescaler = (uint16_t)((uint16_t)c[2] | (uint16_t)((uint16_t)c[3] << 8));
     if (cfg.state == X2C_SCOPE_IDLE) {
         x2c_scope_stop(&x->scope);
         return X2C_ERR_OK;
     }
-    if (cfg.nch < 1U || cfg.nch > X2C_SCOPE_CHANNELS) {
+    if (cfg.set.nch < 1U || cfg.set.nch > X2C_SCOPE_CHANNELS) {
         return X2C_ERR_LIMIT;
     }
-    at = (uint8_t)(4U + 6U * cfg.nch); /* the trigger's dtype */
+    at = (uint8_t)(4U + 6U * cfg.set.nch); /* the trigger's dtype */
     if (len < at + 1U) {
         return X2C_ERR_FORMAT;
     }
-    cfg.trig_dtype = c[at];
-    lsize = (uint8_t)(cfg.trig_dtype & X2C_TRIG_SIZE);
+    cfg.set.trig_dtype = c[at];
+    lsize = (uint8_t)(cfg.set.trig_dtype & X2C_TRIG_SIZE);
     /* dtype type addr[4] level delay[4] edge, then the optional mode */
     if (lsize > 4U || (len != at + 11U + lsize && len != at + 12U + lsize)) {
         return X2C_ERR_FORMAT;
     }
-    for (i = 0; i < cfg.nch; i++) {
+    for (i = 0; i < cfg.set.nch; i++) {
         const uint8_t *ch = &c[4U + 6U * i];
-        cfg.size[i] = ch[5];
+        cfg.set.size[i] = ch[5];
         cfg.src[i] = resolve(x, ch[0], get_u32(&ch[1]), ch[5]);
         if (cfg.src[i] == NULL) {
             return X2C_ERR_FORMAT;
@@ -507,32 +507,33 @@ static uint8_t svc_save_param(x2c_t *x, uint8_t *d, uint8_t n, uint8_t *out)
     }
     for (; i < X2C_SCOPE_CHANNELS; i++) {
         cfg.src[i] = NULL;
-        cfg.size[i] = 0;
+        cfg.set.size[i] = 0;
     }
     level = 0;
     for (i = 0; i < lsize; i++) {
         level |= (uint32_t)c[at + 6U + i] << (8U * i);
     }
-    cfg.delay = (int32_t)get_u32(&c[at + 6U + lsize]);
+    cfg.set.delay = (int32_t)get_u32(&c[at + 6U + lsize]);
     if (c[at + 10U + lsize] > 1U) {
         return X2C_ERR_FORMAT; /* edge: 1 rising, 0 falling */
     }
-    cfg.rising = c[at + 10U + lsize] == 1U;
+    cfg.set.rising = c[at + 10U + lsize] == 1U;
     mode = (len == at + 12U + lsize) ? c[at + 11U + lsize] : 1U;
-    cfg.trig_src = NULL;
-    cfg.trig_level = 0;
+    cfg.set.trig_src = NULL;
+    cfg.set.trig_level = 0;
     if (cfg.state == X2C_SCOPE_WAIT_TRIG && mode != 0U) {
         /* normal: the source must be a readable variable of the level's width */
         if (lsize == 0U) {
             return X2C_ERR_FORMAT;
         }
-        cfg.trig_src = resolve(x, c[at + 1U], get_u32(&c[at + 2U]), lsize);
-        if (cfg.trig_src == NULL) {
+        cfg.set.trig_src = resolve(x, c[at + 1U], get_u32(&c[at + 2U]), lsize);
+        if (cfg.set.trig_src == NULL) {
             return X2C_ERR_FORMAT;
         }
-        cfg.trig_level = x2c_scope_key(level, cfg.trig_dtype);
+        cfg.set.trig_level = x2c_scope_key(level, cfg.set.trig_dtype);
     } else if (cfg.state == X2C_SCOPE_WAIT_TRIG) {
-        cfg.trig_dtype = (uint8_t)((cfg.trig_dtype & (uint8_t)~X2C_TRIG_SIZE) | 1U); /* auto */
+        cfg.set.trig_dtype =
+            (uint8_t)((cfg.set.trig_dtype & (uint8_t)~X2C_TRIG_SIZE) | 1U); /* auto */
     }
     {
         uint8_t err = x2c_scope_check(&cfg);

@@ -23,8 +23,8 @@ void x2c_scope_init(x2c_scope_t *s)
 static uint8_t dataset_of(const x2c_scope_cfg_t *cfg)
 {
     uint8_t i, n = 0;
-    for (i = 0; i < cfg->nch; i++) {
-        n = (uint8_t)(n + cfg->size[i]);
+    for (i = 0; i < cfg->set.nch; i++) {
+        n = (uint8_t)(n + cfg->set.size[i]);
     }
     return n;
 }
@@ -62,28 +62,28 @@ uint8_t x2c_scope_check(const x2c_scope_cfg_t *cfg)
     if (cfg->state != X2C_SCOPE_SAMPLE && cfg->state != X2C_SCOPE_WAIT_TRIG) {
         return X2C_ERR_FORMAT;
     }
-    if (cfg->nch < 1U || cfg->nch > X2C_SCOPE_CHANNELS) {
+    if (cfg->set.nch < 1U || cfg->set.nch > X2C_SCOPE_CHANNELS) {
         return X2C_ERR_LIMIT;
     }
-    for (i = 0; i < cfg->nch; i++) {
-        if (cfg->src[i] == NULL || !width_ok(cfg->size[i])) {
+    for (i = 0; i < cfg->set.nch; i++) {
+        if (cfg->src[i] == NULL || !width_ok(cfg->set.size[i])) {
             return X2C_ERR_FORMAT;
         }
     }
     dataset = dataset_of(cfg);
     used = (uint16_t)(X2C_SCOPE_BYTES - X2C_SCOPE_BYTES % dataset);
     if (cfg->state == X2C_SCOPE_WAIT_TRIG) {
-        uint8_t n = (uint8_t)(cfg->trig_dtype & X2C_TRIG_SIZE);
-        if (!width_ok(n) || ((cfg->trig_dtype & X2C_TRIG_FLOAT) != 0U && n != 4U)) {
+        uint8_t n = (uint8_t)(cfg->set.trig_dtype & X2C_TRIG_SIZE);
+        if (!width_ok(n) || ((cfg->set.trig_dtype & X2C_TRIG_FLOAT) != 0U && n != 4U)) {
             return X2C_ERR_FORMAT;
         }
-        if (mag_rem(cfg->delay, dataset) != 0U) {
+        if (mag_rem(cfg->set.delay, dataset) != 0U) {
             return X2C_ERR_FORMAT; /* the client sends whole datasets */
         }
-        if (cfg->delay >= (int32_t)used) {
+        if (cfg->set.delay >= (int32_t)used) {
             return X2C_ERR_LIMIT; /* more history than the ring holds */
         }
-        if (cfg->delay < -(int32_t)X2C_SCOPE_WAIT_MAX * (int32_t)dataset) {
+        if (cfg->set.delay < -(int32_t)X2C_SCOPE_WAIT_MAX * (int32_t)dataset) {
             return X2C_ERR_LIMIT; /* a wait of hours, or an overflow */
         }
     }
@@ -96,20 +96,20 @@ uint8_t x2c_scope_check(const x2c_scope_cfg_t *cfg)
 static uint8_t words_of(const x2c_scope_cfg_t *cfg, const volatile void **word)
 {
     uint8_t i, n = 0;
-    for (i = 0; i < cfg->nch; i++) {
-        if (cfg->size[i] == 1U) {
+    for (i = 0; i < cfg->set.nch; i++) {
+        if (cfg->set.size[i] == 1U) {
             break;
         }
     }
-    if (i < cfg->nch) {
-        for (i = 0; i < cfg->nch; i++) {
+    if (i < cfg->set.nch) {
+        for (i = 0; i < cfg->set.nch; i++) {
             word[i] = cfg->src[i];
         }
         return 0;
     }
-    for (i = 0; i < cfg->nch; i++) {
+    for (i = 0; i < cfg->set.nch; i++) {
         word[n++] = cfg->src[i];
-        if (cfg->size[i] == 4U) {
+        if (cfg->set.size[i] == 4U) {
             word[n++] = cfg->src[i] + 2;
         }
     }
@@ -124,7 +124,7 @@ void x2c_scope_stop(x2c_scope_t *s)
 void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
 {
     x2c_scope_stop(s);
-    s->cfg = *cfg;
+    s->cfg = cfg->set;
     if (cfg->state == X2C_SCOPE_IDLE) {
         return;
     }
@@ -136,13 +136,13 @@ void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
     if (cfg->state == X2C_SCOPE_SAMPLE) {
         s->run.left = s->used;
     } else {
-        s->run.left = (cfg->delay > 0) ? (uint16_t)cfg->delay : 0U;
+        s->run.left = (cfg->set.delay > 0) ? (uint16_t)cfg->set.delay : 0U;
     }
     /* the negative delay in datasets, divided here, not in the interrupt;
      * x2c_scope_check bounds it by X2C_SCOPE_WAIT_MAX datasets, so the
      * quotient fits the 32 / 16 divider's 16 bits */
-    s->run.wait =
-        (cfg->delay < 0) ? (uint32_t)q15_dsp_divud(mag_of(cfg->delay), s->dataset) : (uint32_t)0;
+    s->run.wait = (cfg->set.delay < 0) ? (uint32_t)q15_dsp_divud(mag_of(cfg->set.delay), s->dataset)
+                                       : (uint32_t)0;
     s->run.div = 0;
     s->run.prev = 0;
     s->run.primed = false;
@@ -166,7 +166,7 @@ uint32_t x2c_scope_key(uint32_t raw, uint8_t dtype)
  * built from 16-bit halves: no 32-bit shift in the interrupt. */
 static bool edge(x2c_scope_t *s)
 {
-    const x2c_scope_cfg_t *c = &s->cfg;
+    const x2c_scope_set_t *c = &s->cfg;
     const volatile uint8_t *p = c->trig_src;
     uint32_t key, prev, level;
     bool was;

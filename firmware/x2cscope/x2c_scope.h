@@ -86,12 +86,10 @@ typedef struct {
     bool primed;       /* prev holds a value */
 } x2c_scope_run_t;
 
-/* One configuration, as the target resolved it. */
+/* What the scope keeps of a configuration (x2c_scope_start copies it). */
 typedef struct {
-    uint8_t state; /* X2C_SCOPE_SAMPLE or X2C_SCOPE_WAIT_TRIG (X2C_SCOPE_IDLE: stop) */
-    uint8_t nch;   /* 1..X2C_SCOPE_CHANNELS */
+    uint8_t nch; /* 1..X2C_SCOPE_CHANNELS */
     uint16_t prescaler;
-    const volatile uint8_t *src[X2C_SCOPE_CHANNELS];
     uint8_t size[X2C_SCOPE_CHANNELS]; /* 1, 2 or 4, aligned to it */
     /* the trigger (WAIT_TRIG) */
     const volatile uint8_t *trig_src; /* NULL: auto (fires without an edge) */
@@ -99,10 +97,20 @@ typedef struct {
     uint32_t trig_level;              /* as a key (x2c_scope_key) */
     bool rising;
     int32_t delay; /* bytes, whole datasets: > 0 history, < 0 wait */
+} x2c_scope_set_t;
+
+/* One configuration, as the target resolved it: the settings, and what
+ * only the start reads (the state, then run.state; the channels'
+ * pointers, then the copy list x2c_scope_t.word), which the RAM does not
+ * keep twice. */
+typedef struct {
+    x2c_scope_set_t set;
+    uint8_t state; /* X2C_SCOPE_SAMPLE or X2C_SCOPE_WAIT_TRIG (X2C_SCOPE_IDLE: stop) */
+    const volatile uint8_t *src[X2C_SCOPE_CHANNELS];
 } x2c_scope_cfg_t;
 
 typedef struct {
-    x2c_scope_cfg_t cfg;
+    x2c_scope_set_t cfg;
     uint8_t dataset; /* bytes per dataset */
     uint16_t used;   /* bytes of whole datasets the buffer holds */
     /* What the interrupt copies: with every channel 2 or 4 bytes (nwords

@@ -69,15 +69,15 @@ static void start(const volatile void *chan, uint8_t csize, const volatile void 
     x2c_scope_cfg_t c;
     memset(&c, 0, sizeof c);
     c.state = X2C_SCOPE_WAIT_TRIG;
-    c.nch = 1;
-    c.prescaler = prescaler;
+    c.set.nch = 1;
+    c.set.prescaler = prescaler;
     c.src[0] = (const volatile uint8_t *)chan;
-    c.size[0] = csize;
-    c.trig_src = (const volatile uint8_t *)src;
-    c.trig_dtype = dtype;
-    c.trig_level = x2c_scope_key(level, dtype);
-    c.rising = rising;
-    c.delay = delay;
+    c.set.size[0] = csize;
+    c.set.trig_src = (const volatile uint8_t *)src;
+    c.set.trig_dtype = dtype;
+    c.set.trig_level = x2c_scope_key(level, dtype);
+    c.set.rising = rising;
+    c.set.delay = delay;
     assert_int_equal(x2c_scope_check(&c), X2C_ERR_OK);
     x2c_scope_init(&scope);
     x2c_scope_start(&scope, &c);
@@ -190,12 +190,12 @@ static void test_auto_should_fire_once_the_history_is_in(void **state)
     unsigned k = 0;
     memset(&c, 0, sizeof c);
     c.state = X2C_SCOPE_WAIT_TRIG;
-    c.nch = 1;
+    c.set.nch = 1;
     c.src[0] = (const volatile uint8_t *)&n;
-    c.size[0] = 2;
-    c.trig_src = NULL; /* auto */
-    c.trig_dtype = 0x81;
-    c.delay = 20; /* 10 datasets */
+    c.set.size[0] = 2;
+    c.set.trig_src = NULL; /* auto */
+    c.set.trig_dtype = 0x81;
+    c.set.delay = 20; /* 10 datasets */
     assert_int_equal(x2c_scope_check(&c), X2C_ERR_OK);
     x2c_scope_init(&scope);
     x2c_scope_start(&scope, &c);

@@ -58,9 +58,11 @@ static void drain(void)
     }
 }
 
+/* The configuration setup() started, for run() to restart. */
+static x2c_scope_cfg_t c;
+
 static void setup(uint8_t state, bool with_bool)
 {
-    x2c_scope_cfg_t c;
     static const volatile void *const src[8] = {&mc.ia,     &mc.ib,     &mc.i_dq.d, &mc.i_dq.q,
                                                 &mc.v_dq.d, &mc.v_dq.q, &mc.theta,  &mc.vbus};
     uint8_t i;
@@ -68,21 +70,21 @@ static void setup(uint8_t state, bool with_bool)
     sim_mailbox_attach(&mc);
     x2c_init(&x2c);
     c.state = state;
-    c.nch = 8;
-    c.prescaler = 0;
+    c.set.nch = 8;
+    c.set.prescaler = 0;
     for (i = 0; i < 8U; i++) {
         c.src[i] = (const volatile uint8_t *)src[i];
-        c.size[i] = 2;
+        c.set.size[i] = 2;
     }
     if (with_bool) {
         c.src[7] = (const volatile uint8_t *)&mc.outputs_on;
-        c.size[7] = 1;
+        c.set.size[7] = 1;
     }
-    c.trig_src = (const volatile uint8_t *)&mc.ia;
-    c.trig_dtype = 0xA2;
-    c.trig_level = x2c_scope_key(30000U, 0xA2);
-    c.rising = true;
-    c.delay = 0;
+    c.set.trig_src = (const volatile uint8_t *)&mc.ia;
+    c.set.trig_dtype = 0xA2;
+    c.set.trig_level = x2c_scope_key(30000U, 0xA2);
+    c.set.rising = true;
+    c.set.delay = 0;
     x2c_scope_start(&x2c.scope, &c);
 }
 
@@ -91,7 +93,7 @@ static void run(uint32_t n)
     uint32_t k;
     for (k = 0U; k < n; k++) {
         if (x2c.scope.run.state == X2C_SCOPE_IDLE) {
-            x2c_scope_start(&x2c.scope, &x2c.scope.cfg); /* keep it recording */
+            x2c_scope_start(&x2c.scope, &c); /* keep it recording */
         }
         bench_sink += x2c_scope_sample(&x2c.scope, NULL) ? 1 : 0;
     }

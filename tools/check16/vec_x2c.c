@@ -303,23 +303,23 @@ static void vec_scope(void)
         x2c_scope_cfg_t c;
         uint16_t j, sum = 0;
         c.state = (i == 0U) ? X2C_SCOPE_SAMPLE : X2C_SCOPE_WAIT_TRIG;
-        c.nch = 3;
-        c.prescaler = i;
+        c.set.nch = 3;
+        c.set.prescaler = i;
         c.src[0] = (const volatile uint8_t *)&mc.i_dq.q;
-        c.size[0] = 2;
+        c.set.size[0] = 2;
         c.src[1] = (const volatile uint8_t *)&mc.ol_angle;
-        c.size[1] = 4;
+        c.set.size[1] = 4;
         c.src[2] = (const volatile uint8_t *)&mc.smc.valid;
-        c.size[2] = 1;
+        c.set.size[2] = 1;
         for (j = 3; j < X2C_SCOPE_CHANNELS; j++) {
             c.src[j] = NULL;
-            c.size[j] = 0;
+            c.set.size[j] = 0;
         }
-        c.trig_src = (const volatile uint8_t *)&mc.i_dq.q;
-        c.trig_dtype = 0xA2;
-        c.trig_level = x2c_scope_key(0U, c.trig_dtype);
-        c.rising = (i & 1U) == 0U;
-        c.delay = (int32_t)delays[i] * 7;
+        c.set.trig_src = (const volatile uint8_t *)&mc.i_dq.q;
+        c.set.trig_dtype = 0xA2;
+        c.set.trig_level = x2c_scope_key(0U, c.set.trig_dtype);
+        c.set.rising = (i & 1U) == 0U;
+        c.set.delay = (int32_t)delays[i] * 7;
         emit_u8(i);
         emit_u8(x2c_scope_check(&c));
         emit_sep();
