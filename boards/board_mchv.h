@@ -47,6 +47,12 @@
 #define BOARD_VBUS_NOMINAL_V 320.0
 #endif
 
+/* ASSUMED: the highest DC bus the power stage is rated for, V (no
+ * overvoltage trip above it; board_mclv.h). */
+#ifndef BOARD_VBUS_MAX_V
+#define BOARD_VBUS_MAX_V 400.0
+#endif
+
 /* ASSUMED protection window. */
 #ifndef BOARD_VBUS_UNDERVOLTAGE_V
 #define BOARD_VBUS_UNDERVOLTAGE_V 200.0
@@ -62,7 +68,8 @@
 #define BOARD_SHUNT_MIN_ON_NS 3000L
 #endif
 
-/* Dead time as on the MCLV (AN1078's 2 us). */
+/* The least dead time the power stage needs, ns, as on the MCLV (AN1078's
+ * 2 us): the default PWM dead time and its floor (board_mclv.h). */
 #ifndef BOARD_DEADTIME_NS
 #define BOARD_DEADTIME_NS 2000L
 #endif

@@ -55,6 +55,15 @@
 #define BOARD_VBUS_NOMINAL_V 24.0
 #endif
 
+/* The highest DC bus the power stage is rated for, V: no overvoltage trip
+ * may sit above it (mc_derived.h). [UNCHECKED: Microchip describes the
+ * MCLV (DM330021) as a board for motors up to 48 V; its user guide (DS70331)
+ * and its bulk capacitors' rating were not read. Bench check: the
+ * capacitors' and the MOSFETs' voltage ratings on the board in hand.] */
+#ifndef BOARD_VBUS_MAX_V
+#define BOARD_VBUS_MAX_V 48.0
+#endif
+
 /* Default bus protection window for a 24 V kit; override in UserParms.h. */
 #ifndef BOARD_VBUS_UNDERVOLTAGE_V
 #define BOARD_VBUS_UNDERVOLTAGE_V 15.0
@@ -76,7 +85,11 @@
 #define BOARD_SHUNT_MIN_ON_NS 3000L
 #endif
 
-/* Power-stage dead time (AN1078: 2 us, DTCON1 = 0x40 | 40). */
+/* The least dead time the power stage needs, ns: what the PWM programs by
+ * default (PWM_DEADTIME_NS), and the floor the core and the HAL hold it to
+ * (a shorter one lets a leg's two switches conduct together). AN1078's 2 us
+ * (DTCON1 = 0x40 | 40) [SRC]; the MCLV's switches and drivers were not
+ * found to need less, so nothing shorter is allowed. */
 #ifndef BOARD_DEADTIME_NS
 #define BOARD_DEADTIME_NS 2000L
 #endif

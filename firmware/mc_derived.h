@@ -53,6 +53,53 @@
                                              : Q15_CHECK_WIDTH_(cond);                             \
                                      }))]
 
+/* ---- a profile is data ----------------------------------------------------- */
+
+/* Every number a motor profile gives, whoever reads it (the core, the
+ * simulator, the campaigns, the tests): a constant arithmetic expression
+ * of numbers and macros. A function call, an assignment or anything else
+ * that is not a constant stops the build here, before a program that reads
+ * the value could run it; the first error names the value (gcc, avr-gcc,
+ * XC16: "bit-field 'NAME__out_of_range' width not an integer constant";
+ * clang: "expression is not an integer constant expression", the check's
+ * line naming it beside). Not a finite number (1e999) is refused too. The
+ * table MOTOR_FW_ID_TABLE_A meets the same in its checks below; MOTOR_NAME
+ * and MOTOR_TUNE_BOARD are strings, copied, never run. */
+#define MC_IS_DATA_(x) ((double)(x)*0.0 == 0.0)
+#define MC_NOT_DATA_   "must be a number or an arithmetic expression of numbers and macros"
+MC_CHECK(MOTOR_POLE_PAIRS, MC_IS_DATA_(MOTOR_POLE_PAIRS), MC_NOT_DATA_);
+MC_CHECK(MOTOR_RS_OHM, MC_IS_DATA_(MOTOR_RS_OHM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_LS_H, MC_IS_DATA_(MOTOR_LS_H), MC_NOT_DATA_);
+MC_CHECK(MOTOR_KE_VPK_LL_PER_KRPM, MC_IS_DATA_(MOTOR_KE_VPK_LL_PER_KRPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_RATED_CURRENT_A, MC_IS_DATA_(MOTOR_RATED_CURRENT_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_CURRENT_MAX_A, MC_IS_DATA_(MOTOR_CURRENT_MAX_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_OVERCURRENT_A, MC_IS_DATA_(MOTOR_OVERCURRENT_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_NOMINAL_RPM, MC_IS_DATA_(MOTOR_SPEED_NOMINAL_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_FW_MAX_RPM, MC_IS_DATA_(MOTOR_SPEED_FW_MAX_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_MIN_RPM, MC_IS_DATA_(MOTOR_SPEED_MIN_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_FULLSCALE_RPM, MC_IS_DATA_(MOTOR_SPEED_FULLSCALE_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_LOCK_CURRENT_A, MC_IS_DATA_(MOTOR_LOCK_CURRENT_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_LOCK_TIME_S, MC_IS_DATA_(MOTOR_LOCK_TIME_S), MC_NOT_DATA_);
+MC_CHECK(MOTOR_RAMP_CURRENT_A, MC_IS_DATA_(MOTOR_RAMP_CURRENT_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_RAMP_END_RPM, MC_IS_DATA_(MOTOR_RAMP_END_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_RAMP_TIME_S, MC_IS_DATA_(MOTOR_RAMP_TIME_S), MC_NOT_DATA_);
+MC_CHECK(MOTOR_OL_DAMP_S, MC_IS_DATA_(MOTOR_OL_DAMP_S), MC_NOT_DATA_);
+MC_CHECK(MOTOR_CURRENT_KP_V_PER_A, MC_IS_DATA_(MOTOR_CURRENT_KP_V_PER_A), MC_NOT_DATA_);
+MC_CHECK(MOTOR_CURRENT_KI_V_PER_AS, MC_IS_DATA_(MOTOR_CURRENT_KI_V_PER_AS), MC_NOT_DATA_);
+MC_CHECK(MOTOR_CURRENT_LOOP_BW_RAD_S, MC_IS_DATA_(MOTOR_CURRENT_LOOP_BW_RAD_S), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_KP_A_PER_RPM, MC_IS_DATA_(MOTOR_SPEED_KP_A_PER_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_KI_A_PER_RPM_S, MC_IS_DATA_(MOTOR_SPEED_KI_A_PER_RPM_S), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SPEED_KP_FULL_RPM, MC_IS_DATA_(MOTOR_SPEED_KP_FULL_RPM), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SMC_GAIN_V, MC_IS_DATA_(MOTOR_SMC_GAIN_V), MC_NOT_DATA_);
+MC_CHECK(MOTOR_SMC_LINEAR_BAND_A, MC_IS_DATA_(MOTOR_SMC_LINEAR_BAND_A), MC_NOT_DATA_);
+/* The two only the simulator and the campaigns read, where a profile gives them. */
+#ifdef MOTOR_INERTIA_KGM2
+MC_CHECK(MOTOR_INERTIA_KGM2, MC_IS_DATA_(MOTOR_INERTIA_KGM2), MC_NOT_DATA_);
+#endif
+#ifdef MOTOR_START_LOAD_NM
+MC_CHECK(MOTOR_START_LOAD_NM, MC_IS_DATA_(MOTOR_START_LOAD_NM), MC_NOT_DATA_);
+#endif
+
 /* 1 when x has an integer type: 3 / 2 is 1 only in integer arithmetic (a
  * floating x gives 1.5). Counts, switches and the rates that must divide
  * each other are integers: they meet %, #if and integer code. */
@@ -81,9 +128,11 @@ MC_CHECK(BOARD_I_SIGN, MC_IS_INTEGER_(BOARD_I_SIGN) && (BOARD_I_SIGN == 1 || BOA
 MC_CHECK(MOTOR_POLE_PAIRS,
          MC_IS_INTEGER_(MOTOR_POLE_PAIRS) && MOTOR_POLE_PAIRS >= 1 && MOTOR_POLE_PAIRS <= 32,
          "must be an integer in 1..32");
+/* At most 10: every attempt heats a locked rotor at the start-up currents
+ * (MC_RETRY_COAST_S below). */
 MC_CHECK(MC_START_RETRIES,
-         MC_IS_INTEGER_(MC_START_RETRIES) && MC_START_RETRIES >= 0 && MC_START_RETRIES <= 250,
-         "must be an integer in 0..250");
+         MC_IS_INTEGER_(MC_START_RETRIES) && MC_START_RETRIES >= 0 && MC_START_RETRIES <= 10,
+         "must be an integer in 0..10");
 MC_CHECK(MC_OL_DAMP_MEAN_WINDOWS,
          MC_IS_INTEGER_(MC_OL_DAMP_MEAN_WINDOWS) && MC_OL_DAMP_MEAN_WINDOWS >= 1 &&
              MC_OL_DAMP_MEAN_WINDOWS <= 1024,
@@ -160,10 +209,18 @@ MC_CHECK_FOR(BOARD_VBUS_OVERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
 MC_CHECK_FOR(BOARD_VBUS_OVERVOLTAGE_V, BOARD_VBUS_FULLSCALE_V,
              BOARD_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
              "must be below BOARD_VBUS_FULLSCALE_V");
+MC_CHECK_FOR(BOARD_VBUS_OVERVOLTAGE_V, BOARD_VBUS_MAX_V,
+             BOARD_VBUS_OVERVOLTAGE_V <= BOARD_VBUS_MAX_V,
+             "must be at most the power stage's rating BOARD_VBUS_MAX_V");
 MC_CHECK_FOR(BOARD_DEADTIME_NS, PWM_FREQUENCY_HZ,
              BOARD_DEADTIME_NS >= 0L && (double)BOARD_DEADTIME_NS * 1e-9 * (double)BOARD_FCY_HZ <
                                             0.1 * (double)(BOARD_FCY_HZ / PWM_FREQUENCY_HZ),
              "must be below 10 % of the PWM period");
+/* BOARD_DEADTIME_NS is the least the power stage needs (its profile): a
+ * shorter PWM dead time lets a leg's two switches conduct together. The HAL,
+ * which programs it, checks the same (hal_dspic33f.h). */
+MC_CHECK_FOR(PWM_DEADTIME_NS, BOARD_DEADTIME_NS, PWM_DEADTIME_NS >= BOARD_DEADTIME_NS,
+             "must be at least the power stage's BOARD_DEADTIME_NS (shoot-through)");
 
 /* SVGen full scale: the largest linear phase amplitude at the nominal bus. */
 #define MC_VOLTAGE_FULLSCALE_V (BOARD_VBUS_NOMINAL_V / 1.7320508075688772)
@@ -280,6 +337,17 @@ MC_CHECK_FOR(MOTOR_RAMP_CURRENT_A, MOTOR_CURRENT_MAX_A,
              "must be in (0, MOTOR_CURRENT_MAX_A]");
 MC_CHECK(MC_OFFSET_MAX_A, MC_OFFSET_MAX_A > 0.0 && MC_OFFSET_MAX_A < BOARD_I_FULLSCALE_A,
          "must be in (0, BOARD_I_FULLSCALE_A)");
+/* The largest trip a phase reaches on both polarities, A: the trip compares
+ * offset-corrected readings (mc_measure), one polarity of the ADC reads at
+ * most 2^(bits-1) - 1 codes of the 2^(bits-1) of full scale, and an offset
+ * up to MC_OFFSET_MAX_A that calibration accepts comes off it. A trip above
+ * this is never reached on that side of that phase. */
+#define MC_TRIP_REACH_A                                                                            \
+    (BOARD_I_FULLSCALE_A * (1.0 - 1.0 / (double)(1L << (BOARD_ADC_BITS - 1))) - MC_OFFSET_MAX_A)
+MC_CHECK_FOR(MOTOR_OVERCURRENT_A, MC_OFFSET_MAX_A, MOTOR_OVERCURRENT_A <= MC_TRIP_REACH_A,
+             "must be reachable: at most BOARD_I_FULLSCALE_A less one code and MC_OFFSET_MAX_A");
+MC_CHECK_FOR(MC_OVERCURRENT_A, MC_OFFSET_MAX_A, MC_OVERCURRENT_A <= MC_TRIP_REACH_A,
+             "must be reachable: at most BOARD_I_FULLSCALE_A less one code and MC_OFFSET_MAX_A");
 
 #define MC_IQ_MAX_Q15       MC_Q15_AMPS(MOTOR_CURRENT_MAX_A)
 #define MC_OVERCURRENT_Q15  MC_Q15_AMPS(MC_OVERCURRENT_A)
@@ -297,6 +365,8 @@ MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_NOMINAL_V,
 MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_FULLSCALE_V,
              MC_VBUS_OVERVOLTAGE_V < BOARD_VBUS_FULLSCALE_V,
              "must be below BOARD_VBUS_FULLSCALE_V");
+MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_MAX_V, MC_VBUS_OVERVOLTAGE_V <= BOARD_VBUS_MAX_V,
+             "must be at most the power stage's rating BOARD_VBUS_MAX_V");
 #define MC_VBUS_UV_Q15      MC_Q15_VBUS(MC_VBUS_UNDERVOLTAGE_V)
 #define MC_VBUS_OV_Q15      MC_Q15_VBUS(MC_VBUS_OVERVOLTAGE_V)
 #define MC_VBUS_NOMINAL_Q15 MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V)
@@ -418,9 +488,19 @@ MC_CHECK(MC_HANDOFF_WAIT_S,
          MC_HANDOFF_WAIT_S >= 0.0 && MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ <= 1.0e6,
          "must be 0..1e6 PWM periods");
 #define MC_HANDOFF_WAIT_PERIODS ((uint32_t)(MC_HANDOFF_WAIT_S * PWM_FREQUENCY_HZ + 0.5))
+/* A locked rotor heats at the start-up currents for every attempt's lock,
+ * ramp and hand-off wait, and a retry that does not coast first starts
+ * from a rotor still turning from the last: at most 10 retries, each after
+ * some coasting. */
+MC_CHECK_FOR(MC_RETRY_COAST_S, MC_START_RETRIES,
+             MC_START_RETRIES == 0 || MC_RETRY_COAST_S * PWM_FREQUENCY_HZ >= 0.5,
+             "a retry must coast (the outputs off) before it locks again: more than 0 s");
 /* In Q8 below (MC_HANDOFF_TOL_Q8): 0 would never agree. */
-MC_CHECK(MC_HANDOFF_SPEED_TOL, MC_HANDOFF_SPEED_TOL * 256.0 >= 0.5 && MC_HANDOFF_SPEED_TOL <= 1.0,
-         "must be in [1/256, 1]");
+/* Above 1/2 the check would take a rotor at half or one and a half times the
+ * forced speed (slipping poles, or the estimator reading its own model
+ * errors) for one that follows. */
+MC_CHECK(MC_HANDOFF_SPEED_TOL, MC_HANDOFF_SPEED_TOL * 256.0 >= 0.5 && MC_HANDOFF_SPEED_TOL <= 0.5,
+         "must be in [1/256, 1/2]");
 MC_CHECK_FOR(MC_HANDOFF_AGREE_S, MC_HANDOFF_WAIT_S,
              MC_HANDOFF_AGREE_S >= 0.0 && MC_HANDOFF_AGREE_S < MC_HANDOFF_WAIT_S &&
                  MC_HANDOFF_AGREE_S * PWM_FREQUENCY_HZ <= 65535.0,
@@ -683,6 +763,17 @@ MC_CHECK_FOR(MC_SPEED_FILTER_HZ, MC_SPEED_LOOP_HZ,
 /* Back-EMF, phase peak volts per electrical Hz. */
 #define MC_KE_V_PER_HZ                                                                             \
     ((double)MOTOR_KE_VPK_LL_PER_KRPM / 1.7320508075688772 / (1000.0 * MOTOR_POLE_PAIRS / 60.0))
+/* The lowest closed-loop speed's back-EMF (phase peak) above the voltage
+ * error of the dead time, its fundamental 4/pi 2/3 Td fpwm Vbus: below it
+ * the estimator takes the inverter's error for the rotor's back-EMF (the
+ * dead-time compensation removes most but not all of it; tools/tune
+ * derives three times this). */
+#define MC_VDT_ERR_V_                                                                              \
+    (4.0 / 3.141592653589793 * 2.0 / 3.0 * (double)PWM_DEADTIME_NS * 1e-9 *                        \
+     (double)PWM_FREQUENCY_HZ * BOARD_VBUS_NOMINAL_V)
+MC_CHECK_FOR(MOTOR_SPEED_MIN_RPM, PWM_DEADTIME_NS,
+             MC_KE_V_PER_HZ *(double)MOTOR_SPEED_MIN_RPM *MOTOR_POLE_PAIRS / 60.0 > MC_VDT_ERR_V_,
+             "its back-EMF must exceed the dead time's voltage error 4/pi 2/3 Td fpwm Vbus");
 /* The observer's expected back-EMF per unit speed (smc.h) below 8. */
 MC_CHECK_FOR(MOTOR_KE_VPK_LL_PER_KRPM, MC_SPEED_FULLSCALE_RPM,
              SMC_EMFG_(MC_KE_V_PER_HZ, MC_OMEGA_FS_HZ, MC_VOLTAGE_FULLSCALE_V) < 8.0,
@@ -720,6 +811,12 @@ MC_CHECK(MOTOR_FW_ID_TABLE_A, (1 MOTOR_FW_ID_TABLE_A(MC_FW_NONPOS_)),
 MC_CHECK(MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_FALLING_),
          "entries must not rise from entry 0 (MOTOR_SPEED_NOMINAL_RPM) to entry 15 "
          "(MOTOR_SPEED_FW_MAX_RPM): |Id| may only grow with speed");
+/* Below the nominal speed Id is 0 (fieldweak.h): an entry 0 other than 0
+ * steps Id at the nominal speed, a current step the speed loop meets at
+ * every crossing. */
+#define MC_FW_FIRST_(a0, ...) ((a0) == 0.0)
+MC_CHECK(MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_FIRST_),
+         "entry 0 (at MOTOR_SPEED_NOMINAL_RPM) must be 0.0: Id is 0 below it");
 
 /* Speeds the bus can reach. Without load (Iq = 0) and with the table's Id
  * at a speed, the steady-state phase voltage is |(R Id, w (psi + L Id))|
@@ -733,6 +830,19 @@ MC_CHECK(MOTOR_FW_ID_TABLE_A, MC_FW_APPLY_(MC_FW_FALLING_),
 #define MC_W_E_(rpm) (6.283185307179586 * (double)(rpm) * (double)MOTOR_POLE_PAIRS / 60.0)
 #define MC_PSI_VS_   (MC_KE_V_PER_HZ / 6.283185307179586)
 #define MC_V_MAX_    ((double)MC_VOLTAGE_LIMIT_FRACTION * MC_VOLTAGE_FULLSCALE_V)
+
+/* The ramp's acceleration within what its current can give a rotor of the
+ * profile's inertia: at most half the torque 3/2 p psi I_ramp, the rest
+ * for the load and the forced angle's lag (a rotor asked for more falls
+ * out of step on every start). Checked where the profile gives the
+ * inertia (the simulator's; tools/tune writes it). */
+#ifdef MOTOR_INERTIA_KGM2
+MC_CHECK_FOR(MOTOR_RAMP_TIME_S, MOTOR_INERTIA_KGM2,
+             (double)MOTOR_INERTIA_KGM2 * 6.283185307179586 * (double)MOTOR_RAMP_END_RPM / 60.0 /
+                     (double)MOTOR_RAMP_TIME_S <=
+                 0.5 * 1.5 * MOTOR_POLE_PAIRS * MC_PSI_VS_ * (double)MOTOR_RAMP_CURRENT_A,
+             "the ramp's acceleration needs more than half the torque of MOTOR_RAMP_CURRENT_A");
+#endif
 #define MC_REACHES_(rpm, id)                                                                       \
     ((MOTOR_RS_OHM * (id)) * (MOTOR_RS_OHM * (id)) +                                               \
          (MC_W_E_(rpm) * (MC_PSI_VS_ + MOTOR_LS_H * (id))) *                                       \

@@ -27,9 +27,9 @@
  * above and below are the tool's own derivation, which these values do not enter (tools/tune
  * --no-tuning writes the profile without them).
  *
- * DERATED: derated: the MCLV reads +-4.4 A, the trip must stay below 90 % of it (3.96 A) and
- * the core holds |I| to 90 % of the trip, so the motor's 4.88 A peak is limited to 3.56 A
- * (73 % of its torque).
+ * DERATED: derated: the MCLV reads +-4.4 A, the trip must stay at or below 3.89 A (90 % of
+ * it, and what both polarities reach with an offset) and the core holds |I| to 90 % of the
+ * trip, so the motor's 4.88 A peak is limited to 3.5 A (72 % of its torque).
  */
 
 /* HAND-TUNED (the description's [tuning]): the part number alone: the profile with these
@@ -80,31 +80,32 @@
 
 /* ---- currents -------------------------------------------------------------------------------- */
 /* HAND-TUNED (the description's [tuning]): |Iq| limit: below the rated 4.88 A peak, the MCLV
- * reads +-4.4 A (tools/tune alone: 3.56) */
+ * reads +-4.4 A (tools/tune alone: 3.5) */
 #ifndef MOTOR_CURRENT_MAX_A
 #define MOTOR_CURRENT_MAX_A 3.0
 #endif
-/* HAND-TUNED (the description's [tuning]): software trip, any phase: below the 4.4 A scale
- * (tools/tune alone: 3.96) */
+/* HAND-TUNED (the description's [tuning]): software trip, any phase: below the 3.89 A both
+ * polarities of the 4.4 A scale reach with the largest offset calibration accepts
+ * (MC_TRIP_REACH_A) (tools/tune alone: 3.89) */
 #ifndef MOTOR_OVERCURRENT_A
-#define MOTOR_OVERCURRENT_A 4.0
+#define MOTOR_OVERCURRENT_A 3.85
 #endif
 
 /* ---- start-up (AN1078 "Motor start-up") ------------------------------------------------------ */
-/* 8 periods of the rotor's small swing about the lock angle, w = sqrt(p Kt I_lock / J) = 208
+/* 8 periods of the rotor's small swing about the lock angle, w = sqrt(p Kt I_lock / J) = 206
  * rad/s (Kt = 60.37 mN m/A, J = 1.5e-05 kg m^2), within 0.1..2 s: a rotor that starts near the
  * unstable point 180 deg away takes several small-swing periods to fall in (4 periods failed a
  * start from 160 deg in the simulator) */
 #ifndef MOTOR_LOCK_TIME_S
 #define MOTOR_LOCK_TIME_S 0.25
 #endif
-/* HAND-TUNED (the description's [tuning]): Iq during the lock (tools/tune alone: 2.14) */
+/* HAND-TUNED (the description's [tuning]): Iq during the lock (tools/tune alone: 2.1) */
 #ifndef MOTOR_LOCK_CURRENT_A
 #define MOTOR_LOCK_CURRENT_A 1.5
 #endif
-/* constant acceleration 16449 rpm/s up to the ramp end: 20 % of the ramp torque Kt x 2.14 A =
- * 129.2 mN m accelerates J (the rest is margin for load and the lag of the forced angle) ->
- * 0.036 s; at least 1 s, so the rotor's swing from the lock dies into the ramp and the
+/* constant acceleration 16142 rpm/s up to the ramp end: 20 % of the ramp torque Kt x 2.1 A =
+ * 126.8 mN m accelerates J (the rest is margin for load and the lag of the forced angle) ->
+ * 0.037 s; at least 1 s, so the rotor's swing from the lock dies into the ramp and the
  * observer converges before the hand-off (0.5 s lost 1 to 2 of the simulator's 100
  * random-angle starts under load) */
 #ifndef MOTOR_RAMP_TIME_S
@@ -116,12 +117,12 @@
 #define MOTOR_RAMP_END_RPM 500.0
 #endif
 /* HAND-TUNED (the description's [tuning]): Iq during the open-loop ramp: the lock current
- * (tools/tune alone: 2.14) */
+ * (tools/tune alone: 2.1) */
 #ifndef MOTOR_RAMP_CURRENT_A
 #define MOTOR_RAMP_CURRENT_A 1.5
 #endif
 /* HAND-TUNED (the description's [tuning]): open-loop damping: UserParms.h's default, the value
- * this profile was tuned with (tools/tune alone: 0.00337) */
+ * this profile was tuned with (tools/tune alone: 0.00341) */
 #ifndef MOTOR_OL_DAMP_S
 #define MOTOR_OL_DAMP_S 0.0025
 #endif
@@ -190,7 +191,7 @@
 /* the load torque the start-up is sized for (data for tools: the robustness campaign draws
  * loads up to it) */
 #ifndef MOTOR_START_LOAD_NM
-#define MOTOR_START_LOAD_NM 0.07752
+#define MOTOR_START_LOAD_NM 0.07607
 #endif
 
 /* ---- field weakening --------------------------------------------------------------------------

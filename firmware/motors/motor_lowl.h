@@ -73,8 +73,9 @@
 #ifndef MOTOR_CURRENT_MAX_A
 #define MOTOR_CURRENT_MAX_A 3.0
 #endif
-/* software trip: min(90 % of the 4.4 A current full scale = 3.96 A, so one sample of overshoot
- * still reads inside the ADC range; 1.25 x the peak current 3 A) */
+/* software trip: min(90 % of the 4.4 A current full scale, so one sample of overshoot still
+ * reads inside the ADC range, and the 3.89 A both polarities reach with the largest offset
+ * calibration accepts: 3.89 A; 1.25 x the peak current 3 A) */
 #ifndef MOTOR_OVERCURRENT_A
 #define MOTOR_OVERCURRENT_A 3.75
 #endif

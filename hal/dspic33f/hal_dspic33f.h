@@ -130,6 +130,9 @@ HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY % 2L == 0,
           "dead time is not a whole number of 2-Tcy units");
 HAL_CHECK(PWM_DEADTIME_NS, HAL_DEADTIME_TCY / 2L >= 1L && HAL_DEADTIME_TCY / 2L <= 63L,
           "dead time outside DTA's 1..63 units of 2 Tcy");
+/* BOARD_DEADTIME_NS: the least the power stage needs (its profile). */
+HAL_CHECK(PWM_DEADTIME_NS, PWM_DEADTIME_NS >= BOARD_DEADTIME_NS,
+          "dead time below the power stage's BOARD_DEADTIME_NS (shoot-through)");
 
 /* Special event: ADC start 80 Tcy after the period's midpoint (PTMR =
  * PTPER, all low switches on), counting down: "80 offset ... to avoid

@@ -9,7 +9,12 @@
 #   -DHAL=1 (optional) the HAL's include paths (PROBE a HAL source)
 #   -DEXPECT=<name>  the build must fail and the FIRST line reporting an error
 #                    must name <name> (as a word, or inside a check's
-#                    bit-field name such as NAME__out_of_range_for__OTHER)
+#                    bit-field name such as NAME__out_of_range_for__OTHER);
+#                    clang's "not an integer constant expression" names it in
+#                    the source line it prints right under
+#   -DANYWHERE=1     with EXPECT: <stdio.h> and <stdlib.h> included first (a
+#                    call to remove() or system() is then valid C), and any
+#                    line of the output may name <name>
 #   -DEXPECT=        (empty) the build must succeed with -Wall -Wextra -Werror
 #
 # The first error line is what a user reads: a check that names the value
@@ -38,6 +43,10 @@ endif()
 if(DEF)
   list(APPEND args "-D${DEF}")
 endif()
+if(ANYWHERE)
+  # the C library declared, as in the simulator's files: a call then compiles unless a check stops it
+  list(APPEND args -include stdio.h -include stdlib.h)
+endif()
 execute_process(COMMAND ${CC} ${args} ${PROBE}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 
@@ -53,7 +62,18 @@ if(rc EQUAL 0)
   message(FATAL_ERROR "${DEF} ${PROFILE}: compiles, should be refused naming ${EXPECT}")
 endif()
 string(REGEX MATCH "[^\n]*error:[^\n]*" first "${out}")
-if(NOT first MATCHES "(^|[^A-Za-z0-9_]|__)${EXPECT}($|[^A-Za-z0-9_]|__)")
+# clang names a value that is not a constant in the source line it prints under the error
+string(REGEX MATCH "[^\n]*error:[^\n]*\n[^\n]*" first_shown "${out}")
+if(ANYWHERE)
+  if(NOT out MATCHES "(^|[^A-Za-z0-9_]|__)${EXPECT}($|[^A-Za-z0-9_]|__)")
+    message(FATAL_ERROR "${DEF} ${PROFILE}: refused, but nothing names ${EXPECT}:\n${out}")
+  endif()
+  message(STATUS "${DEF} ${PROFILE}: refused: ${first}")
+  return()
+endif()
+if(NOT first MATCHES "(^|[^A-Za-z0-9_]|__)${EXPECT}($|[^A-Za-z0-9_]|__)" AND
+   NOT (first MATCHES "not an integer constant expression" AND
+        first_shown MATCHES "(^|[^A-Za-z0-9_]|__)${EXPECT}($|[^A-Za-z0-9_]|__)"))
   message(FATAL_ERROR "${DEF} ${PROFILE}: refused, but the first error does not name ${EXPECT}:\n"
                       "  ${first}\nwhole output:\n${out}")
 endif()

@@ -438,8 +438,10 @@ class CoreLimits(unittest.TestCase):
                .replace('rated_current = "3.0 A"', 'rated_current = "1.5 A"').replace('start_load = "0.05 N m"', ""))
     # hs2p on the MCHV at 40 kHz under a 1e-3 kg m^2 flywheel: 8 swings of the lock take 2 s
     # (80000 periods, the core counts 65000), 2 zeta / w of open-loop damping 44 ms (1780 periods)
+    # (its ramp ends at 5000 rpm: the tool's 11300 rpm would need more than half the ramp
+    # torque to reach in the 10 s the forced angle allows at 40 kHz, which the core refuses)
     HEAVY_40K = (tool_only(read(EXAMPLES / "hispeed.toml"), 'pwm_frequency = "40 kHz"')
-                 .replace('"2.0e-5 kg m^2"', '"1e-3 kg m^2"'))
+                 .replace('"2.0e-5 kg m^2"', '"1e-3 kg m^2"') + '\n[application]\nmin_speed = "5000 rpm"\n')
     # the Hurst with 0.17 mH per phase: the dead-beat band Kslide G / F is 6 A, the MCLV reads 4.4 A
     LOW_L = HURST_TOML.replace('"3.84 mH"', '"0.34 mH"').replace('"5300 rpm"', '"2500 rpm"')
     # 20 ohm per phase: the noise-limited 3300 rad/s gives Ki Ts I_FS / V_FS = 1.05, beyond Q15
@@ -623,6 +625,13 @@ class BadInput(unittest.TestCase):
     def test_impossible_speed(self) -> None:
         self.expect_error(HURST_TOML.replace('"5300 rpm"', '"9000 rpm"'), "application.max_speed",
                           "even with field weakening")
+
+    def test_a_rotor_the_ramp_cannot_accelerate_should_be_refused_naming_the_inertia(self) -> None:
+        # hs2p under a 1e-3 kg m^2 flywheel at 40 kHz: its 11300 rpm ramp end in the 10 s the
+        # forced angle allows needs 118 mN m, more than half of what its 1.5 A give
+        heavy = (tool_only(read(EXAMPLES / "hispeed.toml"), 'pwm_frequency = "40 kHz"')
+                 .replace('"2.0e-5 kg m^2"', '"1e-3 kg m^2"'))
+        self.expect_error(heavy, "motor.inertia", "more than half")
 
     def test_inductance_too_small_for_the_pwm(self) -> None:
         self.expect_error(HURST_TOML.replace('"3.84 mH"', '"3.84 uH"'), "motor.inductance")

@@ -296,7 +296,8 @@ def voltage_budget(t: Tuning) -> None:
 def currents(t: Tuning) -> None:
     """The trip and the Iq limit from the motor's currents and the board's scale."""
     d, b = t.desc, t.board
-    trip_board = 0.9 * b.i_fs
+    # 90 % of the scale, and no more than both polarities reach with an offset (MC_TRIP_REACH_A)
+    trip_board = min(0.9 * b.i_fs, sig_down(b.trip_reach, 3))
     i_peak_req = d.i_peak if d.i_peak is not None else d.i_rated
     t.trip = min(trip_board, 1.25 * i_peak_req)
     i_total = 0.9 * t.trip  # what mc.c lets |(Id, Iq)| reach (MC_I_TOTAL)
@@ -305,14 +306,16 @@ def currents(t: Tuning) -> None:
     i_qmax = min(d.i_rated, t.i_peak)
     msg = ""
     if derated:
-        msg = (f"derated: the {b.name} reads +-{b.i_fs:g} A, the trip must stay below 90 % of it "
-               f"({trip_board:.2f} A) and the core holds |I| to 90 % of the trip, so the motor's "
+        msg = (f"derated: the {b.name} reads +-{b.i_fs:g} A, the trip must stay at or below {trip_board:.2f} A "
+               f"(90 % of it, and what both polarities reach with an offset) and the core holds |I| to 90 % "
+               f"of the trip, so the motor's "
                f"{i_peak_req:.3g} A peak is limited to {t.i_peak:.3g} A ({100 * t.i_peak / i_peak_req:.0f} % of its "
                f"torque)")
         t.warnings.append(msg)
     t.add("MOTOR_OVERCURRENT_A", sig(t.trip, 3), "A",
-          f"software trip: min(90 % of the {b.i_fs:g} A current full scale = {trip_board:.3g} A, so one sample "
-          f"of overshoot still reads inside the ADC range; 1.25 x the peak current {i_peak_req:.3g} A)")
+          f"software trip: min(90 % of the {b.i_fs:g} A current full scale, so one sample of overshoot still "
+          f"reads inside the ADC range, and the {b.trip_reach:.3g} A both polarities reach with the largest "
+          f"offset calibration accepts: {trip_board:.3g} A; 1.25 x the peak current {i_peak_req:.3g} A)")
     t.add("MOTOR_CURRENT_MAX_A", sig_down(i_qmax, 3), "A",
           f"|Iq| limit of the speed loop: the rated {d.i_rated:.3g} A peak" +
           (f", {msg}" if derated else " (continuous torque)"))
@@ -554,6 +557,13 @@ def start_up(t: Tuning) -> None:
     t_ramp = t.held("MOTOR_RAMP_TIME_S", t_ramp, 0.0, t_ramp_max,
                     f"the forced angle's step must grow by >= {inc_min:.0f} counts a period "
                     f"(mc_derived.h MC_CHECK(MOTOR_RAMP_TIME_S))")
+    if j is not None and n_end * RPM / t_ramp > 0.5 * kt * i_ramp / j:
+        # the core refuses a ramp whose acceleration needs more than half its torque
+        # (mc_derived.h MC_CHECK_FOR(MOTOR_RAMP_TIME_S, MOTOR_INERTIA_KGM2))
+        raise Infeasible("motor.inertia", f"{j:.3g} kg m^2: the open-loop ramp to {n_end:.0f} rpm in at most "
+                         f"{t_ramp:g} s needs {j * n_end * RPM / t_ramp * 1000:.1f} mN m, more than half the "
+                         f"{kt * i_ramp * 1000:.1f} mN m its {i_ramp:.3g} A give (raise the lock current or "
+                         f"lower application.min_speed)")
     t.add("MOTOR_RAMP_TIME_S", t_ramp, "s", ramp_reason)
     t.add("MOTOR_RAMP_END_RPM", n_end, "rpm", "hand-off to closed loop at the lowest closed-loop speed", "{:.1f}")
     t.add("MOTOR_RAMP_CURRENT_A", i_ramp, "A", "Iq during the open-loop ramp: the lock current")

@@ -462,6 +462,7 @@ class Board:
     fpwm: int
     duty_max: int
     i_fs: float
+    trip_reach: float  # the largest trip both polarities reach (MC_TRIP_REACH_A)
     vbus: float
     vbus_fs: float
     v_fs: float
@@ -516,6 +517,7 @@ def board(board_id: str, pwm_hz: int | None = None) -> Board:
                     f("MC_DEADTIME_BAND_MAX_FRACTION"), f("MC_DTM_LOCK_BANDS"), f("MC_SPEED_FS_TOP_FRACTION"))
     return Board(id=board_id, name=out.texts.get("BOARD_NAME", board_id), fcy=int(f("BOARD_FCY_HZ")),
                  fpwm=int(f("PWM_FREQUENCY_HZ")), duty_max=int(f("PWM_DUTY_MAX")), i_fs=f("BOARD_I_FULLSCALE_A"),
+                 trip_reach=f("MC_TRIP_REACH_A"),
                  vbus=f("BOARD_VBUS_NOMINAL_V"), vbus_fs=f("BOARD_VBUS_FULLSCALE_V"),
                  v_fs=f("MC_VOLTAGE_FULLSCALE_V"), adc_bits=int(f("BOARD_ADC_BITS")),
                  deadtime_ns=f("PWM_DEADTIME_NS"), dt_counts=int(f("MC_DT_COUNTS")),

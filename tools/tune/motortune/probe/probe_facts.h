@@ -27,6 +27,7 @@
     FACT(PWM_FREQUENCY_HZ, PWM_FREQUENCY_HZ)                                                       \
     FACT(PWM_DUTY_MAX, PWM_DUTY_MAX)                                                               \
     FACT(BOARD_I_FULLSCALE_A, BOARD_I_FULLSCALE_A)                                                 \
+    FACT(MC_TRIP_REACH_A, MC_TRIP_REACH_A)                                                         \
     FACT(BOARD_VBUS_NOMINAL_V, BOARD_VBUS_NOMINAL_V)                                               \
     FACT(BOARD_VBUS_FULLSCALE_V, BOARD_VBUS_FULLSCALE_V)                                           \
     FACT(BOARD_ADC_BITS, BOARD_ADC_BITS)                                                           \
