@@ -770,7 +770,21 @@ class TheProbe(unittest.TestCase):
                  ("a brace in a value", "#define MOTOR_X_ 1 }\n", "'}'"),
                  ("a semicolon in a value", "#define MOTOR_X_ 1;\n", "';'"),
                  ("_Pragma in a value", '#define MOTOR_X_ _Pragma("weak puts = system") 1\n', "_Pragma"),
-                 ("a renamed file", '#line 1 "mc_derived.h"\n', "#line")]
+                 ("a renamed file", '#line 1 "mc_derived.h"\n', "#line"),
+                 # a value a program would run: the simulator read MOTOR_INERTIA_KGM2 and deleted a file
+                 ("a call", '#define MOTOR_X_ (remove("victim") * 0 + 7.5e-06)\n', "remove(...) is a call"),
+                 ("a call with a string", '#define MOTOR_X_ (name("string"))\n', "name(...) is a call"),
+                 ("an upper-case call", "#define MOTOR_X_ (SYSTEM(1) * 0 + 1.0)\n", "SYSTEM(...) is a call"),
+                 ("a lower-case name", "#define MOTOR_X_ (x + 1.0)\n", "x is not a macro"),
+                 ("a string in arithmetic", '#define MOTOR_X_ ("a" + 1)\n', "a string is a value on its own"),
+                 # carried out by the preprocessor, absent from its output
+                 ("#pragma GCC poison", "#pragma GCC poison remove\n", "#pragma"),
+                 ("a pragma behind a comment", "# /* x */ pragma weak puts = system\n", "#pragma"),
+                 # the board's facts: the HAL reads them without the profile
+                 ("an #undef of a board fact", "#undef BOARD_I_SIGN\n", "#undef BOARD_I_SIGN"),
+                 ("a redefined dead time", "#undef PWM_DEADTIME_NS\n#define PWM_DEADTIME_NS 200L\n",
+                  "#undef PWM_DEADTIME_NS"),
+                 ("a board fact", "#define BOARD_EXTRA_FACT 1\n", "a fact of the board")]
         for label, insert, fragment in cases:
             with self.subTest(label):
                 text = self.base.replace("#endif /* MOTOR_HURST075_H */", insert + "#endif /* MOTOR_HURST075_H */")
@@ -779,6 +793,18 @@ class TheProbe(unittest.TestCase):
                 measured("probe refuses %s: %s", label, cm.exception)
                 self.assertIn(fragment, str(cm.exception))
                 self.assertTrue(str(cm.exception).startswith("p.h:"), str(cm.exception))
+
+    def test_check_should_list_a_protection_the_profile_moves(self) -> None:
+        text = self.base.replace("#endif /* MOTOR_HURST075_H */",
+                                 "#define MC_SENSOR_CHECK 0\n#endif /* MOTOR_HURST075_H */")
+        p = os.path.join(scratch(), "motor_prot.h")
+        Path(p).write_text(text, encoding="utf-8")
+        r = run_tune("--check", p, "--board", "mclv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        line = next((ln for ln in r.stdout.splitlines() if ln.startswith("PROTECTION")), "")
+        self.assertIn("MC_SENSOR_CHECK 0", line)
+        self.assertIn("current-sensor check", line)
+        measured("--check lists: %s", line)
 
     def test_a_profile_for_another_pwm_frequency_should_be_read_at_that_frequency(self) -> None:
         # emit.py's guard (written when the description names a pwm_frequency) names the

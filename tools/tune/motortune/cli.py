@@ -103,6 +103,42 @@ def format_table(rows: list[probe.Row], title: str) -> str:
     return "\n".join(out)
 
 
+# UserParms.h settings that guard the board, the motor or the start (a profile may set them,
+# --check says so): what each one guards.
+PROTECTIONS = {
+    "MC_SENSOR_CHECK": "the current-sensor check (0: its verdict is ignored)",
+    "MC_OVERCURRENT_A": "the overcurrent trip",
+    "MC_OFFSET_MAX_A": "the current offsets calibration accepts (the trip's reach)",
+    "MC_VBUS_OVERVOLTAGE_V": "the overvoltage trip",
+    "MC_VBUS_UNDERVOLTAGE_V": "the undervoltage trip",
+    "MC_STALL_TIME_S": "the stall checks' time",
+    "MC_STALL_SPEED_MIN_RPM": "the stall check's lowest speed",
+    "MC_STALL_BEMF_LOW_FRACTION": "the stall check's back-EMF floor (0: off)",
+    "MC_STALL_BEMF_HIGH_FRACTION": "the stall check's back-EMF ceiling",
+    "MC_STALL_SPEED_ERROR_RPM": "the tracking stall check",
+    "MC_SENSOR_TIME_S": "the current-sensor check's time",
+    "MC_START_RETRIES": "the retries a locked rotor takes",
+    "MC_RETRY_COAST_S": "the coast between retries",
+    "MC_HANDOFF_SPEED_TOL": "the hand-off's agreement",
+    "MC_DEADTIME_MEASURE": "the dead-time measurement at the lock (0: PWM_DEADTIME_NS trusted)",
+    "MC_DEADTIME_COMP": "the dead-time compensation (0: off)",
+    "MC_ID_CURRENT_A": "the identification's current",
+}
+
+
+def settings_changed(macros: dict[str, str]) -> list[str]:
+    """A line for each UserParms.h setting (MC_*) the profile sets in its place, the protections
+    named as such: a profile that moves one is listed, never passed without a word."""
+    out = []
+    for name in sorted(n for n in macros if n.startswith("MC_")):
+        value = one_line(macros[name].strip(), 40)
+        if name in PROTECTIONS:
+            out.append(f"PROTECTION  {name} {value}: set by the profile, not UserParms.h: {PROTECTIONS[name]}")
+        else:
+            out.append(f"SETTING     {name} {value}: set by the profile, not UserParms.h")
+    return out
+
+
 def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
     """The table in engineering units as the core computes it (the probe), the checks of
     mc_derived.h and smc.h that fail, then the core's own compile (firmware/mc*.c)."""
@@ -126,6 +162,8 @@ def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
         more = f" (and {len(prof.refused) - 1} more, listed above)" if len(prof.refused) > 1 else ""
         return _fail(f"{profile}: ", f"{first.param}: {first.why} ({first.where}){more}", EXIT_REFUSED)
     print(format_table(prof.out.rows, title))
+    for line in settings_changed(prof.macros.macros):
+        print(line)
     if compile_:
         err = probe.compile_core(text, prof.build, shown)
         if err is not None:

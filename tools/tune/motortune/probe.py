@@ -268,20 +268,72 @@ class Screened:
         return m.group(1) if m else None
 
 
-def _body_ok(name: str, body: str, where: str) -> None:
+# The board's facts and its PWM (boards/board*.h): the HAL reads them without the profile, so a
+# profile that set one would give the core one value and the HAL, which programs it, another.
+_BOARD_FACT_RE = re.compile(r"(?:BOARD|PWM)_[A-Z0-9_]*")
+# The directives a profile's own text may hold: its guard, its values, the PWM guard emit.py writes.
+# (#include: what it would read is refused from the preprocessor's output, where it is live.)
+_DIRECTIVES = frozenset({"define", "undef", "ifndef", "ifdef", "if", "elif", "else", "endif", "error",
+                         "include"})
+# The type names a cast in a constant expression may name.
+_TYPE_NAMES = frozenset({"char", "short", "int", "long", "signed", "unsigned", "float", "double"} |
+                        {f"{u}int{n}_t" for u in ("", "u") for n in (8, 16, 32, 64)})
+_DIRECTIVE_RE = re.compile(r"^[ \t]*#[ \t]*([A-Za-z_]\w*)?", re.MULTILINE)
+_COMMENT_OR_STRING_RE = re.compile(r"""/\*.*?\*/|//[^\n]*|"(?:[^"\\\n]|\\.)*"|'(?:[^'\\\n]|\\.)*'""", re.DOTALL)
+
+
+def _tokens(body: str, name: str, where: str) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
     pos = 0
     while pos < len(body):
         m = _TOKEN_RE.match(body, pos)
         if m is None:  # only white space left
-            return
+            break
         pos = m.end()
-        bad = m.group("bad")
-        if bad is not None:
-            raise InputError(where, f"{name}: {bad!r} is not part of a constant expression (a profile's values "
-                                    f"are numbers, names, strings and arithmetic)")
-        ident = m.group("id")
-        if ident in _BANNED_IDS:
-            raise InputError(where, f"{name}: {ident} is not part of a constant expression")
+        kind = m.lastgroup or "bad"
+        if kind == "bad":
+            raise InputError(where, f"{name}: {m.group('bad')!r} is not part of a constant expression (a "
+                                    f"profile's values are numbers, names, strings and arithmetic)")
+        out.append((kind, m.group(kind)))
+    return out
+
+
+def _body_ok(name: str, body: str, where: str, params: frozenset[str] = frozenset(),
+             function_macros: frozenset[str] = frozenset()) -> None:
+    """A value is numbers, macro names and arithmetic (or, whole, string literals): a name that
+    is called must be a function-like macro or one of this macro's parameters, and a lower-case
+    name can only be a parameter (anything else would be a C function the program calls)."""
+    toks = _tokens(body, name, where)
+    for i, (kind, tok) in enumerate(toks):
+        if kind != "id":
+            continue
+        if tok in _BANNED_IDS:
+            raise InputError(where, f"{name}: {tok} is not part of a constant expression")
+        called = i + 1 < len(toks) and toks[i + 1] == ("op", "(")
+        if tok in params:
+            continue
+        if called and tok not in function_macros:
+            raise InputError(where, f"{name}: {one_line(tok, 40)}(...) is a call, not a value (a profile's "
+                                    f"values are numbers and arithmetic; it would run in every program that "
+                                    f"reads {name})")
+        if not _MACRO_NAME_RE.fullmatch(tok) and tok != "defined" and not (tok in _TYPE_NAMES and not called):
+            raise InputError(where, f"{name}: {one_line(tok, 40)} is not a macro (a profile's values are numbers, "
+                                    f"upper-case macro names and arithmetic)")
+    strings = [t for k, t in toks if k == "str"]
+    if strings and len(strings) != len(toks):
+        raise InputError(where, f"{name}: a string is a value on its own (a name), not part of an expression")
+
+
+def directives_ok(text: str, shown: str) -> None:
+    """The profile's own text: the directives the preprocessor would carry out and not show in
+    its output (#pragma GCC poison, #pragma weak, #line) are refused before it runs."""
+    plain = _COMMENT_OR_STRING_RE.sub(lambda m: "".join(c if c == "\n" else " " for c in m.group(0)), text)
+    for m in _DIRECTIVE_RE.finditer(plain):
+        d = m.group(1) or ""
+        if d and d not in _DIRECTIVES:
+            line = plain.count("\n", 0, m.start()) + 1
+            raise InputError(f"{shown}:{line}", f"#{one_line(d, 20)}: a motor profile holds #define lines (and "
+                                                f"its guard) only")
 
 
 def screen(cpp_out: str, copy: Path, shown: str) -> Screened:
@@ -292,6 +344,8 @@ def screen(cpp_out: str, copy: Path, shown: str) -> Screened:
     current, line = "", 0
     inside: list[bool] = []  # per open file: is it the profile?
     found = Screened()
+    function_macros = frozenset(d.group(1) for t in cpp_out.splitlines()
+                                if (d := _DEFINE_RE.match(t)) is not None and d.group(2) is not None)
     for text in cpp_out.splitlines():
         m = _LINEMARKER_RE.match(text)
         if m is not None:
@@ -323,10 +377,18 @@ def screen(cpp_out: str, copy: Path, shown: str) -> Screened:
             if not _MACRO_NAME_RE.fullmatch(name) or name.startswith("TUNE_"):
                 raise InputError(here, f"{one_line(name, 40)}: a motor profile defines upper-case names (not "
                                        f"TUNE_*) only: its macros reach the core's code")
-            _body_ok(name, body, here)
+            if _BOARD_FACT_RE.fullmatch(name):
+                raise InputError(here, f"{name}: a fact of the board and its PWM, which the HAL reads without "
+                                       f"the profile: set it in boards/board_<board>.h or with -D, where both see it")
+            params = frozenset(p.strip() for p in (d.group(2) or "()")[1:-1].split(",") if p.strip())
+            _body_ok(name, body, here, params, function_macros)
             found.macros[name] = body
             found.lines[name] = line - 1
         elif text.startswith("#undef "):
+            gone = text[len("#undef "):].strip()
+            if gone not in found.macros:
+                raise InputError(here, f"#undef {one_line(gone, 40)}: a motor profile removes only what it "
+                                       f"defined itself (the board's and UserParms.h's values stay)")
             continue
         elif text.startswith("#"):
             raise InputError(here, f"{one_line(text.split()[0], 20)}: a motor profile holds #define lines only")
@@ -565,6 +627,7 @@ def _preprocess(cc: tuple[str, ...], build: Build, tmp: Path, shown: str) -> tup
     """cc -E -dD of probe_values.c with the profile, screened; a profile derived for another
     PWM frequency (emit.py's #error) is read again at that frequency."""
     copy = tmp / CC_PROFILE
+    directives_ok(copy.read_text(encoding="utf-8"), shown)
     for _ in range(2):
         r = _compile(cc, [*build.defines(), "-E", "-dD", str(PROBE_DIR / "probe_values.c")], shown, tmp)
         if r.code == 0:
