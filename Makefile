@@ -58,22 +58,24 @@ bootstrap:
 	@tools/bootstrap
 
 # ---- host builds ----------------------------------------------------------
-$(HOST_DIR)/Makefile $(HOST_DIR)/CMakeCache.txt: CMakeLists.txt
+# Every goal that needs a tool or library first makes sure it is here
+# (tools/bootstrap: instant once installed), so each works from a fresh clone.
+$(HOST_DIR)/Makefile $(HOST_DIR)/CMakeCache.txt: CMakeLists.txt | bootstrap
 	cmake -S . -B $(HOST_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_DEFS) >/dev/null
 
-build: $(HOST_DIR)/CMakeCache.txt
+build: bootstrap $(HOST_DIR)/CMakeCache.txt
 	cmake -S . -B $(HOST_DIR) $(CMAKE_DEFS) >/dev/null
 	cmake --build $(HOST_DIR) -j $(JOBS)
 
 unit: build
 	cd $(HOST_DIR) && $(CTEST)
 
-asan:
+asan: bootstrap
 	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DFOC_SANITIZE=ON $(CMAKE_DEFS) >/dev/null
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 $(CTEST) -LE slow
 
-coverage:
+coverage: bootstrap
 	cmake -S . -B $(COV_DIR) -DCMAKE_C_COMPILER=$(COV_CC) -DCMAKE_BUILD_TYPE=Debug -DFOC_COVERAGE=ON $(CMAKE_DEFS) >/dev/null
 	cmake --build $(COV_DIR) -j $(JOBS)
 	find $(COV_DIR) -name '*.gcda' -delete
@@ -82,27 +84,27 @@ coverage:
 
 # The second compiler: the same strict flags (CMakeLists.txt), the unit tests
 # (the closed-loop ones, label slow, run in the plain build).
-test-clang:
+test-clang: bootstrap
 	cmake -S . -B $(CLANG_DIR) -DCMAKE_C_COMPILER=$(CLANG_CC) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_DEFS) >/dev/null
 	cmake --build $(CLANG_DIR) -j $(JOBS)
 	cd $(CLANG_DIR) && $(CTEST) -L unit
 
-check-16bit:
+check-16bit: bootstrap
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/check16/run $(BUILD)/check16
 
-cycles:
+cycles: bootstrap
 	@BOARD=mclv MOTOR=hurst tools/check16/cycles $(BUILD)/cycles  # the ceilings are for this profile
 
-size:
+size: bootstrap
 	@BOARD=mclv MOTOR=hurst tools/check16/size $(BUILD)/size  # the ceilings are for this profile
 
-lint:
+lint: bootstrap
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint
 
-format:
+format: bootstrap
 	@BOARD=$(BOARD) MOTOR=$(MOTOR) tools/lint --fix
 
-bench: build
+bench: bootstrap build
 	@tools/bench/run $(HOST_DIR) $(BUILD)/bench
 
 # PTY=1: no scenario, the X2Cscope target on a pseudo-terminal and TCP 12666 (docs/x2cscope.md).
