@@ -5,8 +5,10 @@
 
 #include <stddef.h>
 
-/* Receiver states: the field the next byte belongs to. */
-enum { RX_IDLE, RX_SIZE, RX_NODE, RX_DATA, RX_CRC };
+/* Receiver states: the field the next byte belongs to. RX_SYN: a 0x55 out of
+ * a frame, which the next byte makes a SYN (anything but the fill) or
+ * escaped data of a frame missed (the fill). */
+enum { RX_IDLE, RX_SYN, RX_SIZE, RX_NODE, RX_DATA, RX_CRC };
 
 /* Sender states. */
 enum { TX_IDLE, TX_SYN, TX_SIZE, TX_NODE, TX_DATA, TX_CRC };
@@ -73,12 +75,28 @@ static void rx_field(lnet_rx_t *rx, uint8_t b)
     }
 }
 
+/* The frame's node is known and is another's: its errors are not ours to
+ * answer (a corrupted byte may have made it so: the client times out). */
+static bool rx_not_ours(const lnet_rx_t *rx)
+{
+    return rx->state > RX_NODE && rx->node != LNET_NODE;
+}
+
 lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
 {
     if (rx->state == RX_IDLE) {
         if (b == LNET_SYN) {
-            rx_syn(rx);
+            rx->state = RX_SYN;
         }
+        return LNET_RX_NONE;
+    }
+    if (rx->state == RX_SYN) {
+        if (b == LNET_FILL) {
+            rx->state = RX_IDLE; /* 55 00: a data byte 0x55 of a frame we were not in */
+            return LNET_RX_NONE;
+        }
+        rx_syn(rx);
+        rx_field(rx, b); /* the SIZE (0x55: its fill, or a new SYN, decides next) */
         return LNET_RX_NONE;
     }
     if (rx->pending != 0U) {
@@ -94,20 +112,19 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
             rx_field(rx, b);
             return LNET_RX_NONE;
         }
-        /* a 0x02 without its fill */
-        rx->state = RX_IDLE;
-        if (b == LNET_SYN) {
-            rx_syn(rx);
-        }
-        return LNET_RX_BAD_FORMAT;
+        /* a 0x02 without its fill: answered only in a frame known to be ours */
+        bool answer = rx->state > RX_NODE && !rx_not_ours(rx);
+        rx->state = (b == LNET_SYN) ? RX_SYN : RX_IDLE;
+        return answer ? LNET_RX_BAD_FORMAT : LNET_RX_NONE;
     }
     if (rx->state == RX_CRC) {
+        bool ours = !rx_not_ours(rx);
         rx->state = RX_IDLE;
         if (b != lnet_crc_byte(rx->sum)) {
             if (b == LNET_SYN) {
-                rx_syn(rx); /* no checksum reads 0x55: a new frame */
+                rx->state = RX_SYN; /* no checksum reads 0x55: a new frame */
             }
-            return LNET_RX_BAD_CRC;
+            return ours ? LNET_RX_BAD_CRC : LNET_RX_NONE;
         }
         if (rx->node != LNET_NODE) {
             return LNET_RX_NONE;
@@ -116,6 +133,14 @@ lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t b)
     }
     rx_field(rx, b);
     return LNET_RX_NONE;
+}
+
+bool lnet_rx_gap(lnet_rx_t *rx)
+{
+    bool partial = rx->state != RX_IDLE;
+    rx->state = RX_IDLE;
+    rx->pending = 0U;
+    return partial;
 }
 
 void lnet_tx_init(lnet_tx_t *tx)

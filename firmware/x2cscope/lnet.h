@@ -14,7 +14,10 @@
  * 0x55 and 0x02 are reserved inside a frame: wherever SIZE, NODE or a DATA
  * byte equals one of them, a 0x00 fill byte follows, which is neither
  * counted in SIZE nor summed. A 0x55 followed by anything but the fill is
- * a new SYN, so a receiver that lost its place finds the next frame.
+ * a new SYN, so a receiver that lost its place finds the next frame; out
+ * of a frame, 0x55 0x00 is such a data byte of a frame it missed, not a SYN.
+ * Errors are reported only for a frame whose NODE was received and is this
+ * target's: noise and other nodes' frames get no answer.
  *
  * The receiver unescapes into a buffer its owner sizes: a target's for the
  * largest request it takes, not for the largest frame (a longer one is
@@ -59,10 +62,16 @@ typedef struct {
 /* Idle, receiving into cap bytes of data (at most LNET_MAX_DATA are used). */
 void lnet_rx_init(lnet_rx_t *rx, uint8_t *data, uint8_t cap);
 
-/* One received byte. A frame addressed to another node is dropped without
- * an event. After LNET_RX_FRAME the data stay valid until the next byte is
- * fed. */
+/* One received byte. A frame addressed to another node, and any error of
+ * one, is dropped without an event. After LNET_RX_FRAME the data stay valid
+ * until the next byte is fed. */
 lnet_rx_event_t lnet_rx_byte(lnet_rx_t *rx, uint8_t byte);
+
+/* The line has been silent longer than a client leaves between the bytes
+ * of a frame (the owner's timeout): a partial frame is dropped, so a client
+ * that left in the middle of one leaves nothing for the next. True when
+ * one was. */
+bool lnet_rx_gap(lnet_rx_t *rx);
 
 /* ---- sending ------------------------------------------------------------------ */
 

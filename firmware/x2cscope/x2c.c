@@ -616,6 +616,7 @@ void x2c_init(x2c_t *x)
     x->may_start_ctx = NULL;
     x->remote = false;
     x->ref_seq_mine = 0;
+    x->quiet_ms = 0;
     x->answered = 0;
     x->refused = 0;
     tune_refresh(x);
@@ -638,6 +639,7 @@ void x2c_rx_byte(x2c_t *x, uint8_t byte)
     if (lnet_tx_busy(&x->tx)) {
         return; /* the reply still needs the buffer: the caller ignored x2c_rx_ready */
     }
+    x->quiet_ms = 0;
     switch (lnet_rx_byte(&x->rx, byte)) {
         case LNET_RX_FRAME:
             dispatch(x);
@@ -659,4 +661,18 @@ void x2c_rx_byte(x2c_t *x, uint8_t byte)
 bool x2c_tx_byte(x2c_t *x, uint8_t *byte)
 {
     return lnet_tx_next(&x->tx, byte);
+}
+
+void x2c_tick_1ms(x2c_t *x)
+{
+    if (lnet_tx_busy(&x->tx)) {
+        x->quiet_ms = 0; /* nothing is taken while a reply goes out */
+        return;
+    }
+    if (x->quiet_ms < 0xFFU) {
+        x->quiet_ms++;
+    }
+    if (x->quiet_ms == X2C_RX_GAP_MS) {
+        (void)lnet_rx_gap(&x->rx); /* the client left mid-request: its bytes go */
+    }
 }

@@ -95,6 +95,10 @@
 #define X2C_WINDOW_MOTOR 0x1000U
 
 typedef struct {
+    /* the motor's side, as the board's controls have it (first: no buffer ends next to
+     * a function pointer) */
+    bool (*may_start)(void *ctx); /* run = 1's guard (the board's start rule), NULL: none */
+    void *may_start_ctx;
     lnet_rx_t rx; /* the request, and then the reply's head built over it */
     lnet_tx_t tx;
     uint8_t rx_buf[X2C_RX_BYTES];
@@ -104,15 +108,23 @@ typedef struct {
 #if X2C_SCOPE
     x2c_scope_t scope;
 #endif
-    /* the motor's side, as the board's controls have it */
-    bool (*may_start)(void *ctx); /* run = 1's guard (the board's start rule), NULL: none */
-    void *may_start_ctx;
     bool remote;          /* speed_ref_rpm set the reference ... */
     uint8_t ref_seq_mine; /* ... and this was its choice (mc_reference_held) */
+    uint8_t quiet_ms;     /* ms since the last byte taken, saturating (X2C_RX_GAP_MS) */
     /* counters, saturating */
     uint16_t answered; /* replies sent without an error */
     uint16_t refused;  /* error replies */
 } x2c_t;
+
+/* Silence, ms, after which a partial request is dropped (x2c_tick_1ms): a
+ * client sends a request in one go (at 115200 Bd a byte is 87 us, a
+ * USB-serial bridge passes the host's bytes within its 1 ms frames), so a
+ * gap this long is a client that left, and the next one must not find its
+ * bytes; below pyx2cscope's 50 ms reply timeout, so a client that lost a
+ * byte and sends its request again is read afresh. */
+#ifndef X2C_RX_GAP_MS
+#define X2C_RX_GAP_MS 20U
+#endif
 
 /* Idle scope, the tunables read from the motor, no start guard. */
 void x2c_init(x2c_t *x);
@@ -125,6 +137,7 @@ void x2c_set_start_guard(x2c_t *x, bool (*may_start)(void *ctx), void *ctx);
 bool x2c_rx_ready(const x2c_t *x); /* no reply being sent */
 void x2c_rx_byte(x2c_t *x, uint8_t byte);
 bool x2c_tx_byte(x2c_t *x, uint8_t *byte); /* the next byte to send, false if none */
+void x2c_tick_1ms(x2c_t *x);               /* once per ms: the inter-byte timeout */
 
 /* ISR, once per PWM period after the core's step. True when the scope
  * stored a dataset (at byte *at of its buffer, when at is not NULL). */

@@ -18,7 +18,13 @@ static bool cb_tx_byte(void *ctx, uint8_t *byte)
     return x2c_tx_byte((x2c_t *)ctx, byte);
 }
 
-/* LNet needs no timeout (a new SYN resynchronises) and nothing is queued. */
+/* The inter-byte timeout (X2C_RX_GAP_MS). */
+static void cb_tick_1ms(void *ctx)
+{
+    x2c_tick_1ms((x2c_t *)ctx);
+}
+
+/* Nothing is queued: the main loop's poll has no work. */
 static void cb_idle(void *ctx)
 {
     (void)ctx;
@@ -30,6 +36,6 @@ void x2c_app_client(x2c_t *x, app_uart_client_t *client)
     client->rx_ready = cb_rx_ready;
     client->rx_byte = cb_rx_byte;
     client->tx_byte = cb_tx_byte;
-    client->tick_1ms = cb_idle;
+    client->tick_1ms = cb_tick_1ms;
     client->poll = cb_idle;
 }

@@ -11,6 +11,11 @@
 #include "q15_dsp.h"
 #include "x2c.h"
 
+/* A compiler barrier: no store is moved across it (gcc, clang, XC16's gcc). The
+ * interrupt samples while the main loop configures: the state is its only
+ * signal, so the settings are stored after the stop and before the start. */
+#define X2C_BARRIER() __asm__ __volatile__("" ::: "memory")
+
 void x2c_scope_init(x2c_scope_t *s)
 {
     /* idle (X2C_SCOPE_IDLE is 0), no channel (NULL), an empty buffer; then what is not zero */
@@ -124,6 +129,7 @@ void x2c_scope_stop(x2c_scope_t *s)
 void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
 {
     x2c_scope_stop(s);
+    X2C_BARRIER();
     s->cfg = cfg->set;
     if (cfg->state == X2C_SCOPE_IDLE) {
         return;
@@ -146,7 +152,8 @@ void x2c_scope_start(x2c_scope_t *s, const x2c_scope_cfg_t *cfg)
     s->run.div = 0;
     s->run.prev = 0;
     s->run.primed = false;
-    s->run.state = cfg->state; /* last: the interrupt starts from here */
+    X2C_BARRIER(); /* the state last: the interrupt reads the settings once it sees it */
+    s->run.state = cfg->state;
 }
 
 uint32_t x2c_scope_key(uint32_t raw, uint8_t dtype)

@@ -528,6 +528,69 @@ class C_Tcp(unittest.TestCase):
             other.stop()
 
 
+    def test_a_client_leaving_at_any_byte_should_not_wedge_the_target(self) -> None:
+        # a device-info request and its reply, whole frames on the wire. A client leaves after
+        # k of them (k = 0..all), with a reset so the target's next write fails; another
+        # leaves after j bytes of its request: the next client is answered every time
+        request = bytes([0x55, 0x01, 0x01, 0x00, 0x57])
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        other = Sim("--tcp", str(port))
+
+        def client() -> socket.socket:
+            c = socket.create_connection(("127.0.0.1", port), timeout=5)
+            c.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))  # close = reset
+            return c
+
+        def whole_reply(c: socket.socket) -> bytes:
+            # SYN, SIZE, NODE, DATA[SIZE] (a 0x00 fill after each 0x55 / 0x02 of those), CRC
+            got = bytearray(c.recv(1))
+            fields: list[int] = []
+            while got:
+                b = c.recv(1)
+                if not b:
+                    break
+                got += b
+                if len(fields) >= 2 and len(fields) == 2 + fields[0]:
+                    break  # that was the CRC
+                fields.append(b[0])
+                if b[0] in (0x55, 0x02):
+                    got += c.recv(1)  # its fill
+            return bytes(got)
+
+        try:
+            c = client()
+            c.sendall(request)
+            reply = whole_reply(c)
+            c.close()
+            self.assertEqual(reply[:3], bytes([0x55, 46, 0x01]), reply.hex())  # 46 bytes: service, error, 44
+            for k in range(len(reply) + 1):
+                c = client()
+                c.sendall(request)
+                got = b""
+                while len(got) < k:
+                    got += c.recv(k - len(got))
+                c.close()
+                c = client()
+                c.sendall(request)
+                self.assertEqual(whole_reply(c), reply, f"after a client that left at byte {k} of the reply")
+                c.close()
+            for j in range(1, len(request)):
+                c = client()
+                c.sendall(request[:j])
+                time.sleep(0.05)  # the target's inter-byte timeout passes (simulated time runs faster)
+                c.close()
+                c = client()
+                c.sendall(request)
+                self.assertEqual(whole_reply(c), reply, f"after a client that left at byte {j} of its request")
+                c.close()
+            measured = f"{len(reply) + 1} clients left at every byte of a reply, {len(request) - 1} in a request"
+            print("measured: " + measured + ": the next client answered every time")
+        finally:
+            other.stop()
+
+
 class D_Speed(unittest.TestCase):
     def test_omega_should_match_the_simulators_estimate(self) -> None:
         truth = os.path.join(OUT, "truth.csv")

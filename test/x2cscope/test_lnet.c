@@ -182,6 +182,83 @@ static void test_a_frame_for_another_node_should_be_dropped_silently(void **stat
     assert_int_equal(events, 0U);
 }
 
+/* Out of a frame, 0x55 0x00 is a data byte 0x55 of a frame the receiver
+ * missed (the clients' escape), not a SYN: 50 such pairs give no event, and
+ * a frame after them arrives. */
+static void test_escaped_syn_bytes_out_of_a_frame_should_not_start_one(void **state)
+{
+    (void)state;
+    uint8_t noise[100];
+    for (unsigned k = 0; k < 50U; k++) {
+        noise[2U * k] = 0x55U;
+        noise[2U * k + 1U] = 0x00U;
+    }
+    lnet_rx_t rx;
+    unsigned events;
+    lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
+    assert_int_equal(feed(&rx, noise, sizeof noise, &events), LNET_RX_NONE);
+    assert_int_equal(events, 0U);
+    static const uint8_t data[] = {0x00};
+    uint8_t out[8];
+    size_t n = encode(LNET_NODE, data, 1U, out);
+    assert_int_equal(feed(&rx, out, n, &events), LNET_RX_FRAME);
+    assert_int_equal(events, 1U);
+}
+
+/* A frame for another node is not ours to answer, broken or not: a bad
+ * checksum and a reserved byte without its fill give no event; the same
+ * for node 1 give theirs. */
+static void test_errors_of_another_nodes_frame_should_give_no_event(void **state)
+{
+    (void)state;
+    static const uint8_t data[] = {0x09, 0x10};
+    for (uint8_t node = 1U; node <= 2U; node++) {
+        uint8_t out[16];
+        size_t n = encode(node, data, 2U, out);
+        lnet_rx_t rx;
+        unsigned events;
+        out[n - 1U] ^= 0x01U; /* the checksum */
+        lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
+        lnet_rx_event_t e = feed(&rx, out, n, &events);
+        assert_int_equal(e, node == LNET_NODE ? LNET_RX_BAD_CRC : LNET_RX_NONE);
+        /* SYN SIZE NODE, then a data byte 0x02 without its fill (node 2 is itself
+         * reserved: its own fill follows it) */
+        lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
+        static const uint8_t n1[] = {0x55, 0x03, 0x01, 0x02, 0x09};
+        static const uint8_t n2[] = {0x55, 0x03, 0x02, 0x00, 0x02, 0x09};
+        if (node == LNET_NODE) {
+            assert_int_equal(feed(&rx, n1, sizeof n1, &events), LNET_RX_BAD_FORMAT);
+        } else {
+            assert_int_equal(feed(&rx, n2, sizeof n2, &events), LNET_RX_NONE);
+            assert_int_equal(events, 0U);
+        }
+    }
+}
+
+/* A frame its client left in the middle: after the line's gap
+ * (lnet_rx_gap) the next client's frame is read from its SYN; without it,
+ * its SYN would be taken for the missing checksum. At every cut. */
+static void test_a_gap_should_drop_a_partial_frame(void **state)
+{
+    (void)state;
+    static const uint8_t data[] = {0x09, 0x55, 0x30, 0x00, 0x02};
+    static const uint8_t nd[] = {0x01};
+    uint8_t frame[32], next[16];
+    size_t n = encode(LNET_NODE, data, (uint8_t)sizeof data, frame);
+    size_t m = encode(LNET_NODE, nd, 1U, next);
+    for (size_t cut = 1; cut < n; cut++) {
+        lnet_rx_t rx;
+        unsigned events;
+        lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
+        (void)feed(&rx, frame, cut, &events);
+        assert_true(lnet_rx_gap(&rx));
+        assert_int_equal(feed(&rx, next, m, &events), LNET_RX_FRAME);
+        assert_int_equal(events, 1U);
+        assert_int_equal(rx.size, 1U);
+        assert_false(lnet_rx_gap(&rx)); /* nothing partial after a whole frame */
+    }
+}
+
 /* xorshift32, a fixed seed: the same bytes on every machine. */
 static uint32_t rnd(uint32_t *s)
 {
@@ -220,7 +297,15 @@ static void test_every_size_should_round_trip(void **state)
     unsigned frames = 0U;
     lnet_rx_t rx;
     lnet_rx_init(&rx, rx_buf, (uint8_t)LNET_MAX_DATA);
-    for (unsigned size = 0; size <= LNET_MAX_DATA; size++) {
+    {
+        /* SIZE 0 is no frame: after a SYN its 0x00 reads as the fill of an escaped 0x55,
+         * as the clients read it (every request and reply has data) */
+        unsigned events;
+        size_t n = encode(LNET_NODE, data, 0U, frame);
+        assert_int_equal(feed(&rx, frame, n, &events), LNET_RX_NONE);
+        assert_int_equal(events, 0U);
+    }
+    for (unsigned size = 1; size <= LNET_MAX_DATA; size++) {
         for (unsigned k = 0; k < 40U; k++) {
             for (unsigned i = 0; i < size; i++) {
                 data[i] = rnd_byte(&seed);
@@ -363,6 +448,9 @@ int main(void)
         cmocka_unit_test(test_a_0x02_without_its_fill_should_be_a_format_error),
         cmocka_unit_test(test_a_frame_cut_anywhere_should_not_cost_the_next_one),
         cmocka_unit_test(test_a_frame_for_another_node_should_be_dropped_silently),
+        cmocka_unit_test(test_escaped_syn_bytes_out_of_a_frame_should_not_start_one),
+        cmocka_unit_test(test_errors_of_another_nodes_frame_should_give_no_event),
+        cmocka_unit_test(test_a_gap_should_drop_a_partial_frame),
         cmocka_unit_test(test_every_size_should_round_trip),
         cmocka_unit_test(test_a_frame_longer_than_the_buffer_should_be_reported_whole),
         cmocka_unit_test(test_a_head_and_a_body_should_send_as_one_frame),

@@ -4,6 +4,7 @@
 #include "x2c_util.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 static rig_t rig;
 
@@ -135,16 +136,18 @@ static void test_frame_errors_should_be_answered_with_their_codes(void **state)
     frame[n - 1] ^= 0x01U; /* the checksum */
     assert_int_equal(rig_bytes(&rig, frame, n, reply), 2);
     assert_int_equal(reply[1], X2C_ERR_CHECKSUM);
-    /* an empty frame */
+    /* an empty frame is no frame: after a SYN a SIZE of 0 is an escaped 0x55's fill, as the
+     * clients read it; nothing answers it */
     n = rig_frame(data, 0U, frame);
-    assert_int_equal(rig_bytes(&rig, frame, n, reply), 2);
-    assert_int_equal(reply[0], 0x00);
-    assert_int_equal(reply[1], X2C_ERR_FORMAT);
-    /* a reserved byte without its fill */
+    assert_int_equal(rig_bytes(&rig, frame, n, reply), -1);
+    /* a reserved byte without its fill: in a frame for node 1 answered; in its SIZE, before
+     * the node is known, noise (no answer) */
     {
-        static const uint8_t bad[] = {0x55, 0x02, 0x01}; /* the 0x01 where the fill belongs */
+        static const uint8_t bad[] = {0x55, 0x03, 0x01, 0x02, 0x09}; /* DATA 0x02, then no fill */
         assert_int_equal(rig_bytes(&rig, bad, sizeof bad, reply), 2);
         assert_int_equal(reply[1], X2C_ERR_FORMAT);
+        static const uint8_t noise[] = {0x55, 0x02, 0x01}; /* the 0x01 where SIZE's fill belongs */
+        assert_int_equal(rig_bytes(&rig, noise, sizeof noise, reply), -1);
     }
     /* wrong lengths for fixed-size services */
     {
@@ -693,6 +696,36 @@ static void test_scope_trigger_should_place_the_edge_where_the_client_rotates_to
     }
 }
 
+/* A client that leaves with only the checksum missing: after X2C_RX_GAP_MS
+ * of silence the next client's request is answered as its own, with no
+ * reply to the one that left; with less silence its SYN would be read as
+ * the missing checksum (the stale reply a client then reads one behind). */
+static void test_a_request_left_unfinished_should_not_answer_the_next_client(void **state)
+{
+    (void)state;
+    rig_t *r = malloc(sizeof *r);
+    assert_non_null(r);
+    rig_init(r);
+    static const uint8_t info[] = {X2C_SVC_DEVICE_INFO};
+    uint8_t frame[16], reply[LNET_MAX_DATA];
+    size_t n = rig_frame(info, 1U, frame);
+    for (size_t k = 0; k + 1U < n; k++) {
+        x2c_rx_byte(&r->x, frame[k]); /* all but the checksum */
+    }
+    for (unsigned ms = 0; ms < X2C_RX_GAP_MS; ms++) {
+        x2c_tick_1ms(&r->x);
+    }
+    uint8_t b;
+    assert_false(x2c_tx_byte(&r->x, &b)); /* nothing was answered */
+    static const uint8_t state_req[] = {X2C_SVC_GET_STATE};
+    int len = rig_req(r, state_req, 1U, reply);
+    assert_int_equal(len, 3);
+    assert_int_equal(reply[0], X2C_SVC_GET_STATE);
+    assert_int_equal(reply[1], X2C_ERR_OK);
+    assert_int_equal(r->x.refused, 0U);
+    free(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -714,6 +747,7 @@ int main(void)
         cmocka_unit_test_setup(test_the_identification_result_should_read_as_the_core_reports_it,
                                setup),
         cmocka_unit_test_setup(test_writes_other_than_a_whole_tunable_should_be_refused, setup),
+        cmocka_unit_test(test_a_request_left_unfinished_should_not_answer_the_next_client),
         cmocka_unit_test_setup(test_scope_should_sample_until_full_and_report_its_state, setup),
         cmocka_unit_test_setup(test_scope_configurations_outside_the_rules_should_be_refused,
                                setup),

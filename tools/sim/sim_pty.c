@@ -224,6 +224,7 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
             }
             x2c_rx_byte(&x2c, in[0]);
         }
+        x2c_tick_1ms(&x2c); /* the board's inter-byte timeout, at the simulated ms */
         tx_credit += bytes_per_ms;
         if (tx_credit > tx_cap) {
             tx_credit = tx_cap; /* an idle line does not bank a burst */
@@ -238,7 +239,17 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
             }
             in[0] = (uint8_t)pending;
             if (write(out_fd, in, 1) != 1) {
-                break; /* nobody reading: the byte waits */
+                if (out_fd == peer && errno != EAGAIN && errno != EWOULDBLOCK) {
+                    /* the TCP client left mid-reply: the rest of it is nobody's; the target
+                     * takes requests again (the pty's and the next client's) */
+                    close(peer);
+                    peer = -1;
+                    out_fd = master;
+                    while (x2c_tx_byte(&x2c, &b)) {
+                    }
+                    pending = -1;
+                }
+                break; /* else nobody reading: the byte waits */
             }
             pending = -1;
             tx_credit -= 1.0;
