@@ -30,7 +30,7 @@ if __name__ == "__main__" and importlib.util.find_spec("yaml") is None:
 
 import yaml
 
-from scope import cli, lnet, varmap, x2c
+from scope import cli, identify, lnet, varmap, x2c
 
 
 def frame_of(data: bytes) -> lnet.Frame:
@@ -481,6 +481,44 @@ class Command(unittest.TestCase):
 
         rc, _, err = self.run_cli("--port", "fake", "info", opener=opener)
         self.assertOneLine(rc, err, 1, "bad checksum")
+
+
+class JudgeIdentification(unittest.TestCase):
+    """an1078-identify writes a description only of a finished, fault-free, physically possible
+    result: each field glitched (x0, x0.1, x10, the saturated code) through identify.judge."""
+
+    # the Hurst as the firmware reports it (docs/identify.md)
+    GOOD = identify.Result(status=identify.STATUS_DONE, error=0, rs_uohm=2_670_000, ls_nh=1_920_000,
+                           ke_uv_per_rpm=7_300, j_ng_m2=7_500, deadtime_ns=1_990, ld_nh=1_900_000,
+                           lq_nh=1_940_000, pole_pairs=5)
+
+    def refused(self, r: identify.Result, fragment: str, state: str = "STOPPED", fault: int = 0) -> None:
+        with self.assertRaises(lnet.LNetError) as cm:
+            identify.judge(r, state, fault, "a fault")
+        self.assertIn(fragment, str(cm.exception))
+
+    def test_a_good_result_should_pass(self) -> None:
+        identify.judge(self.GOOD, "STOPPED", 0)
+
+    def test_done_with_an_error_or_in_fault_should_be_refused(self) -> None:
+        from dataclasses import replace
+        self.refused(replace(self.GOOD, error=3), "DONE with error code 3")
+        self.refused(self.GOOD, "FAULT", state="FAULT", fault=2)
+        self.refused(self.GOOD, "fault a fault", fault=2)
+
+    def test_each_glitched_field_should_be_refused(self) -> None:
+        from dataclasses import replace
+        cases = [("pole_pairs", 0, "pole pairs 0"), ("pole_pairs", 255, "pole pairs 255"),
+                 ("rs_uohm", 0, "rs_uohm 0"), ("ke_uv_per_rpm", 0, "ke_uv_per_rpm 0"),
+                 ("ls_nh", 0, "ls_nh 0"), ("deadtime_ns", 0, "dead time 0"),
+                 ("deadtime_ns", 1_990_000, "dead time"),
+                 ("ls_nh", 19_200_000, "one of them is corrupt"), ("ls_nh", 192_000, "one of them is corrupt"),
+                 ("ld_nh", 19_000_000, "one of them is corrupt"), ("lq_nh", 194_000, "one of them is corrupt")]
+        for f in ("rs_uohm", "ls_nh", "ke_uv_per_rpm", "j_ng_m2", "deadtime_ns", "ld_nh", "lq_nh"):
+            cases.append((f, 0xFFFFFFFF, "saturated"))
+        for f, v, fragment in cases:
+            with self.subTest(f"{f} = {v}"):
+                self.refused(replace(self.GOOD, **{f: v}), fragment)
 
 
 if __name__ == "__main__":

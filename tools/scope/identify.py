@@ -157,6 +157,41 @@ def run_identification(t: x2c.Target, vs: dict[str, Var], names: mc_names.McName
             raise lnet.LNetError(f"no result within {timeout:g} s (state {names.state(state)}): stopped it")
 
 
+# The largest code of each field's type (mc.h mc_id_result_t: 32-bit values, 8-bit pole pairs):
+# what a saturated conversion or an unwritten result reads as, never a measurement.
+_SATURATED = {"rs_uohm": 0xFFFFFFFF, "ls_nh": 0xFFFFFFFF, "ke_uv_per_rpm": 0xFFFFFFFF, "j_ng_m2": 0xFFFFFFFF,
+              "deadtime_ns": 0xFFFFFFFF, "ld_nh": 0xFFFFFFFF, "lq_nh": 0xFFFFFFFF}
+LS_TOL = 0.05  # the mean inductance against (Ld + Lq) / 2: the firmware forms one from the others
+DEADTIME_MAX_NS = 20_000  # 10 % of a 5 kHz PWM period: no inverter loses more
+
+
+def judge(r: Result, state: str, fault: int, fault_name: str = "") -> None:
+    """A result becomes a description only when it is a finished, fault-free, physically possible
+    measurement: LNetError naming what is not."""
+    if r.status != STATUS_DONE:
+        return  # the caller says why (failed, or none)
+    if r.error != 0:
+        raise lnet.LNetError(f"the result says DONE with error code {r.error}: not a finished measurement")
+    if state == "FAULT" or fault != 0:
+        raise lnet.LNetError(f"the motor is {state} (fault {fault_name or fault}) after the identification: its "
+                             "numbers are not trusted")
+    if not 1 <= r.pole_pairs <= 50:
+        raise lnet.LNetError(f"pole pairs {r.pole_pairs}: not a motor's (1..50)")
+    for f, top in _SATURATED.items():
+        v = getattr(r, f)
+        if v >= top:
+            raise lnet.LNetError(f"{f} {v:#x}: the code of a saturated or unwritten value, not a measurement")
+    for f in ("rs_uohm", "ls_nh", "ld_nh", "lq_nh", "ke_uv_per_rpm"):
+        if getattr(r, f) <= 0:
+            raise lnet.LNetError(f"{f} {getattr(r, f)}: a motor has more than 0")
+    mean = (r.ld_nh + r.lq_nh) / 2.0
+    if abs(r.ls_nh - mean) > LS_TOL * mean:
+        raise lnet.LNetError(f"inductance {r.ls_nh} nH against Ld {r.ld_nh} and Lq {r.lq_nh} nH: the mean "
+                             f"must be within {LS_TOL:.0%} of (Ld + Lq) / 2 (one of them is corrupt)")
+    if not 0 < r.deadtime_ns <= DEADTIME_MAX_NS:
+        raise lnet.LNetError(f"dead time {r.deadtime_ns} ns: outside (0, {DEADTIME_MAX_NS}] ns")
+
+
 def describe(r: Result, args: argparse.Namespace) -> str:
     """The tools/tune description of a finished identification."""
     p = args.pole_pairs or r.pole_pairs
@@ -214,6 +249,8 @@ def run(args: argparse.Namespace, opener: Callable[[str, int], lnet.Transport] =
         if not args.no_run:
             run_identification(t, vs, names, args.timeout)
         r = read_result(t, vs)
+        fault = _read(t, vs["motor.fault"])
+        judge(r, names.state(_read(t, vs["motor.state"])), fault, names.fault(fault))
         if r.status != STATUS_DONE:
             if r.status == STATUS_FAILED:
                 why = names.id_error(r.error)
