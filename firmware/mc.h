@@ -222,6 +222,17 @@ typedef enum {
     MC_GAIN_COUNT   /* number of gains, not a gain */
 } mc_gain_t;
 
+/* The region a client's gains stay in (note 3), against the built-in gains:
+ * each at least MIN8 / 8 of its built-in and at most 8 times it, and a
+ * loop's Ki / Kp at most MC_GAIN_ZERO_MAX times the built-in ratio. */
+#define MC_GAIN_CUR_KP_MIN8 1U /* 1/8 */
+#define MC_GAIN_CUR_KI_MIN8 1U /* 1/8 */
+#define MC_GAIN_SPD_KP_MIN8                                                                        \
+    8U                         /* the built-in: softer stalls the lowest speeds under a load step  \
+                                */
+#define MC_GAIN_SPD_KI_MIN8 4U /* 1/2: less stalls them too */
+#define MC_GAIN_ZERO_MAX    8U
+
 /* ---- the slow step ------------------------------------------------------ *
  * The work that follows the speed loop's rate runs outside the PWM
  * interrupt, in mc_slow_step(): the estimator's speed, K and phase
@@ -533,10 +544,15 @@ bool mc_reference_held(const mc_status_t *st, uint8_t seq);
 /* Run-time gain change (note 3): posted like mc_request(), applied at the
  * start of the next mc_step() to every loop it concerns at once, so the d
  * and q current loops never run a period with different gains. Returns
- * false, and changes nothing, for an unknown gain or a value outside
- * 0..32767; the caller's whitelist decides what is sensible. mc_init()
- * restores the built-in gains. */
+ * false, and changes nothing, for an unknown gain or a value that would
+ * take its loop out of the region proven stable (note 3: MC_GAIN_MIN/MAX
+ * and the PI zero's bound, with the loop's other gain as posted).
+ * mc_init() restores the built-in gains. */
 bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value);
+
+/* Whether mc_set_gain(mc, g, value) would take it (the loop's other gain as
+ * posted now). */
+bool mc_gain_allowed(const mc_t *mc, mc_gain_t g, int16_t value);
 
 /* The gain as posted: the value in effect from the next period on. */
 int16_t mc_get_gain(const mc_t *mc, mc_gain_t g);
@@ -604,6 +620,16 @@ void mc_identify_result(const mc_t *mc, mc_id_result_t *r);
  *    low-speed schedule multiplies spd_kp_base / spd_ki_base each speed-loop
  *    tick, so a posted speed gain survives it (writing pi_w's gains directly
  *    would be overwritten within IRP_PERCALC periods).
+ *    A posted pair stays inside the region the simulated drive holds its
+ *    speed in, under a load step, from the lowest closed-loop speed to the
+ *    top, posted running or before START (test_mc_gains): each gain
+ *    between MC_GAIN_MIN and MC_GAIN_MAX times the built-in one, and Ki
+ *    over Kp at most MC_GAIN_ZERO_MAX times the built-in ratio (a PI zero
+ *    far above the design's: the integral outruns the proportional part
+ *    and the loop limit-cycles, with the speed loop at the full Iq limit
+ *    and no fault, or the current loops into a false CURRENT_SENSOR). The
+ *    speed loop may not go below its built-in Kp: at the lowest speeds a
+ *    load step then stalls it.
  *
  * 4. The slow step. Every MC_SLOW_STEP_PERIODS-th mc_step() ends a window:
  *    it applies the slow step's results of the window before (the

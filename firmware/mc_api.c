@@ -51,10 +51,38 @@ uint8_t mc_set_reference(mc_t *mc, int16_t ref)
     return seq;
 }
 
+/* The region a loop's posted pair must stay in (mc.h note 3), as factors of
+ * the built-in gains: 8ths for Kp and Ki each, the PI zero's bound whole. */
+static const uint8_t mc_gain_min8[MC_GAIN_COUNT] = {MC_GAIN_CUR_KP_MIN8, MC_GAIN_CUR_KI_MIN8,
+                                                    MC_GAIN_SPD_KP_MIN8, MC_GAIN_SPD_KI_MIN8};
+static const int16_t mc_gain_base[MC_GAIN_COUNT] = {MC_CUR_KP, MC_CUR_KI, MC_SPD_KP, MC_SPD_KI};
+
+bool mc_gain_allowed(const mc_t *mc, mc_gain_t g, int16_t value)
+{
+    if ((unsigned)g >= (unsigned)MC_GAIN_COUNT || value < 1) {
+        return false;
+    }
+    int16_t base = mc_gain_base[g];
+    /* min8 / 8 base <= value <= 8 base, as 16 x 16 products (the dsPIC's mul.ss) */
+    if (q15_dsp_mulss(value, 8) < q15_dsp_mulss((int16_t)mc_gain_min8[g], base) ||
+        q15_dsp_mulss(base, 8) < (int32_t)value) {
+        return false;
+    }
+    /* the loop's pair, this value in place: Ki / Kp <= Z Ki0 / Kp0, as Ki Kp0 <= Z Ki0 Kp,
+     * each product below 2^30, as ceil(left / Z) <= right (Z a power of two) */
+    unsigned kp_i = (unsigned)g & ~1U; /* the gains are Kp, Ki pairs (mc.h mc_gain_t) */
+    bool is_kp = g == (mc_gain_t)kp_i;
+    int16_t kp = is_kp ? value : mc->mbox.gain_posted[kp_i];
+    int16_t ki = is_kp ? mc->mbox.gain_posted[kp_i + 1U] : value;
+    int32_t left = q15_dsp_mulss(ki, mc_gain_base[kp_i]);
+    int32_t right = q15_dsp_mulss(mc_gain_base[kp_i + 1U], kp);
+    return (left + ((int32_t)MC_GAIN_ZERO_MAX - 1)) / (int32_t)MC_GAIN_ZERO_MAX <= right;
+}
+
 bool mc_set_gain(mc_t *mc, mc_gain_t g, int16_t value)
 {
     mc_mailbox_t *b = &mc->mbox;
-    if ((unsigned)g >= (unsigned)MC_GAIN_COUNT || value < 0) {
+    if (!mc_gain_allowed(mc, g, value)) {
         return false;
     }
     b->gain_posted[g] = value;

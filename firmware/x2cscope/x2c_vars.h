@@ -112,25 +112,32 @@
  * motor's value.
  *   X(field, min, max, unit, full_scale)
  * The gains are the PI mantissas (Q15, exponent fixed at build time,
- * mc.h note 3): the build-time value / 8 .. x 8, at least 1: wide enough to
- * tune, narrow enough that a typo cannot zero a loop. speed_ref_rpm, in
+ * mc.h note 3): the build-time value x MC_GAIN_*_MIN8 / 8 .. x 8, at least 1
+ * (the current gains from 1/8, the speed Kp from the built-in, its Ki from
+ * 1/2), and a loop's pair within the core's bound on Ki / Kp, which
+ * refuses a write that would leave it (X2C_ERR_LIMIT): wide enough to
+ * tune, never a pair the simulated drive was not proven stable with. speed_ref_rpm, in
  * rpm, is 0 (the pot again) or the pot's range, X2C_RPM_MIN..X2C_RPM_MAX:
  * the values between are refused (X2C_ERR_LIMIT); run is S2 (1 start,
  * 0 stop); identify 1 measures the motor (MC_REQUEST_IDENTIFY, only from
  * STOPPED, refused otherwise), 0 stops a measurement going on, and it
  * reads 1 while the motor is in IDENTIFY.
  */
-#define X2C_GAIN_MIN(g) ((int16_t)((g) / 8 > 0 ? (g) / 8 : 1))
+/* at least min8 / 8 of the built-in g, rounded up, and 1 (mc.h MC_GAIN_*_MIN8) */
+#define X2C_GAIN_MIN(g, min8)                                                                      \
+    ((int16_t)(((int32_t)(g) * (int32_t)(min8) + 7) / 8 > 0                                        \
+                   ? ((int32_t)(g) * (int32_t)(min8) + 7) / 8                                      \
+                   : 1))
 #define X2C_GAIN_MAX(g) ((int16_t)((int32_t)(g)*8 > 32767 ? 32767 : (int32_t)(g)*8))
 #define X2C_RPM_MIN     ((int16_t)(SPEED_REF_MIN_RPM + 0.5))
 #define X2C_RPM_MAX     ((int16_t)(SPEED_REF_MAX_RPM + 0.5))
 
 /* clang-format off */
 #define X2C_TUNABLES(X)                                                                 \
-    X(cur_kp,        X2C_GAIN_MIN(MC_CUR_KP), X2C_GAIN_MAX(MC_CUR_KP), "", X2C_FS_CODE) \
-    X(cur_ki,        X2C_GAIN_MIN(MC_CUR_KI), X2C_GAIN_MAX(MC_CUR_KI), "", X2C_FS_CODE) \
-    X(spd_kp,        X2C_GAIN_MIN(MC_SPD_KP), X2C_GAIN_MAX(MC_SPD_KP), "", X2C_FS_CODE) \
-    X(spd_ki,        X2C_GAIN_MIN(MC_SPD_KI), X2C_GAIN_MAX(MC_SPD_KI), "", X2C_FS_CODE) \
+    X(cur_kp,        X2C_GAIN_MIN(MC_CUR_KP, MC_GAIN_CUR_KP_MIN8), X2C_GAIN_MAX(MC_CUR_KP), "", X2C_FS_CODE) \
+    X(cur_ki,        X2C_GAIN_MIN(MC_CUR_KI, MC_GAIN_CUR_KI_MIN8), X2C_GAIN_MAX(MC_CUR_KI), "", X2C_FS_CODE) \
+    X(spd_kp,        X2C_GAIN_MIN(MC_SPD_KP, MC_GAIN_SPD_KP_MIN8), X2C_GAIN_MAX(MC_SPD_KP), "", X2C_FS_CODE) \
+    X(spd_ki,        X2C_GAIN_MIN(MC_SPD_KI, MC_GAIN_SPD_KI_MIN8), X2C_GAIN_MAX(MC_SPD_KI), "", X2C_FS_CODE) \
     X(speed_ref_rpm, 0,                       X2C_RPM_MAX,             "rpm", X2C_FS_CODE) \
     X(run,           0,                       1,                       "", X2C_FS_CODE) \
     X(identify,      0,                       1,                       "", X2C_FS_CODE)

@@ -250,15 +250,20 @@ static void test_gains_should_be_applied_through_the_mailbox_and_read_back(void 
         uint16_t off;
         mc_gain_t gain;
         int16_t build;
+        int16_t min;
     } g[] = {
-        {offsetof(x2c_tune_t, cur_kp), MC_GAIN_CUR_KP, MC_CUR_KP},
-        {offsetof(x2c_tune_t, cur_ki), MC_GAIN_CUR_KI, MC_CUR_KI},
-        {offsetof(x2c_tune_t, spd_kp), MC_GAIN_SPD_KP, MC_SPD_KP},
-        {offsetof(x2c_tune_t, spd_ki), MC_GAIN_SPD_KI, MC_SPD_KI},
+        {offsetof(x2c_tune_t, cur_kp), MC_GAIN_CUR_KP, MC_CUR_KP,
+         X2C_GAIN_MIN(MC_CUR_KP, MC_GAIN_CUR_KP_MIN8)},
+        {offsetof(x2c_tune_t, cur_ki), MC_GAIN_CUR_KI, MC_CUR_KI,
+         X2C_GAIN_MIN(MC_CUR_KI, MC_GAIN_CUR_KI_MIN8)},
+        {offsetof(x2c_tune_t, spd_kp), MC_GAIN_SPD_KP, MC_SPD_KP,
+         X2C_GAIN_MIN(MC_SPD_KP, MC_GAIN_SPD_KP_MIN8)},
+        {offsetof(x2c_tune_t, spd_ki), MC_GAIN_SPD_KI, MC_SPD_KI,
+         X2C_GAIN_MIN(MC_SPD_KI, MC_GAIN_SPD_KI_MIN8)},
     };
     for (unsigned i = 0; i < 4U; i++) {
         uint16_t addr = (uint16_t)(x2c_wire(&rig.x, X2C_OBJ_TUNE) + g[i].off);
-        int16_t v = (int16_t)(g[i].build / 2 + 1);
+        int16_t v = (int16_t)(g[i].build + g[i].build / 4); /* inside every bound */
         assert_int_equal(read_i16(addr), g[i].build);
         assert_int_equal(write_i16(addr, v), X2C_ERR_OK);
         assert_int_equal(mc_get_gain(&rig.mc, g[i].gain), v);
@@ -271,8 +276,7 @@ static void test_gains_should_be_applied_through_the_mailbox_and_read_back(void 
                                                  ? 0
                                                  : (int16_t)(X2C_GAIN_MAX(g[i].build) + 1)),
                              X2C_ERR_LIMIT);
-            assert_int_equal(write_i16(addr, (int16_t)(X2C_GAIN_MIN(g[i].build) - 1)),
-                             X2C_ERR_LIMIT);
+            assert_int_equal(write_i16(addr, (int16_t)(g[i].min - 1)), X2C_ERR_LIMIT);
             assert_true(rig_same(&rig, &before));
             assert_int_equal(read_i16(addr), v);
         }
