@@ -806,6 +806,29 @@ class TheProbe(unittest.TestCase):
         self.assertIn("current-sensor check", line)
         measured("--check lists: %s", line)
 
+    def test_check_should_warn_of_values_a_slip_makes_likely(self) -> None:
+        from tune.motortune import cli
+        prof = probe.profile(self.base, "mclv", "p.h")
+        facts = {k: prof.out.fact(k) for k in ("MOTOR_KE_VPK_LL_PER_KRPM", "MC_VOLTAGE_LIMIT_FRACTION",
+                                               "MC_VOLTAGE_FULLSCALE_V", "MOTOR_SPEED_NOMINAL_RPM",
+                                               "PWM_DEADTIME_NS", "PWM_FREQUENCY_HZ", "BOARD_VBUS_NOMINAL_V",
+                                               "MOTOR_SPEED_MIN_RPM", "MOTOR_RAMP_TIME_S", "MC_VBUS_OVERVOLTAGE_V",
+                                               "PWM_ADC_TRIGGER_TCY", "MC_DT_COUNTS")}
+        facts["MOTOR_SPEED_MIN_RPM"] = 1000.0  # above the tool's 3 x rule: no warning of its own
+        self.assertEqual(cli.unusual(facts.__getitem__), [])
+        slips = [("MOTOR_KE_VPK_LL_PER_KRPM", facts["MOTOR_KE_VPK_LL_PER_KRPM"] / math.sqrt(6.0), "rms"),
+                 ("MOTOR_SPEED_MIN_RPM", 300.0, "dead time's voltage error"),
+                 ("MOTOR_RAMP_TIME_S", 0.02, "little"),
+                 ("MC_VBUS_OVERVOLTAGE_V", 40.0, "regenerating"),
+                 ("PWM_ADC_TRIGGER_TCY", 0.0, "less than a dead time")]
+        for name, value, fragment in slips:
+            with self.subTest(name):
+                f = dict(facts, **{name: value})
+                lines = [ln for ln in cli.unusual(f.__getitem__) if name in ln]
+                self.assertEqual(len(lines), 1, lines)
+                self.assertIn(fragment, lines[0])
+                measured("--check warns: %s", lines[0])
+
     def test_a_profile_for_another_pwm_frequency_should_be_read_at_that_frequency(self) -> None:
         # emit.py's guard (written when the description names a pwm_frequency) names the
         # frequency the profile was derived for; --check reads it back

@@ -11,8 +11,10 @@ the tool itself (caught by main, still one line: never a traceback).
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
+from collections.abc import Callable
 from typing import NoReturn
 
 from . import describe, probe, safeio
@@ -139,6 +141,38 @@ def settings_changed(macros: dict[str, str]) -> list[str]:
     return out
 
 
+def unusual(f: Callable[[str], float]) -> list[str]:
+    """A line for each value the core accepts but a slip makes likely (f: the probe's facts):
+    legal, so --check passes, but said, with the reason."""
+    out = []
+    e_ph = f("MOTOR_KE_VPK_LL_PER_KRPM") / math.sqrt(3.0) / 1000.0  # V phase peak per rpm
+    v_lim = f("MC_VOLTAGE_LIMIT_FRACTION") * f("MC_VOLTAGE_FULLSCALE_V")
+    share = e_ph * f("MOTOR_SPEED_NOMINAL_RPM") / v_lim
+    if share < 0.5:
+        out.append(f"WARNING     MOTOR_KE_VPK_LL_PER_KRPM: the back-EMF at the nominal speed is {share:.0%} of "
+                   f"the voltage the core applies (field weakening starts there): Ke given as rms or per "
+                   f"phase (x{math.sqrt(6):.2f} or x{math.sqrt(3):.2f} low)?")
+    v_dt = 4.0 / math.pi * 2.0 / 3.0 * f("PWM_DEADTIME_NS") * 1e-9 * f("PWM_FREQUENCY_HZ") * \
+        f("BOARD_VBUS_NOMINAL_V")
+    e_min = e_ph * f("MOTOR_SPEED_MIN_RPM")
+    if e_min < 3.0 * v_dt:
+        out.append(f"WARNING     MOTOR_SPEED_MIN_RPM: its back-EMF {e_min:.2f} V is {e_min / v_dt:.1f} x the dead "
+                   f"time's voltage error {v_dt:.2f} V (the core refuses 1 x; tools/tune derives 3 x)")
+    if f("MOTOR_RAMP_TIME_S") < 0.25:
+        out.append(f"WARNING     MOTOR_RAMP_TIME_S: {f('MOTOR_RAMP_TIME_S'):g} s leaves the estimator little "
+                   "to converge and the lock's swing no time to die before the hand-off (tools/tune derives "
+                   "at least 1 s)")
+    if f("MC_VBUS_OVERVOLTAGE_V") > 1.5 * f("BOARD_VBUS_NOMINAL_V"):
+        out.append(f"WARNING     MC_VBUS_OVERVOLTAGE_V: {f('MC_VBUS_OVERVOLTAGE_V'):g} V trips at "
+                   f"{f('MC_VBUS_OVERVOLTAGE_V') / f('BOARD_VBUS_NOMINAL_V'):.2f} x the "
+                   f"{f('BOARD_VBUS_NOMINAL_V'):g} V bus: a regenerating motor pumps it that far first")
+    if f("PWM_ADC_TRIGGER_TCY") < f("MC_DT_COUNTS"):
+        out.append(f"WARNING     PWM_ADC_TRIGGER_TCY: the sample {f('PWM_ADC_TRIGGER_TCY'):g} Tcy after the "
+                   f"midpoint, less than a dead time ({f('MC_DT_COUNTS'):g} Tcy): the shunt window then takes "
+                   "the settling from the duty (AN1078: 80 Tcy)")
+    return out
+
+
 def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
     """The table in engineering units as the core computes it (the probe), the checks of
     mc_derived.h and smc.h that fail, then the core's own compile (firmware/mc*.c)."""
@@ -162,7 +196,7 @@ def check(profile: str, board: str | None = None, compile_: bool = True) -> int:
         more = f" (and {len(prof.refused) - 1} more, listed above)" if len(prof.refused) > 1 else ""
         return _fail(f"{profile}: ", f"{first.param}: {first.why} ({first.where}){more}", EXIT_REFUSED)
     print(format_table(prof.out.rows, title))
-    for line in settings_changed(prof.macros.macros):
+    for line in settings_changed(prof.macros.macros) + unusual(prof.out.fact):
         print(line)
     if compile_:
         err = probe.compile_core(text, prof.build, shown)

@@ -78,6 +78,7 @@
     FACT(SPEED_REF_MAX_RPM, SPEED_REF_MAX_RPM)                                                     \
     FACT(MC_SPEED_REF_MAX_Q15, MC_SPEED_REF_MAX_Q15)                                               \
     FACT(MOTOR_SPEED_MIN_RPM, MOTOR_SPEED_MIN_RPM)                                                 \
+    FACT(MC_VBUS_OVERVOLTAGE_V, MC_VBUS_OVERVOLTAGE_V)                                             \
     FACT(MOTOR_SPEED_NOMINAL_RPM, MOTOR_SPEED_NOMINAL_RPM)                                         \
     FACT(MC_SPEED_NOMINAL_Q15, MC_Q15_RPM(MOTOR_SPEED_NOMINAL_RPM))                                \
     FACT(MOTOR_SPEED_FW_MAX_RPM, MOTOR_SPEED_FW_MAX_RPM)                                           \
