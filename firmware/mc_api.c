@@ -56,6 +56,9 @@ uint8_t mc_set_reference(mc_t *mc, int16_t ref)
 static const uint8_t mc_gain_min8[MC_GAIN_COUNT] = {MC_GAIN_CUR_KP_MIN8, MC_GAIN_CUR_KI_MIN8,
                                                     MC_GAIN_SPD_KP_MIN8, MC_GAIN_SPD_KI_MIN8};
 static const int16_t mc_gain_base[MC_GAIN_COUNT] = {MC_CUR_KP, MC_CUR_KI, MC_SPD_KP, MC_SPD_KI};
+Q15_STATIC_ASSERT(MC_GAIN_CUR_KP == 0 && MC_GAIN_CUR_KI == 1 && MC_GAIN_SPD_KP == 2 &&
+                      MC_GAIN_SPD_KI == 3 && MC_GAIN_COUNT == 4,
+                  "mc_gain_allowed takes the gains as Kp, Ki pairs, Kp at the even index");
 
 bool mc_gain_allowed(const mc_t *mc, mc_gain_t g, int16_t value)
 {
