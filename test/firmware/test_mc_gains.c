@@ -28,8 +28,8 @@ static int16_t at(mc_gain_t g, double f)
 }
 
 typedef struct {
-    int state; /* at the end */
-    int fault;
+    mc_state_t state; /* at the end */
+    unsigned fault;
     double i_peak;  /* A, the largest phase current after the gains */
     double err_rms; /* rpm, speed error RMS over the last half */
 } outcome_t;
@@ -40,7 +40,7 @@ typedef struct {
 static outcome_t run_with(double rpm, const double f[4], bool *accepted, bool before_start)
 {
     mc_bench_cfg_t c;
-    outcome_t o = {0, 0, 0.0, 0.0};
+    outcome_t o = {MC_STATE_STOPPED, 0U, 0.0, 0.0};
     mc_bench_cfg_default(&c);
     c.pot = pot_for_rpm(rpm);
     mc_bench_init(&b, &c);
@@ -88,7 +88,7 @@ static outcome_t run_with(double rpm, const double f[4], bool *accepted, bool be
         }
     }
     o.state = b.st.state;
-    o.fault = b.st.fault;
+    o.fault = (unsigned)b.st.fault;
     o.err_rms = ne > 0 ? sqrt(e2 / (double)ne) : -1.0;
     return o;
 }
@@ -121,14 +121,14 @@ static void test_every_corner_of_the_allowed_region_should_hold_the_speed(void *
             for (int before = 0; before < 2; before++) {
                 bool acc;
                 outcome_t o = run_with(rpms[r], corners[c], &acc, before != 0);
-                if (!acc || o.state != MC_STATE_CLOSED_LOOP || o.fault != 0 ||
+                if (!acc || o.state != MC_STATE_CLOSED_LOOP || o.fault != 0U ||
                     o.i_peak >= MC_OVERCURRENT_A || o.err_rms > 60.0) {
-                    fail_msg("gains x{%g %g %g %g} at %.0f rpm (%s): %s, state %d fault %d, peak "
+                    fail_msg("gains x{%g %g %g %g} at %.0f rpm (%s): %s, state %d fault %u, peak "
                              "%.2f A, "
                              "error %.1f rpm RMS",
                              corners[c][0], corners[c][1], corners[c][2], corners[c][3], rpms[r],
                              before ? "before START" : "running", acc ? "accepted" : "REFUSED",
-                             o.state, o.fault, o.i_peak, o.err_rms);
+                             (int)o.state, o.fault, o.i_peak, o.err_rms);
                 }
                 worst_err = o.err_rms > worst_err ? o.err_rms : worst_err;
                 worst_i = o.i_peak > worst_i ? o.i_peak : worst_i;
