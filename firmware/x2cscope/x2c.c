@@ -67,6 +67,9 @@ Q15_STATIC_ASSERT((long)(MC_SPEED_FULLSCALE_RPM + 0.5) < 65536L,
 Q15_STATIC_ASSERT(3U + 4U + 6U * X2C_SCOPE_CHANNELS + 12U + 4U <= X2C_REQUEST_MAX,
                   "the request buffer cannot hold a full scope configuration");
 Q15_STATIC_ASSERT(X2C_RX_BYTES <= LNET_MAX_DATA, "a request buffer beyond a frame");
+/* quiet_ms saturates at 255: a gap of 255 ms or more would never be reached */
+Q15_STATIC_ASSERT(X2C_RX_GAP_MS >= 1U && X2C_RX_GAP_MS < 255U,
+                  "X2C_RX_GAP_MS must be 1..254 ms (the inter-byte timeout, x2c.h)");
 
 static const volatile uint8_t *obj_base(const x2c_t *x, uint8_t obj)
 {
