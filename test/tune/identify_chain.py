@@ -227,7 +227,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=1, help="their seed (default 1)")
     ap.add_argument("--out", help="keep the files here (default: a temporary folder)")
     a = ap.parse_args(argv)
-    conf = load_conf(a.conf)
+    try:
+        conf = load_conf(a.conf)
+    except (OSError, ValueError) as e:
+        print(f"chain: --conf {a.conf}: {getattr(e, 'strerror', None) or e}")
+        return 2
     failed = 0
     with tempfile.TemporaryDirectory(prefix="idchain_") as tmp:
         out = a.out or tmp
