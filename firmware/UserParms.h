@@ -293,6 +293,22 @@
 #ifndef MC_STALL_TRACK_TIME_S
 #define MC_STALL_TRACK_TIME_S 0.04
 #endif
+/* The speed PI swinging from one limit to the other and back: a limit cycle
+ * of the speed loop, whose gains are too high for the rotor on the shaft (a
+ * rotor several times lighter than the profile's inertia, or a client's
+ * gains). MC_SWING_FLIPS reversals between its limits in CLOSED_LOOP, each
+ * within MC_SWING_GAP_S (s) of the one before: SPEED_UNSTABLE. A limit
+ * cycle reverses every few ms; a healthy loop once or twice after a large
+ * step, and a loop that an estimate's noise drives to its limits now and
+ * then, tens of ms apart at random (docs/robustness.md); a locked rotor's
+ * estimate makes it reverse every 2 ms, and the stall checks (20 ms) must
+ * name that first, so the run takes more than MC_STALL_TIME_S. */
+#ifndef MC_SWING_FLIPS
+#define MC_SWING_FLIPS 16
+#endif
+#ifndef MC_SWING_GAP_S
+#define MC_SWING_GAP_S 0.025
+#endif
 
 /* ---- self-commissioning (MC_REQUEST_IDENTIFY, mc.h; docs/identify.md) ------------ */
 /* 1: the build can identify the motor; 0: it cannot (MC_REQUEST_IDENTIFY

@@ -795,7 +795,11 @@ void mc_step(mc_t *mc, const mc_adc_frame_t *in, mc_pwm_out_t *out)
  *    MC_STALL_BEMF_HIGH_FRACTION or, outside field weakening (where the
  *    weakened flux lowers it legitimately), below MC_STALL_BEMF_LOW_FRACTION
  *    (MC_STALL_TIME_S); the speed error above MC_STALL_SPEED_ERROR_RPM with
- *    the speed PI at its limit (MC_STALL_TRACK_TIME_S).
+ *    the speed PI at its limit (MC_STALL_TRACK_TIME_S). A speed loop too
+ *    hot for its rotor limit-cycles at the Iq limit with an error that
+ *    passes through zero twice a cycle, which the tracking check never
+ *    sees persist: MC_SWING_FLIPS reversals of the speed PI between its
+ *    limits, each within MC_SWING_GAP_S of the last, are SPEED_UNSTABLE.
  *
  * 3. The circle limit. With lim = round(sqrt(Vmax^2 - Vd^2)), AN1078's q PI
  *    gives Out = clamp(round(U), -lim, lim). Its square root (one division

@@ -134,7 +134,9 @@ typedef enum { MC_STATE_LIST(MC_STATE_ENUM_) MC_STATE_COUNT } mc_state_t;
     X(STALL_TRACK, 8)     /* closed loop: speed error with the speed PI saturated */               \
     X(OFFSET, 9)          /* current offset out of range at calibration (amplifier) */             \
     X(OVERRUN, 10)        /* mc_slow_step of a window not finished at the next window end */       \
-    X(CURRENT_SENSOR, 11) /* measured currents do not follow the current loops (mc.c note 5) */
+    X(CURRENT_SENSOR, 11) /* measured currents do not follow the current loops (mc.c note 5) */    \
+    X(SPEED_UNSTABLE, 12) /* closed loop: the speed PI swings between its limits (a limit cycle)   \
+                           */
 
 #define MC_FAULT_ENUM_(name, code) MC_FAULT_##name = code,
 enum { MC_FAULT_LIST(MC_FAULT_ENUM_) MC_FAULT_COUNT };
@@ -343,18 +345,26 @@ typedef struct {
     bool slow;      /* a window waited MC_DTM_WAIT for a reversal */
 } mc_dtm_t;
 
+/* The stall and limit-cycle detector's state (mc_stall_check, mc_internal.h). */
+typedef struct {
+    uint16_t cnt[3];     /* speed-loop runs each stall condition has persisted */
+    uint16_t swing_gap;  /* runs since the speed PI last went from one limit to the other */
+    uint8_t swing_flips; /* such reversals in a row, each within MC_SWING_GAP_S of the last */
+    int8_t swing_side;   /* the limit it was last at: +1 upper, -1 lower, 0 none yet */
+} mc_stall_t;
+
 /* The slow step's own state (mc_slow.c). */
 typedef struct {
-    pi_t pi_w;             /* speed PI */
-    fieldweak_t fw;        /* its Id table (constant after mc_init) */
-    int16_t spd_ref;       /* the ramp's state, Q15 speed */
-    uint16_t stall_cnt[3]; /* speed-loop ticks each stall condition has persisted */
-    uint8_t epoch;         /* the run the slow step's state belongs to */
-    int32_t ol_iq_acc;     /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
-    int32_t ol_dmean;      /* OPEN_LOOP: forced - estimated step, mean, Q4 counts/period */
-    bool ol_dlive;         /* OPEN_LOOP: ol_dmean holds a valid estimate's history */
-    mc_sensor_t sensor;    /* the current-sensor check */
-    mc_dtm_t dtm;          /* LOCK: the dead-time measurement */
+    pi_t pi_w;          /* speed PI */
+    fieldweak_t fw;     /* its Id table (constant after mc_init) */
+    int16_t spd_ref;    /* the ramp's state, Q15 speed */
+    mc_stall_t stall;   /* the stall and limit-cycle detector's counts */
+    uint8_t epoch;      /* the run the slow step's state belongs to */
+    int32_t ol_iq_acc;  /* OPEN_LOOP: 32 x the low-passed torque current, Q15 */
+    int32_t ol_dmean;   /* OPEN_LOOP: forced - estimated step, mean, Q4 counts/period */
+    bool ol_dlive;      /* OPEN_LOOP: ol_dmean holds a valid estimate's history */
+    mc_sensor_t sensor; /* the current-sensor check */
+    mc_dtm_t dtm;       /* LOCK: the dead-time measurement */
 } mc_slow_t;
 
 /* The hand-over (note 4): the interrupt writes in while !busy, the slow

@@ -721,6 +721,16 @@ MC_CHECK(MC_STALL_TRACK_TIME_S,
          MC_STALL_TRACK_TICKS_ >= 2.0 && MC_STALL_TRACK_TICKS_ <= 0.05 * MC_SPEED_LOOP_HZ,
          "must be 2 speed-loop runs .. 50 ms");
 #define MC_STALL_TRACK_TICKS ((uint16_t)(MC_STALL_TRACK_TICKS_ + 0.5))
+/* The limit-cycle check (mc_stall_check): a reversal of the speed PI
+ * between its limits takes at least 2 speed-loop runs; a run of them ends
+ * when the next does not come within the gap. */
+#define MC_SWING_GAP_TICKS_ ((double)MC_SWING_GAP_S * (double)MC_SPEED_LOOP_HZ)
+MC_CHECK(MC_SWING_GAP_S, MC_SWING_GAP_TICKS_ >= 4.0 && MC_SWING_GAP_TICKS_ <= 30000.0,
+         "must be 4 speed-loop runs .. 30000 runs");
+#define MC_SWING_GAP_TICKS ((uint16_t)(MC_SWING_GAP_TICKS_ + 0.5))
+MC_CHECK(MC_SWING_FLIPS,
+         MC_IS_INTEGER_(MC_SWING_FLIPS) && MC_SWING_FLIPS >= 3 && MC_SWING_FLIPS <= 100,
+         "must be an integer 3..100 (a healthy loop reverses once or twice after a step)");
 /* Its default is MOTOR_SPEED_MIN_RPM / 2 (UserParms.h). */
 MC_CHECK_FOR(MC_STALL_SPEED_MIN_RPM, MOTOR_SPEED_MIN_RPM,
              MC_STALL_SPEED_MIN_RPM > 0.0 && MC_STALL_SPEED_MIN_RPM < MC_ESTIMATOR_MIN_RPM,

@@ -80,23 +80,28 @@ Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
 
 /* Inputs of one stall check (one speed-loop run in CLOSED_LOOP). */
 typedef struct {
-    q15_t speed;     /* estimated speed, Q15 of MC_SPEED_FULLSCALE_RPM */
-    q15_t emf_ratio; /* estimator back-EMF / expected at that speed, Q12 (4096 = 1) */
-    bool fw_active;  /* the speed reference is in field weakening */
-    q15_t speed_err; /* speed reference - estimated speed, Q15 speed */
-    bool saturated;  /* the speed PI output is at a limit */
+    q15_t speed;      /* estimated speed, Q15 of MC_SPEED_FULLSCALE_RPM */
+    q15_t emf_ratio;  /* estimator back-EMF / expected at that speed, Q12 (4096 = 1) */
+    bool fw_active;   /* the speed reference is in field weakening */
+    q15_t speed_err;  /* speed reference - estimated speed, Q15 speed */
+    int8_t saturated; /* the speed PI output at its upper limit +1, at its lower -1, else 0 */
 } mc_stall_in_t;
 
 /*
- * The stall / loss-of-synchronisation detector. cnt[0..2] count consecutive
- * runs of each condition (reset when it clears):
+ * The stall / loss-of-synchronisation detector. s->cnt[0..2] count
+ * consecutive runs of each condition (reset when it clears):
  *   [0] |speed| < MC_STALL_SPEED_Q15                       -> STALL_SPEED
  *   [1] emf_ratio > MC_STALL_BEMF_HI_Q12, or, outside field weakening,
  *       emf_ratio < MC_STALL_BEMF_LO_Q12                   -> STALL_BEMF
  *   [2] |speed_err| > MC_STALL_SPEED_ERR_Q15 and saturated -> STALL_TRACK
  * [0] and [1] trip at MC_STALL_TICKS consecutive runs, [2] at
- * MC_STALL_TRACK_TICKS. Returns the fault code, MC_FAULT_NONE if none.
+ * MC_STALL_TRACK_TICKS. A limit cycle of the speed loop escapes [2]: its
+ * error passes through zero twice a cycle. So the reversals of the speed PI
+ * between its limits are counted too (saturated at the other limit than
+ * the last time it was at one), each within MC_SWING_GAP_TICKS of the one
+ * before, and MC_SWING_FLIPS of them in a row -> SPEED_UNSTABLE. Returns
+ * the fault code, MC_FAULT_NONE if none. A zeroed *s is the start.
  */
-uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in);
+uint16_t mc_stall_check(mc_stall_t *s, const mc_stall_in_t *in);
 
 #endif /* MC_INTERNAL_H */

@@ -3,6 +3,8 @@
 /* mc_slow.c - the slow step: speed ramp and PI, field weakening, stall check (mc.h note 4). */
 #include "mc_parts.h"
 
+#include <string.h>
+
 #include "park.h"
 #include "sincos.h"
 #include "vlimit.h"
@@ -53,14 +55,30 @@ q15_t mc_pot_to_torque(int16_t pot)
     return (q15_t)(((int32_t)p * MC_IQ_MAX_Q15) >> 15);
 }
 
-uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
+#if MC_DRIVE
+
+uint16_t mc_stall_check(mc_stall_t *s, const mc_stall_in_t *in)
 {
+    uint16_t *cnt = s->cnt;
     cnt[0] = (q15_abs_sat(in->speed) < MC_STALL_SPEED_Q15) ? (uint16_t)(cnt[0] + 1U) : 0U;
     bool emf_bad = (in->emf_ratio > MC_STALL_BEMF_HI_Q12) ||
                    (!in->fw_active && in->emf_ratio < MC_STALL_BEMF_LO_Q12);
     cnt[1] = emf_bad ? (uint16_t)(cnt[1] + 1U) : 0U;
-    bool track_bad = q15_abs_sat(in->speed_err) > MC_STALL_SPEED_ERR_Q15 && in->saturated;
+    bool track_bad = q15_abs_sat(in->speed_err) > MC_STALL_SPEED_ERR_Q15 && in->saturated != 0;
     cnt[2] = track_bad ? (uint16_t)(cnt[2] + 1U) : 0U;
+    /* Reversals between the limits: the gap counts up to one past its
+     * bound (a uint16 that stops there), which ends a run of them. */
+    if (s->swing_gap <= MC_SWING_GAP_TICKS) {
+        s->swing_gap++;
+    }
+    if (in->saturated != 0) {
+        if (s->swing_side != 0 && in->saturated != s->swing_side) {
+            s->swing_flips =
+                (s->swing_gap <= MC_SWING_GAP_TICKS) ? (uint8_t)(s->swing_flips + 1U) : (uint8_t)1U;
+            s->swing_gap = 0U;
+        }
+        s->swing_side = in->saturated;
+    }
     if (cnt[0] >= MC_STALL_TICKS) {
         return MC_FAULT_STALL_SPEED;
     }
@@ -70,10 +88,11 @@ uint16_t mc_stall_check(uint16_t cnt[3], const mc_stall_in_t *in)
     if (cnt[2] >= MC_STALL_TRACK_TICKS) {
         return MC_FAULT_STALL_TRACK;
     }
+    if (s->swing_flips >= MC_SWING_FLIPS && s->swing_gap <= MC_SWING_GAP_TICKS) {
+        return MC_FAULT_SPEED_UNSTABLE;
+    }
     return MC_FAULT_NONE;
 }
-
-#if MC_DRIVE
 
 /* Speed mode: the reference ramped towards the target, field weakening from
  * it (AN1078), the speed PI within what is left of the current budget. */
@@ -147,8 +166,12 @@ static void mc_slow_speed_loop(mc_slow_t *sl, const smc_result_t *est, const mc_
      * back-EMF catches it. */
     si.fw_active = q15_abs_sat(sl->spd_ref) > mc_fw_params.speed_nominal && est->valid;
     si.speed_err = MC_TORQUE_MODE ? 0 : q15_sub_sat(sl->spd_ref, w);
-    si.saturated = !MC_TORQUE_MODE && pi_at_limit(&sl->pi_w);
-    out->fault = mc_stall_check(sl->stall_cnt, &si);
+    si.saturated = 0;
+    if (!MC_TORQUE_MODE) {
+        const pi_t *pw = &sl->pi_w;
+        si.saturated = (pw->out >= pw->p.out_max) ? 1 : (pw->out <= pw->p.out_min) ? -1 : 0;
+    }
+    out->fault = mc_stall_check(&sl->stall, &si);
     out->i_ref = i_ref;
     out->speed_ref = sl->spd_ref;
     out->loop = true;
@@ -237,9 +260,7 @@ static __attribute__((noinline)) void mc_slow_run(mc_slow_t *sl, const smc_resul
              * the hand-off (mc_enter_closed_loop). */
             pi_preset(&sl->pi_w, si->preset_iq);
             sl->spd_ref = si->preset_speed_ref;
-            sl->stall_cnt[0] = 0U;
-            sl->stall_cnt[1] = 0U;
-            sl->stall_cnt[2] = 0U;
+            memset(&sl->stall, 0, sizeof sl->stall);
         }
     }
     so->loop = false;

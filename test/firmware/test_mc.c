@@ -851,7 +851,7 @@ static mc_stall_in_t healthy(void)
     in.emf_ratio = 4096;
     in.fw_active = false;
     in.speed_err = 0;
-    in.saturated = false;
+    in.saturated = 0;
     return in;
 }
 
@@ -859,15 +859,16 @@ static mc_stall_in_t healthy(void)
  * first fault code seen. */
 static uint16_t run_stall(const mc_stall_in_t *bad, unsigned n)
 {
-    uint16_t cnt[3] = {0U, 0U, 0U};
+    mc_stall_t s;
+    memset(&s, 0, sizeof s);
     mc_stall_in_t ok = healthy();
     for (unsigned k = 0; k < n; k++) {
-        uint16_t code = mc_stall_check(cnt, bad);
+        uint16_t code = mc_stall_check(&s, bad);
         if (code != MC_FAULT_NONE) {
             return code;
         }
     }
-    return mc_stall_check(cnt, &ok);
+    return mc_stall_check(&s, &ok);
 }
 
 static void
@@ -914,15 +915,69 @@ test_stall_track_should_need_both_the_speed_error_and_a_saturated_speed_loop(voi
     mc_stall_in_t in = healthy();
     for (int sign = -1; sign <= 1; sign += 2) {
         in.speed_err = (q15_t)(sign * (MC_STALL_SPEED_ERR_Q15 + 1));
-        in.saturated = true;
+        in.saturated = (int8_t)sign;
         assert_int_equal(run_stall(&in, MC_STALL_TRACK_TICKS), MC_FAULT_STALL_TRACK);
         assert_int_equal(run_stall(&in, MC_STALL_TRACK_TICKS - 1U), MC_FAULT_NONE);
-        in.saturated = false;
+        in.saturated = 0;
         assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
-        in.saturated = true;
+        in.saturated = (int8_t)-sign;
         in.speed_err = (q15_t)(sign * MC_STALL_SPEED_ERR_Q15);
         assert_int_equal(run_stall(&in, 1000U), MC_FAULT_NONE);
     }
+}
+
+/* The speed PI at its limits for `half` runs, then inside them for `gap`
+ * runs, flips + 1 times, alternating the limit (the first at +1): the
+ * first fault code seen, and in *at the run it came at. */
+static uint16_t run_swing(unsigned flips, unsigned half, unsigned gap, unsigned *at)
+{
+    mc_stall_t s;
+    memset(&s, 0, sizeof s);
+    mc_stall_in_t in = healthy();
+    unsigned k = 0;
+    int8_t side = 1;
+    for (unsigned f = 0; f <= flips; f++) {
+        for (unsigned j = 0; j < half + gap; j++, k++) {
+            in.saturated = (j < half) ? side : (int8_t)0;
+            uint16_t code = mc_stall_check(&s, &in);
+            if (code != MC_FAULT_NONE) {
+                *at = k;
+                return code;
+            }
+        }
+        side = (int8_t)-side;
+    }
+    *at = k;
+    return MC_FAULT_NONE;
+}
+
+static void
+test_speed_unstable_should_trip_on_reversals_between_the_limits_each_within_the_gap(void **state)
+{
+    (void)state;
+    unsigned at = 0;
+    /* a limit cycle at about 30 Hz: at a limit both ways, no error persisting */
+    assert_int_equal(run_swing(MC_SWING_FLIPS, 16U, 0U, &at), MC_FAULT_SPEED_UNSTABLE);
+    assert_int_equal(at, MC_SWING_FLIPS * 16U);
+    assert_int_equal(run_swing(MC_SWING_FLIPS - 1U, 16U, 0U, &at), MC_FAULT_NONE);
+    /* inside the limits between the reversals, up to the gap: still one run */
+    unsigned half = 4U;
+    unsigned gap = MC_SWING_GAP_TICKS - half;
+    assert_int_equal(run_swing(MC_SWING_FLIPS, half, gap, &at), MC_FAULT_SPEED_UNSTABLE);
+    /* one run more between reversals ends each run: none, however many */
+    assert_int_equal(run_swing(10U * MC_SWING_FLIPS, half, gap + 1U, &at), MC_FAULT_NONE);
+    /* always at the same limit (a load step, an overload): not this check's */
+    mc_stall_t s;
+    memset(&s, 0, sizeof s);
+    mc_stall_in_t in = healthy();
+    in.saturated = 1;
+    for (unsigned k = 0; k < 1000U; k++) {
+        assert_int_equal(mc_stall_check(&s, &in), MC_FAULT_NONE);
+    }
+    printf(
+        "measured: SPEED_UNSTABLE after %u reversals, each within %u speed-loop runs = %.0f ms\n",
+        (unsigned)MC_SWING_FLIPS, (unsigned)MC_SWING_GAP_TICKS,
+        1000.0 * MC_SWING_GAP_TICKS / MC_SPEED_LOOP_HZ);
 }
 
 int main(void)
@@ -987,6 +1042,8 @@ int main(void)
             test_stall_bemf_should_trip_outside_its_band_and_ignore_the_low_side_in_fw),
         cmocka_unit_test(
             test_stall_track_should_need_both_the_speed_error_and_a_saturated_speed_loop),
+        cmocka_unit_test(
+            test_speed_unstable_should_trip_on_reversals_between_the_limits_each_within_the_gap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

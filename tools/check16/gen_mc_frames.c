@@ -4,16 +4,14 @@
  */
 /*
  * Build and run from the repository root (the same check16 flags as vec_mc.c):
- *   gcc -O2 -std=c99 -DMC_BOARD_MCLV -DMC_MOTOR_HURST $(MC_CHECK16_FLAGS) \
- *       -Ifirmware -Ifoc -Ismc_estimator -Itools/sim -Itest/firmware \
- *       -Itools/check16 tools/check16/gen_mc_frames.c test/firmware/mc_bench.c \
- *       tools/sim/sim_adc.c tools/sim/sim_core.c tools/sim/sim_inverter.c \
- *       tools/sim/sim_plant.c tools/sim/sim_profiles.c tools/sim/sim_rig.c \
- *       tools/sim/sim_scenario.c tools/sim/sim_parse.c tools/sim/sim_motor_*.c
- * tools/sim/sim_board_*.c \
- *       tools/sim/sim_log.c tools/sim/sim_window.c tools/sim/sim_trace.c foc/*.c smc_estimator/*.c
- * \ firmware/mc.c tools/sim/mc_names.c -lm -o /tmp/gen_mc_frames /tmp/gen_mc_frames >
- * tools/check16/mc_frames.h with MC_CHECK16_FLAGS the check16-cflags lines of vec_mc.c. The core is
+ *   gcc -O2 -std=c99 -DMC_BOARD_MCLV -DMC_MOTOR_HURST \
+ *       '-DMC_MOTOR_HEADER="motors/motor_hurst.h"' $(MC_CHECK16_FLAGS) \
+ *       -Ifirmware -Ifoc -Ismc_estimator -Itools/sim -Itest/firmware -Itools/check16 -Ihal \
+ *       tools/check16/gen_mc_frames.c test/firmware/mc_bench.c tools/sim/<the simulator's
+ *       sources but its programs, sim_mailbox, sim_x2c_map, sim_opt, sim_pty> foc/*.c
+ *       smc_estimator/*.c firmware/mc.c firmware/mc_<every core part>.c -lm -o /tmp/gen
+ *   /tmp/gen > tools/check16/mc_frames.h
+ * MC_CHECK16_FLAGS: the check16-cflags lines of vec_mc.c. The core is
  * driven exactly as vec_mc.c replays it (START at frame MC_FRAMES_START,
  * bus and pot from the formulas in mc_frames_bus/pot), so the replay takes
  * the recorded path: calibration, lock, ramp, hand-off, closed loop.
