@@ -43,12 +43,15 @@ import functools
 import importlib.util
 import itertools
 import os
+import select
 import signal
 import socket
 import struct
 import subprocess
 import sys
+import termios
 import time
+import tty
 import unittest
 from collections.abc import Callable
 from typing import Any
@@ -591,6 +594,62 @@ class C_Tcp(unittest.TestCase):
             other.stop()
 
 
+class C_PtyLeaving(unittest.TestCase):
+    def test_a_pty_client_leaving_mid_reply_should_leave_no_stale_reply(self) -> None:
+        # the same device-info request on the pseudo-terminal: a client reads k bytes of the reply
+        # (k = 0..all) and closes the line; the rest of the reply stays on it. The next client
+        # that asks must read its own reply, not the stale tail (a pyx2cscope client, which
+        # ignores error codes, would read every later reply one behind). Set up as pyserial
+        # does (TCSANOW: no flush of its own)
+        request = bytes([0x55, 0x01, 0x01, 0x00, 0x57])
+        other = Sim()
+
+        def open_line() -> int:
+            fd = os.open(other.pty, os.O_RDWR | os.O_NOCTTY)
+            tty.setraw(fd, termios.TCSANOW)  # as pyserial sets a port up: no flush
+            return fd
+
+        def read_n(fd: int, n: int, timeout: float = 5.0) -> bytes:
+            got = b""
+            end = time.monotonic() + timeout
+            while len(got) < n and time.monotonic() < end:
+                r, _, _ = select.select([fd], [], [], 0.05)
+                if r:
+                    got += os.read(fd, n - len(got))
+            return got
+
+        def read_quiet(fd: int) -> bytes:
+            got = read_n(fd, 1)
+            while True:
+                b = read_n(fd, 1, 0.2)
+                if not b:
+                    return got
+                got += b
+
+        try:
+            fd = open_line()
+            os.write(fd, request)
+            reply = read_quiet(fd)
+            os.close(fd)
+            self.assertEqual(reply[:3], bytes([0x55, 46, 0x01]), reply.hex())
+            for k in range(len(reply) + 1):
+                fd = open_line()
+                os.write(fd, request)
+                self.assertEqual(len(read_n(fd, k)), k)
+                time.sleep(0.02)  # the whole reply is on the line
+                os.close(fd)
+                time.sleep(0.02)  # the next client comes after this one left (a close the target sees)
+                fd = open_line()
+                os.write(fd, request)
+                self.assertEqual(read_n(fd, len(reply)), reply, f"after a client that left at byte {k}")
+                self.assertEqual(read_n(fd, 1, 0.1), b"", f"bytes after the reply (left at byte {k})")
+                os.close(fd)
+            print(f"measured: {len(reply) + 1} pty clients left at every byte of a reply: the next client read "
+                  "its own reply every time")
+        finally:
+            other.stop()
+
+
 class D_Speed(unittest.TestCase):
     def test_omega_should_match_the_simulators_estimate(self) -> None:
         truth = os.path.join(OUT, "truth.csv")
@@ -643,4 +702,4 @@ if __name__ == "__main__":
         print("usage: e2e_x2c.py <sim executable> <repo root> <output dir>", file=sys.stderr)
         sys.exit(2)
     SIM, ROOT, OUT = sys.argv[1], sys.argv[2], sys.argv[3]
-    unittest.main(verbosity=2, argv=[sys.argv[0]])
+    unittest.main(verbosity=2, argv=[sys.argv[0], *os.environ.get("E2E_ONLY", "").split()])

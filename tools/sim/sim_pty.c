@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <sys/inotify.h>
 #include <sys/socket.h>
 #include <signal.h>
 #include <stdio.h>
@@ -116,7 +117,10 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
 #if X2C_SCOPE
     uint8_t scope_was = X2C_SCOPE_IDLE;
 #endif
-    int pending = -1; /* a byte taken from the target that the transport did not take yet */
+    int pending = -1;         /* a byte taken from the target that the transport did not take yet */
+    bool pty_replied = false; /* reply bytes went to the pty since its last request byte */
+    int closes = -1;          /* inotify: a client closing the pty's line */
+    bool pty_rx_new = false;  /* request bytes came on the pty since closes was last read */
     struct sigaction sa;
 
     if (cfg->truth_path != NULL) {
@@ -144,6 +148,15 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
         return 2;
     }
     make_raw(slave);
+    /* A client that closes the line leaves unread whatever of a reply it had
+     * not read; the next one to open it would read that as its answer. The
+     * line's closes are watched (inotify sees every close of the device), and
+     * each one discards the rest of the reply, on the line and in the target. */
+    closes = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    if (closes >= 0 && inotify_add_watch(closes, name, IN_CLOSE_WRITE | IN_CLOSE_NOWRITE) < 0) {
+        close(closes);
+        closes = -1;
+    }
     fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
     out_fd = master;
     if (cfg->tcp_port > 0) {
@@ -204,8 +217,34 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
                 setsockopt(peer, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
             }
         }
+        if (closes >= 0) {
+            char ev[sizeof(struct inotify_event) + 256];
+            /* a close seen together with request bytes is the last client's,
+             * which left before this one asked: the request's own flush took
+             * the line, and this reply is the new client's */
+            if (read(closes, ev, sizeof ev) > 0 && out_fd == master && !pty_rx_new) {
+                uint8_t b;
+                tcflush(slave, TCIFLUSH);
+                while (x2c_tx_byte(&x2c, &b)) {
+                }
+                pending = -1;
+                pty_replied = false;
+            }
+            pty_rx_new = false;
+        }
         while (x2c_rx_ready(&x2c)) {
             if (read(master, in, 1) == 1) {
+                if (pty_replied) {
+                    /* A request's first byte: the client has read its last reply, or
+                     * gave it up, or it left and this is another one. Whatever of that
+                     * reply is still on the line is nobody's answer now: the new
+                     * client must not read it as its own (a client that ignores error
+                     * codes, as pyx2cscope does, would read every later reply one
+                     * behind). The flush takes the kernel's buffers too. */
+                    tcflush(slave, TCIFLUSH);
+                    pty_replied = false;
+                }
+                pty_rx_new = true;
                 out_fd = master;
             } else if (peer >= 0) {
                 ssize_t r = read(peer, in, 1);
@@ -253,6 +292,7 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
             }
             pending = -1;
             tx_credit -= 1.0;
+            pty_replied = pty_replied || out_fd == master;
         }
 
         if (cfg->speed > 0.0) {
@@ -270,6 +310,9 @@ int sim_pty_run(simcore_t *s, const sim_pty_cfg_t *cfg)
     }
     if (listener >= 0) {
         close(listener);
+    }
+    if (closes >= 0) {
+        close(closes);
     }
     close(slave);
     close(master);
