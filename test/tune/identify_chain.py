@@ -191,6 +191,91 @@ def chain(conf: dict[str, Any], m: Motor, out: str) -> None:
     print(f"measured: {m.name}: the chain took {time.monotonic() - t0:.1f} s")
 
 
+# ---- glitched results through the chain ---------------------------------------------------
+# A result the firmware reports with one quantity wrong (x0, x0.1, x10, the saturated code; the
+# three inductances together, as one corrupt L) goes the way an1078-identify's would: judged
+# (identify.judge), described (identify.describe), profiled by tools/tune, and, where all of
+# them take it, built and run on the real motor (the plant unscaled). The answer each one gets,
+# in docs/identify.md's table "A glitched result": refused where the result or the description
+# shows it impossible; where it does not, the drive runs the real motor or stops it with the
+# fault that names what happened, the outputs off.
+# the simulated Hurst as the firmware measures it
+GLITCH_BASE = {"rs_uohm": 2_670_000, "ls_nh": 1_920_000, "ke_uv_per_rpm": 7_300, "j_ng_m2": 7_500,
+               "deadtime_ns": 1_990, "ld_nh": 1_900_000, "lq_nh": 1_940_000}
+GLITCH_ANSWERS: dict[tuple[str, float | str], str] = {
+    # quantity x factor: "judge: <fragment>", "tune: <fragment>", "holds" or "fault <NAME>"
+    ("R", 0.0): "judge: rs_uohm 0", ("R", 0.1): "holds", ("R", 10.0): "tune: beyond the 24 V bus",
+    ("R", "sat"): "judge: saturated",
+    ("L", 0.0): "judge: ls_nh 0", ("L", 0.1): "tune: beyond the 24 V bus", ("L", 10.0): "tune: beyond the 24 V bus",
+    ("L", "sat"): "judge: saturated",
+    ("Ke", 0.0): "judge: ke_uv_per_rpm 0", ("Ke", 0.1): "tune: lowest closed-loop speed",
+    ("Ke", 10.0): "tune: beyond the 24 V bus", ("Ke", "sat"): "judge: saturated",
+    ("J", 0.0): "holds", ("J", 0.1): "holds", ("J", 10.0): "fault SPEED_UNSTABLE", ("J", "sat"): "judge: saturated",
+}
+_GLITCH_FIELDS = {"R": ("rs_uohm",), "L": ("ls_nh", "ld_nh", "lq_nh"), "Ke": ("ke_uv_per_rpm",), "J": ("j_ng_m2",)}
+
+
+def glitched_result(q: str, k: float | str) -> Any:
+    from scope import identify as idf  # the package an1078-identify runs (the venv's)
+    v = dict(GLITCH_BASE)
+    for f in _GLITCH_FIELDS[q]:
+        v[f] = 0xFFFFFFFF if k == "sat" else round(v[f] * float(k))
+    return idf.Result(status=idf.STATUS_DONE, error=0, pole_pairs=5, **v)
+
+
+def run_outcome(conf: dict[str, Any], name: str, exe: str, rpm: float, load: float, out: str) -> str:
+    """The motor as built: started, to rpm, a load ramped in over a second, held: "holds" (within
+    TOL over the last second, closed loop, no fault), "fault <NAME>" (the outputs off after it)
+    or a sentence saying what else happened."""
+    scen = os.path.join(out, f"{name}.txt")
+    ramp = "".join(f"{3.0 + 0.05 * k:.2f} load {load * (k + 1) / 20:.6g}\n" for k in range(20))
+    with open(scen, "w", encoding="utf-8") as f:
+        f.write(f"# {name}\n0.00 speed {rpm:.0f}\n0.10 start\n{ramp}5.00 mark\n6.00 end\n")
+    trace = os.path.join(out, f"{name}.csv")
+    p = subprocess.run([exe, "--no-progress", "--csv", trace, *_plant_args(conf, Motor(name, 1.0, 1.0, 1.0, 1.0)),
+                        scen], capture_output=True, text=True, timeout=600)
+    if p.returncode != 0:
+        return f"the run failed: {p.stderr.strip()}"
+    with open(trace, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    fm = re.search(r"faults\s+(\d+)\s*(\w+)?", p.stdout)
+    if fm is not None and fm.group(1) != "0":
+        off = rows[-1]["outputs_on"] in ("0", "0.0")
+        return f"fault {fm.group(2)}" + ("" if off else ", the outputs ON")
+    hold = [r for r in rows if float(r["t_s"]) >= 5.0]
+    speed = sum(float(r["speed_rpm"]) for r in hold) / max(len(hold), 1)
+    if abs(speed - rpm) > TOL * rpm or rows[-1]["state"] != "4":
+        return f"no fault, state {rows[-1]['state']}, {speed:.0f} rpm held for {rpm:.0f}"
+    return "holds"
+
+
+def glitch_answer(conf: dict[str, Any], q: str, k: float | str, out: str) -> str:
+    """One glitched result through the chain: the answer it gets (GLITCH_ANSWERS' form)."""
+    from scope import identify as idf
+    from scope import lnet
+    _, rated_a, rated_rpm = PLANTS[conf["board"]]
+    r = glitched_result(q, k)
+    try:
+        idf.judge(r, "STOPPED", 0)
+    except lnet.LNetError as e:
+        return f"judge: {e}"
+    name = f"glitch_{q.lower()}_{str(k).replace('.', 'p')}"
+    args = argparse.Namespace(pole_pairs=None, description="", name=name, board=conf["board"], output="-",
+                              rated_current=rated_a, rated_speed=rated_rpm, peak_current=None)
+    toml = os.path.join(out, f"{name}.toml")
+    with open(toml, "w", encoding="utf-8") as f:
+        f.write(idf.describe(r, args))
+    header = os.path.join(out, f"motor_{name}.h")
+    p = subprocess.run([conf["tune"], "--no-compile", "-o", header, toml], capture_output=True, text=True,
+                       timeout=300)
+    if p.returncode != 0:
+        return f"tune: {' '.join(p.stderr.split())}"
+    exe = os.path.join(out, f"sim_{name}")
+    build(conf, header, exe)
+    ke = r.ke_uv_per_rpm * 1e-3
+    return run_outcome(conf, name, exe, 0.6 * rated_rpm, 0.3 * KT_PER_KE * ke * rated_a, out)
+
+
 class IdentifyChain(unittest.TestCase):
     def setUp(self) -> None:
         path = os.environ.get(CONF_ENV, "")
@@ -209,6 +294,22 @@ class IdentifyChain(unittest.TestCase):
                         chain(self.conf, m, out)
                     except ChainError as e:
                         self.fail(str(e))
+
+
+    def test_a_glitched_result_should_be_refused_or_run_the_motor_safely(self) -> None:
+        if self.conf["board"] != "mclv":
+            self.skipTest("the glitches are of the MCLV's Hurst")
+        sys.path.insert(0, os.path.join(REPO, "tools"))
+        with tempfile.TemporaryDirectory(prefix="idglitch_") as out:
+            for (q, k), want in GLITCH_ANSWERS.items():
+                with self.subTest(f"{q} x {k}"):
+                    got = glitch_answer(self.conf, q, k, out)
+                    print(f"measured: glitch {q} x {k}: {got}")
+                    kind, _, fragment = want.partition(": ")
+                    if kind in ("judge", "tune"):
+                        self.assertTrue(got.startswith(kind + ": ") and fragment in got, got)
+                    else:
+                        self.assertEqual(got, want)
 
 
 def _random_motors(n: int, seed: int) -> list[Motor]:
