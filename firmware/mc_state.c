@@ -40,6 +40,12 @@ void mc_outputs_off(mc_t *mc)
     mc->v_hist[1] = mc->v_hist[0];
     pi_reset(&mc->pi_d);
     pi_reset(&mc->pi_q);
+    /* With the outputs off the estimator sees no current and the core
+     * applies no voltage: it cannot follow a coasting rotor, and its last
+     * speed would stand frozen while the rotor slows (2,003 rpm shown as
+     * the Hurst coasted from 937 to 103). It reads unknown instead: speed
+     * 0, not valid, until the next start measures again. */
+    mc_est_reset(mc);
     mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
     mc->preset_pending = false;
 #if MC_IDENTIFY

@@ -647,6 +647,36 @@ static void test_stop_in_closed_loop_should_turn_the_outputs_off_at_once(void **
     assert_int_equal(b.out.duty[1], PWM_DUTY_MAX / 2U);
 }
 
+/* A STOP at 2,000 rpm: the rotor coasts down for a second while the estimate reads unknown
+ * (speed 0, not valid) from the stop's period on, never the last speed it had; the next START
+ * starts as usual. */
+static void test_after_stop_the_coasting_rotor_should_read_unknown_not_a_frozen_speed(void **state)
+{
+    (void)state;
+    start_at(2000.0);
+    run(1.5);
+    double before = mc_rpm_of_q15(b.st.speed_est);
+    assert_cmp(before, >, 1800.0);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    double coasting = 0.0;
+    for (long k = 0; k < PWM_FREQUENCY_HZ; k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_STOPPED);
+        assert_int_equal(b.st.speed_est, 0);
+        assert_false(b.st.estimator_valid);
+        assert_int_equal(smc_omega(&b.mc.smc), 0); /* what X2Cscope's smc.omega reads */
+        if (k == PWM_FREQUENCY_HZ / 10) {
+            coasting = mc_bench_rpm(&b);
+        }
+    }
+    printf("measured: STOP at %.0f rpm: the rotor at %.0f rpm 0.1 s later, %.0f after 1 s; the estimate "
+           "0 rpm and not valid throughout\n",
+           before, coasting, mc_bench_rpm(&b));
+    assert_cmp(coasting, >, 500.0);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    assert_cmp(mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 8L * PWM_FREQUENCY_HZ), >, 0);
+}
+
 static void test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen(void **state)
 {
     (void)state;
@@ -684,6 +714,7 @@ int main(void)
         cmocka_unit_test(test_a_speed_gain_set_at_run_time_should_survive_the_low_speed_schedule),
         cmocka_unit_test(test_the_two_part_step_should_equal_mc_step_bit_for_bit),
         cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
+        cmocka_unit_test(test_after_stop_the_coasting_rotor_should_read_unknown_not_a_frozen_speed),
         cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
