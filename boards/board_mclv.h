@@ -64,6 +64,22 @@
 #define BOARD_VBUS_MAX_V 48.0
 #endif
 
+/* The DC bus's bulk capacitance, F: what a regenerating motor charges when the
+ * supply cannot take current back (the simulator's bus model, sim --bus-model).
+ * [ASSUMED CONSERVATIVE: a 24 V kit's bulk capacitance chosen low: a smaller C rises faster; the
+ * board's documents were not read. Bench check: the capacitors on the bus rails of the board in
+ * hand, their sum.] */
+#ifndef BOARD_VBUS_CAPACITANCE_F
+#define BOARD_VBUS_CAPACITANCE_F 470e-6
+#endif
+
+/* The supply's output resistance as the bus sees it, ohm, leads included:
+ * the supply only sources current. [ASSUMED: a bench supply and its leads.
+ * Bench check: the bus's drop at a known DC current.] */
+#ifndef BOARD_SUPPLY_R_OHM
+#define BOARD_SUPPLY_R_OHM 0.1
+#endif
+
 /* Default bus protection window for a 24 V kit; override in UserParms.h. */
 #ifndef BOARD_VBUS_UNDERVOLTAGE_V
 #define BOARD_VBUS_UNDERVOLTAGE_V 15.0

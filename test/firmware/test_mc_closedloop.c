@@ -669,7 +669,8 @@ static void test_after_stop_the_coasting_rotor_should_read_unknown_not_a_frozen_
             coasting = mc_bench_rpm(&b);
         }
     }
-    printf("measured: STOP at %.0f rpm: the rotor at %.0f rpm 0.1 s later, %.0f after 1 s; the estimate "
+    printf("measured: STOP at %.0f rpm: the rotor at %.0f rpm 0.1 s later, %.0f after 1 s; the "
+           "estimate "
            "0 rpm and not valid throughout\n",
            before, coasting, mc_bench_rpm(&b));
     assert_cmp(coasting, >, 500.0);

@@ -277,7 +277,91 @@ static sim_rig_params_t hurst_rig(void)
     r.theta_e0 = 0.0;
     r.omega0_m = 0.0;
     r.fan_rated_rpm = sim_motor_profile("hurst")->rated_rpm;
+    r.bus_c_f = 0.0; /* the bus held at the supply's level (the bus model's tests set it) */
+    r.supply_r_ohm = 0.0;
     return r;
+}
+
+/* ---- the bus model (sim_rig.h note 2) ---------------------------------------------------- */
+
+/* The MCLV's bus model: its capacitor and supply resistance (boards/board_mclv.h). */
+static sim_rig_params_t bus_rig(double rpm0)
+{
+    sim_rig_params_t prm = hurst_rig();
+    prm.bus_c_f = sim_board_profile("mclv")->bus_c_f;
+    prm.supply_r_ohm = sim_board_profile("mclv")->supply_r_ohm;
+    prm.omega0_m = rpm0 * 2.0 * M_PI / 60.0;
+    return prm;
+}
+
+/* A supply that rises from 24 to 30 V charges the capacitor through R: v = 30 - 6 e^(-t/RC)
+ * at every period; one that falls to 20 V takes nothing back: the capacitor stays at 30 V
+ * with the outputs off and the rotor at rest. */
+static void test_bus_model_should_charge_through_r_and_never_discharge_into_the_supply(void **state)
+{
+    sim_rig_params_t prm = bus_rig(0.0);
+    static sim_rig_t rig;
+    sim_adc_frame_t f;
+    uint16_t off[3] = {1000, 1000, 1000};
+    sim_event_t up = {0};
+    double tau = prm.bus_c_f * prm.supply_r_ohm, worst = 0.0;
+    (void)state;
+    assert_cmp(tau, >, 0.0);
+    sim_rig_init(&rig, &prm);
+    up.kind = SIM_EV_VBUS;
+    up.v1 = 30.0;
+    assert_true(sim_rig_apply(&rig, &up));
+    for (int n = 1; n <= 40; n++) {
+        sim_rig_advance(&rig, off, false);
+        sim_rig_sample(&rig, &f);
+        double want = 30.0 - 6.0 * exp(-(double)n * 50e-6 / tau);
+        worst = fmax(worst, fabs(rig.vcap_v - want));
+        assert_cmp(fabs(rig.vbus_sampled - rig.vcap_v), <, 1e-12); /* the ADC reads it */
+    }
+    printf("measured: a 24 -> 30 V supply step into %.0f uF through %.2f ohm: |v - (30 - 6 "
+           "e^(-t/RC))| "
+           "<= %.2e V over 40 periods\n",
+           prm.bus_c_f * 1e6, prm.supply_r_ohm, worst);
+    assert_cmp(worst, <, 1e-9);
+    up.v1 = 20.0;
+    assert_true(sim_rig_apply(&rig, &up));
+    for (int n = 0; n < 200; n++) {
+        sim_rig_advance(&rig, off, false);
+    }
+    assert_cmp(fabs(rig.vcap_v - 30.0), <, 1e-6);
+}
+
+/* A rotor spinning at 5,000 rpm with the outputs off: its line-to-line back-EMF (36.5 V peak)
+ * is above the bus, the diodes rectify it into the capacitor, which the supply cannot drain.
+ * The energy the inverter put into the bus is the capacitor's gain while the supply is
+ * blocked, and no more than the rotor lost; the bus rises above the supply and below the
+ * back-EMF's peak. */
+static void test_bus_model_should_take_a_spinning_rotors_rectified_energy(void **state)
+{
+    sim_rig_params_t prm = bus_rig(5000.0);
+    static sim_rig_t rig;
+    uint16_t off[3] = {1000, 1000, 1000};
+    (void)state;
+    prm.motor.b_nms = 0.0;
+    prm.motor.coulomb_nm = 0.0;
+    sim_rig_init(&rig, &prm);
+    double w0 = rig.plant.s.omega_m;
+    double emf_pk = sim_plant_emf_ll_peak(&rig.plant);
+    for (int n = 0; n < 2000; n++) { /* 0.1 s */
+        sim_rig_advance(&rig, off, false);
+    }
+    double w1 = rig.plant.s.omega_m;
+    double e_kin = 0.5 * prm.motor.j_kgm2 * (w0 * w0 - w1 * w1);
+    double e_cap = 0.5 * prm.bus_c_f * (rig.vcap_v * rig.vcap_v - 24.0 * 24.0);
+    printf("measured: outputs off at 5000 rpm (%.1f V LL peak): the bus %.2f V after 0.1 s (peak "
+           "%.2f V), "
+           "into it %.4f J, the capacitor's gain %.4f J, the rotor's loss %.4f J\n",
+           emf_pk, rig.vcap_v, rig.vbus_peak_v, rig.e_bus_in_j, e_cap, e_kin);
+    assert_cmp(rig.vbus_peak_v, >, 30.0);
+    assert_cmp(rig.vbus_peak_v, <, emf_pk);
+    assert_cmp(fabs(rig.e_bus_in_j - e_cap), <, 0.01 * e_cap);
+    assert_cmp(rig.e_bus_in_j, <=, e_kin);
+    assert_cmp(rig.e_bus_in_j, >, 0.5 * e_kin); /* the rest is the windings' copper loss */
 }
 
 static void test_rig_should_apply_the_duties_from_the_next_period(void **state)
@@ -470,6 +554,9 @@ int main(void)
         cmocka_unit_test(test_inverter_should_float_the_star_point_and_ripple_the_bus),
         cmocka_unit_test(test_adc_should_quantise_to_64_lsb_steps_and_saturate_at_full_scale),
         cmocka_unit_test(test_adc_noise_should_have_the_requested_sigma_and_zero_mean),
+        cmocka_unit_test(
+            test_bus_model_should_charge_through_r_and_never_discharge_into_the_supply),
+        cmocka_unit_test(test_bus_model_should_take_a_spinning_rotors_rectified_energy),
         cmocka_unit_test(test_rig_should_apply_the_duties_from_the_next_period),
         cmocka_unit_test(test_rig_should_sample_mid_period_and_apply_duties_from_the_boundary),
         cmocka_unit_test(

@@ -16,4 +16,6 @@ const sim_board_profile_t sim_board_mclv = {
     SIM_AMP_OFFSET_B_CODES,
     SIM_ADC_NOISE_CODES,
     SIM_AMP_TAU_S,
+    BOARD_VBUS_CAPACITANCE_F,
+    BOARD_SUPPLY_R_OHM,
 };

@@ -48,6 +48,7 @@ void simcore_cfg_default(simcore_cfg_t *cfg)
     cfg->csv = NULL;
     cfg->record = NULL;
     cfg->progress = false;
+    cfg->bus_model = false;
 }
 
 double simcore_pot_for_rpm(double rpm)
@@ -138,6 +139,10 @@ static const sim_board_profile_t *board_from_firmware(const char *name)
     bp.offset_b_codes = SIM_AMP_OFFSET_B_CODES;
     bp.noise_codes = SIM_ADC_NOISE_CODES;
     bp.amp_tau_s = SIM_AMP_TAU_S;
+#if defined(BOARD_VBUS_CAPACITANCE_F) && defined(BOARD_SUPPLY_R_OHM)
+    bp.bus_c_f = BOARD_VBUS_CAPACITANCE_F;
+    bp.supply_r_ohm = BOARD_SUPPLY_R_OHM;
+#endif
     fprintf(stderr, "sim: no simulator profile '%s': simulating the firmware's board data\n", name);
     return &bp;
 #else
@@ -184,6 +189,8 @@ static void rig_params(const simcore_t *s, const simcore_cfg_t *cfg, sim_rig_par
     rp->theta_e0 = cfg->theta0_rad;
     rp->omega0_m = cfg->rpm0 * 2.0 * M_PI / 60.0;
     rp->fan_rated_rpm = s->mp->rated_rpm;
+    rp->bus_c_f = cfg->bus_model ? s->bp->bus_c_f : 0.0;
+    rp->supply_r_ohm = s->bp->supply_r_ohm;
 }
 
 int simcore_init(simcore_t *s, const simcore_cfg_t *cfg)
@@ -455,6 +462,13 @@ void simcore_print_summary(const simcore_t *s, FILE *f, const char *name)
             (s->cfg.vbus_v >= 0.0) ? s->cfg.vbus_v : s->bp->vbus_v,
             1e6 * ((s->cfg.deadtime_s >= 0.0) ? s->cfg.deadtime_s : s->bp->deadtime_s),
             (s->cfg.noise_codes >= 0.0) ? s->cfg.noise_codes : s->bp->noise_codes);
+    if (s->rig.bus_c_f > 0.0) {
+        fprintf(f,
+                "   DC bus (the bus model)    peak %.2f V at %.3f s, lowest %.2f V (%.0f uF, a "
+                "supply of %.2f ohm that only sources)\n",
+                s->rig.vbus_peak_v, s->rig.t_vbus_peak_s, s->rig.vbus_low_v, s->rig.bus_c_f * 1e6,
+                s->rig.supply_r_ohm);
+    }
     if (s->cfg.rs_scale != 1.0 || s->cfg.l_scale != 1.0 || s->cfg.ke_scale != 1.0) {
         fprintf(f, "   plant mismatch vs UserParms.h: R x%.2f, L x%.2f, Ke x%.2f\n",
                 s->cfg.rs_scale, s->cfg.l_scale, s->cfg.ke_scale);

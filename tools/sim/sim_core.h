@@ -50,6 +50,8 @@ typedef struct {
     int substeps;       /* RK4 steps per PWM period */
     double sample_at;   /* ADC sample instant in the period; < 0: the chip's, MC_SAMPLE_AT */
     double amp_tau_s;   /* current amplifiers' time constant, s; < 0: the board's */
+    bool bus_model;     /* the DC bus as its capacitor and a supply that only sources
+                           (sim_rig.h); false: a bus held at the supply's level */
     bool offsets_set;   /* false: the board's amplifier offsets; true: the two below */
     double offset_a_codes, offset_b_codes; /* amplifier offsets, ADC codes */
     double j_extra_kgm2;       /* load inertia added to the motor's (after j_scale), kg m^2 */

@@ -44,6 +44,7 @@ enum {
     OPT_DEADTIME,
     OPT_NOISE,
     OPT_VBUS,
+    OPT_BUS_MODEL,
     OPT_SEED,
     OPT_RS_SCALE,
     OPT_L_SCALE,
@@ -103,6 +104,8 @@ static const sim_opt_t OPTS[] = {
     {.id = OPT_VBUS, .name = "--vbus", .type = SIM_OPT_NUMBER, .value = "V",
      .range = {"", "V", 0.0, 1000.0, 0u}, /* three times the MCHV's 320 V */
      .help = "DC bus (default: the board's)"},
+    {.id = OPT_BUS_MODEL, .name = "--bus-model", .type = SIM_OPT_FLAG,
+     .help = "the bus as its capacitor and a supply that only sources (the board's C and R)"},
     {.id = OPT_SEED, .name = "--seed", .type = SIM_OPT_NUMBER, .value = "N",
      .range = SIM_OPT_SEED_RANGE, .help = "ADC noise seed (default 1)"},
     {.id = OPT_RS_SCALE, .name = "--rs-scale", .type = SIM_OPT_NUMBER, .value = "X",
@@ -371,6 +374,9 @@ int main(int argc, char **argv)
                 return 0;
             case OPT_NO_PROGRESS:
                 cfg.progress = false;
+                break;
+            case OPT_BUS_MODEL:
+                cfg.bus_model = true;
                 break;
             case OPT_MOTOR:
                 cfg.motor = v;

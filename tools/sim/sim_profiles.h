@@ -35,7 +35,9 @@ typedef struct {
     double deadtime_s;                     /* inverter dead time, s */
     double offset_a_codes, offset_b_codes; /* current amplifiers' offsets, ADC codes */
     double noise_codes;                    /* ADC noise sigma, codes */
-    double amp_tau_s; /* current amplifiers' time constant, s (sim_rig.h: the shunt window) */
+    double amp_tau_s;    /* current amplifiers' time constant, s (sim_rig.h: the shunt window) */
+    double bus_c_f;      /* the DC bus's bulk capacitance, F (the bus model, sim_rig.h) */
+    double supply_r_ohm; /* the supply's output resistance, ohm (it only sources current) */
 } sim_board_profile_t;
 
 /* What no board header holds, assumed alike for every board: the current

@@ -49,7 +49,79 @@ void sim_rig_init(sim_rig_t *r, const sim_rig_params_t *prm)
     r->samples_short = 0;
     r->t_cond_min_s = r->ts;
     r->fan_rated_w = prm->fan_rated_rpm * 2.0 * M_PI / 60.0;
-    r->vbus_sampled = sim_inverter_vbus(&r->inv, 0.0);
+    r->bus_c_f = (prm->bus_c_f > 0.0) ? prm->bus_c_f : 0.0;
+    r->supply_r_ohm = (prm->supply_r_ohm > 0.0) ? prm->supply_r_ohm : 0.0;
+    r->vcap_v = sim_inverter_vbus(&r->inv, 0.0); /* charged at the start */
+    r->vbus_peak_v = r->vcap_v;
+    r->vbus_low_v = r->vcap_v;
+    r->t_vbus_peak_s = 0.0;
+    r->e_bus_in_j = 0.0;
+    r->vbus_sampled = r->vcap_v;
+}
+
+/* The bus the pins see at t (s, absolute): the capacitor's with the bus
+ * model, else the supply's (sim_rig.h note 2). */
+static double rig_vbus(const sim_rig_t *r, double t)
+{
+    return (r->bus_c_f > 0.0) ? r->vcap_v : sim_inverter_vbus(&r->inv, t);
+}
+
+/* The DC current the inverter draws from the bus with pins v at a bus of
+ * vbus and phase currents i (A, into the motor): each pin's share of the
+ * bus times its current. */
+static double bus_current(const double v[3], const double i[3], double vbus)
+{
+    double i_dc = 0.0;
+    int k;
+    if (vbus <= 0.0) {
+        return 0.0;
+    }
+    for (k = 0; k < 3; k++) {
+        double sh = v[k] / vbus;
+        sh = (sh < 0.0) ? 0.0 : ((sh > 1.0) ? 1.0 : sh);
+        i_dc += sh * i[k];
+    }
+    return i_dc;
+}
+
+/* The bus model over h (s) with the inverter drawing i_dc (A) from t (s):
+ * the supply conducts while the capacitor is below its level (an exact
+ * exponential for constant i_dc), else only i_dc moves it (note 2). */
+static void bus_step(sim_rig_t *r, double t, double i_dc, double h)
+{
+    double vs = sim_inverter_vbus(&r->inv, t);
+    double c = r->bus_c_f, v = r->vcap_v, v1;
+    if (c <= 0.0) {
+        return;
+    }
+    r->e_bus_in_j -= v * i_dc * h;
+    if (v < vs || i_dc > 0.0) {
+        if (r->supply_r_ohm > 0.0) {
+            double tau = r->supply_r_ohm * c;
+            double v_inf = vs - r->supply_r_ohm * i_dc;
+            v1 = v_inf + (v - v_inf) * exp(-h / tau);
+        } else {
+            v1 = vs; /* an ideal source holds the bus at its level from below */
+        }
+        if (v1 > vs) {
+            /* the supply stopped conducting within the step */
+            double vo = v - i_dc * h / c;
+            v1 = (vo > vs) ? vo : vs;
+        }
+    } else {
+        v1 = v - i_dc * h / c;
+        if (v1 < vs) {
+            v1 = vs; /* down to the supply's level: it conducts again */
+        }
+    }
+    r->vcap_v = (v1 > 0.0) ? v1 : 0.0;
+    if (r->vcap_v > r->vbus_peak_v) {
+        r->vbus_peak_v = r->vcap_v;
+        r->t_vbus_peak_s = t + h;
+    }
+    if (r->vcap_v < r->vbus_low_v) {
+        r->vbus_low_v = r->vcap_v;
+    }
 }
 
 /* What a phase's amplifier passes to the ADC for a current i (A): an open
@@ -86,7 +158,7 @@ void sim_rig_sample(sim_rig_t *r, sim_adc_frame_t *out)
         ia *= 1.0 - exp(-ta / r->amp_tau_s);
         ib *= 1.0 - exp(-tb / r->amp_tau_s);
     }
-    r->vbus_sampled = sim_inverter_vbus(&r->inv, r->t + r->sample_at * r->ts);
+    r->vbus_sampled = rig_vbus(r, r->t + r->sample_at * r->ts);
     if (r->spike_left > 0) {
         ia += r->spike_a;
         ib -= r->spike_a;
@@ -174,8 +246,9 @@ static void zero_phase(sim_rig_t *r, int fk)
     }
 }
 
-/* One sub-step with all six switches off (note 1). */
-static void diode_step(sim_rig_t *r, double vbus, double h)
+/* One sub-step with all six switches off (note 1); *i_dc the DC current
+ * the conducting diodes carried from the bus (negative: into it). */
+static void diode_step(sim_rig_t *r, double vbus, double h, double *i_dc)
 {
     double i[3], e[3], v[3], inew[3];
     double va, vb;
@@ -222,9 +295,11 @@ static void diode_step(sim_rig_t *r, double vbus, double h)
         if (!any) {
             r->floating[0] = r->floating[1] = r->floating[2] = true;
             sim_plant_step(&r->plant, 0.0, 0.0, h, true);
+            *i_dc = 0.0;
             return;
         }
     }
+    *i_dc = bus_current(v, i, vbus);
     sim_pins_to_ab(v, &va, &vb);
     sim_plant_step(&r->plant, va, vb, h, false);
     sim_plant_currents(&r->plant, &inew[0], &inew[1], &inew[2]);
@@ -272,24 +347,27 @@ static void run_span(sim_rig_t *r, double t_start, double tau0, double tau1, int
             m = (m < 1) ? 1 : m;
             for (s = 0; s < m; s++) {
                 double t = a + len * (double)s / (double)m;
-                double vbus = sim_inverter_vbus(&r->inv, t_start + t + 0.5 * len / (double)m);
+                double vbus = rig_vbus(r, t_start + t + 0.5 * len / (double)m);
                 double i[3], v[3];
                 sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
                 sim_inverter_pins_at(&r->inv, vbus, i, t, v);
                 on_step(r, v, len / (double)m);
+                bus_step(r, t_start + t, bus_current(v, i, vbus), len / (double)m);
             }
             a = edge[k];
         }
         return;
     }
     for (s = 0; s < n; s++) {
-        double vbus = sim_inverter_vbus(&r->inv, t_start + tau0 + ((double)s + 0.5) * h);
-        double i[3];
+        double t = t_start + tau0 + (double)s * h;
+        double vbus = rig_vbus(r, t + 0.5 * h);
+        double i[3], i_dc;
         sim_plant_currents(&r->plant, &i[0], &i[1], &i[2]);
         if (r->inv.on) {
             double v[3];
             sim_inverter_pins(&r->inv, vbus, i, v);
             on_step(r, v, h);
+            i_dc = bus_current(v, i, vbus);
         } else {
             if (r->was_on) {
                 for (k = 0; k < 3; k++) {
@@ -298,8 +376,9 @@ static void run_span(sim_rig_t *r, double t_start, double tau0, double tau1, int
                 r->was_on = false;
                 project_floating(r);
             }
-            diode_step(r, vbus, h);
+            diode_step(r, vbus, h, &i_dc);
         }
+        bus_step(r, t, i_dc, h);
     }
 }
 

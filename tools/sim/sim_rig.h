@@ -37,6 +37,8 @@ typedef struct {
     double theta_e0;      /* initial electrical angle, rad */
     double omega0_m;      /* initial mechanical speed, rad/s */
     double fan_rated_rpm; /* speed at which load_fan gives its nominal torque, rpm */
+    double bus_c_f;       /* the bus model's capacitance, F; 0: no model (note 2) */
+    double supply_r_ohm;  /* its supply's output resistance, ohm */
 } sim_rig_params_t;
 
 /* A current sensor's health (scenario events sensor_*). */
@@ -76,7 +78,28 @@ typedef struct {
     long samples_short;  /* samples with the outputs on where a measured phase's shunt had
                             conducted less than SIM_AMP_SETTLE_TAUS time constants */
     double t_cond_min_s; /* shortest such conduction seen before a sample, s */
+    double bus_c_f;      /* as in sim_rig_params_t */
+    double supply_r_ohm;
+    double vcap_v;                  /* the bus model: the capacitor's voltage, V */
+    double vbus_peak_v, vbus_low_v; /* ... its highest and lowest so far, V */
+    double t_vbus_peak_s;           /* ... when it was highest, s */
+    double e_bus_in_j;              /* ... energy the inverter put into the bus, J (signed) */
 } sim_rig_t;
+
+/*
+ * Note 2, the bus model (bus_c_f > 0). The bus is a capacitor C fed
+ * through the supply's resistance R by a supply that only sources current
+ * (a bench supply or a rectifier: no current back into it):
+ *   C dv/dt = max(0, (v_s - v) / R) - i_dc,   i_dc = sum_k s_k i_k,
+ * v_s the supply's level (the board's bus, `bus` events, ripple), i_k the
+ * phase currents into the motor and s_k the share of the bus on pin k
+ * (its duty, or 1 / 0 for a pin at the top / bottom rail; with the outputs
+ * off, the conducting diodes'). A regenerating motor makes i_dc negative
+ * and, the supply blocked, charges C. Each sub-step integrates exactly for
+ * a constant i_dc while the supply conducts, linearly while it does not,
+ * and the pins and the ADC see v. Without the model (bus_c_f 0) the bus is
+ * v_s whatever the motor does.
+ */
 
 /*
  * The shunt window. Phases A and B are measured by low-side shunts and
