@@ -242,6 +242,21 @@
 #ifndef MC_VBUS_OVERVOLTAGE_V
 #define MC_VBUS_OVERVOLTAGE_V BOARD_VBUS_OVERVOLTAGE_V /* in any state but FAULT */
 #endif
+/* Braking into the bus: a decelerating rotor returns its energy to the DC
+ * bus, and a supply that cannot take current back (a bench supply, a
+ * rectifier) leaves it in the bus capacitor, which charges towards the
+ * overvoltage trip. Above MC_VBUS_REGEN_V (V) the speed loop may ask less
+ * and less braking current, none from MC_VBUS_REGEN_V +
+ * MC_VBUS_REGEN_BAND_V on, and the speed ramp waits for the rotor; the
+ * rotor then slows by its losses. Defaults: halfway from the nominal bus to
+ * the trip, over a quarter of that span. */
+#ifndef MC_VBUS_REGEN_V
+#define MC_VBUS_REGEN_V                                                                            \
+    (BOARD_VBUS_NOMINAL_V + 0.5 * (MC_VBUS_OVERVOLTAGE_V - BOARD_VBUS_NOMINAL_V))
+#endif
+#ifndef MC_VBUS_REGEN_BAND_V
+#define MC_VBUS_REGEN_BAND_V (0.25 * (MC_VBUS_OVERVOLTAGE_V - BOARD_VBUS_NOMINAL_V))
+#endif
 #ifndef MC_OFFSET_MAX_A
 #define MC_OFFSET_MAX_A 0.5 /* current offset at calibration above this: amplifier fault */
 #endif

@@ -448,10 +448,10 @@ static void mc_window_end(mc_t *mc)
         si->lock_vb = mc->lock_vb;
         si->timer = mc->timer;
         si->dt_counts = mc->dt_counts;
-        si->vbus = mc->vbus;
         mc->lock_va = 0;
         mc->lock_vb = 0;
     }
+    si->vbus = mc->vbus; /* the dead-time measurement's, and the braking limit's */
     mc->preset_pending = false;
     mc->slow_posted = true;
     MC_BARRIER(); /* every field above is written before the flag hands it over */

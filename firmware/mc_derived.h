@@ -370,6 +370,21 @@ MC_CHECK_FOR(MC_VBUS_OVERVOLTAGE_V, BOARD_VBUS_MAX_V, MC_VBUS_OVERVOLTAGE_V <= B
 #define MC_VBUS_UV_Q15      MC_Q15_VBUS(MC_VBUS_UNDERVOLTAGE_V)
 #define MC_VBUS_OV_Q15      MC_Q15_VBUS(MC_VBUS_OVERVOLTAGE_V)
 #define MC_VBUS_NOMINAL_Q15 MC_Q15_VBUS(BOARD_VBUS_NOMINAL_V)
+/* The braking limit (mc_regen_limit): from MC_VBUS_REGEN_Q15 up the allowed
+ * braking current falls linearly to 0 over MC_VBUS_REGEN_BAND_Q15 counts;
+ * MC_VBUS_REGEN_K = 32767 * 2^10 / band (the band at least 8 counts, so
+ * that (band - over) K < 2^25). */
+MC_CHECK_FOR(MC_VBUS_REGEN_V, BOARD_VBUS_NOMINAL_V, MC_VBUS_REGEN_V > BOARD_VBUS_NOMINAL_V,
+             "must be above BOARD_VBUS_NOMINAL_V (the bus at rest would brake nothing)");
+MC_CHECK_FOR(MC_VBUS_REGEN_BAND_V, MC_VBUS_OVERVOLTAGE_V,
+             MC_VBUS_REGEN_BAND_V > 0.0 &&
+                 MC_VBUS_REGEN_V + MC_VBUS_REGEN_BAND_V < MC_VBUS_OVERVOLTAGE_V,
+             "must be > 0, and MC_VBUS_REGEN_V + it below MC_VBUS_OVERVOLTAGE_V");
+#define MC_VBUS_REGEN_Q15      MC_Q15_VBUS(MC_VBUS_REGEN_V)
+#define MC_VBUS_REGEN_BAND_Q15 MC_Q15_VBUS(MC_VBUS_REGEN_BAND_V)
+MC_CHECK_FOR(MC_VBUS_REGEN_BAND_V, BOARD_VBUS_FULLSCALE_V, MC_VBUS_REGEN_BAND_Q15 >= 8,
+             "must be at least 8 counts of BOARD_VBUS_FULLSCALE_V");
+#define MC_VBUS_REGEN_K ((int32_t)(32767.0 * 1024.0 / (double)MC_VBUS_REGEN_BAND_Q15 + 0.5))
 
 /* ---- voltage limit ----------------------------------------------------------- */
 

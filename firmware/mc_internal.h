@@ -78,6 +78,12 @@ Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
 /* mc_pot_to_speed and mc_pot_to_torque: mc.h (the application maps the pot
  * as the core does). */
 
+/* The braking current the speed loop may ask (Q15 current) with the bus
+ * at vbus (Q15 of BOARD_VBUS_FULLSCALE_V): iq_max up to MC_VBUS_REGEN_Q15,
+ * then falling linearly to 0 at MC_VBUS_REGEN_Q15 + MC_VBUS_REGEN_BAND_Q15
+ * and above (UserParms.h MC_VBUS_REGEN_V). iq_max >= 0. */
+q15_t mc_regen_limit(q15_t iq_max, q15_t vbus);
+
 /* Inputs of one stall check (one speed-loop run in CLOSED_LOOP). */
 typedef struct {
     q15_t speed;      /* estimated speed, Q15 of MC_SPEED_FULLSCALE_RPM */

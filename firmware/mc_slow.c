@@ -57,6 +57,20 @@ q15_t mc_pot_to_torque(int16_t pot)
 
 #if MC_DRIVE
 
+q15_t mc_regen_limit(q15_t iq_max, q15_t vbus)
+{
+    int32_t over = (int32_t)vbus - (int32_t)MC_VBUS_REGEN_Q15;
+    if (over <= 0) {
+        return iq_max;
+    }
+    if (over >= (int32_t)MC_VBUS_REGEN_BAND_Q15) {
+        return 0;
+    }
+    /* (band - over) < band <= 2^15 / 8: the product is below 2^25 */
+    int32_t frac = (((int32_t)MC_VBUS_REGEN_BAND_Q15 - over) * MC_VBUS_REGEN_K) >> 10;
+    return q15_mul(iq_max, (q15_t)((frac > 32767) ? 32767 : frac));
+}
+
 uint16_t mc_stall_check(mc_stall_t *s, const mc_stall_in_t *in)
 {
     uint16_t *cnt = s->cnt;
@@ -107,7 +121,19 @@ static void mc_slow_speed_pi(mc_slow_t *sl, const mc_slow_in_t *in, q15_t target
     } else if (diff < -MC_SPEED_RAMP_STEP) {
         diff = -MC_SPEED_RAMP_STEP;
     }
-    sl->spd_ref = (q15_t)((int32_t)sl->spd_ref + diff);
+    /* With the bus high the braking current is limited (below): the
+     * reference slowing down waits for the rotor rather than run ahead of
+     * it into a speed error the loop may not brake to. */
+    q15_t brake = mc_regen_limit(MC_IQ_MAX_Q15, in->vbus);
+    int32_t next = (int32_t)sl->spd_ref + diff;
+    if (brake < MC_IQ_MAX_Q15) {
+        if (w >= 0 && diff < 0 && next < (int32_t)w) {
+            next = (sl->spd_ref < w) ? sl->spd_ref : w;
+        } else if (w < 0 && diff > 0 && next > (int32_t)w) {
+            next = (sl->spd_ref > w) ? sl->spd_ref : w;
+        }
+    }
+    sl->spd_ref = (q15_t)next;
 
     /* Field weakening from the reference (AN1078), then what is left of the
      * current budget for Iq. */
@@ -116,7 +142,10 @@ static void mc_slow_speed_pi(mc_slow_t *sl, const mc_slow_in_t *in, q15_t target
     if (iq_max > MC_IQ_MAX_Q15) {
         iq_max = MC_IQ_MAX_Q15;
     }
-    pi_set_limits(&sl->pi_w, (q15_t)(-iq_max), iq_max);
+    /* Braking is current against the rotation: at most what the bus allows
+     * (mc_regen_limit) on that side. */
+    brake = mc_regen_limit(iq_max, in->vbus);
+    pi_set_limits(&sl->pi_w, (q15_t)((w >= 0) ? -brake : -iq_max), (w >= 0) ? iq_max : brake);
     /* Kp and Ki scheduled on the reference: full above MOTOR_SPEED_KP_FULL_RPM,
      * proportional below it (at least MC_KP_SCHED_MIN): the estimated
      * speed is noisiest at low speed, where a full Kp turns that noise into
@@ -146,7 +175,14 @@ static void mc_slow_speed_loop(mc_slow_t *sl, const smc_result_t *est, const mc_
     dq_q15_t i_ref;
 
     if (MC_TORQUE_MODE) {
+        /* a torque against the rotation brakes: at most what the bus allows */
+        q15_t brake = mc_regen_limit(MC_IQ_MAX_Q15, in->vbus);
         i_ref.q = out->torque_target;
+        if (w >= 0 && i_ref.q < (q15_t)-brake) {
+            i_ref.q = (q15_t)-brake;
+        } else if (w < 0 && i_ref.q > brake) {
+            i_ref.q = brake;
+        }
         sl->spd_ref = w;
         i_ref.d = mc_id_floor(fieldweak_id_ref(&sl->fw, w), i_ref.q);
     } else {

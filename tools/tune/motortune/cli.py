@@ -113,6 +113,8 @@ PROTECTIONS = {
     "MC_OFFSET_MAX_A": "the current offsets calibration accepts (the trip's reach)",
     "MC_VBUS_OVERVOLTAGE_V": "the overvoltage trip",
     "MC_VBUS_UNDERVOLTAGE_V": "the undervoltage trip",
+    "MC_VBUS_REGEN_V": "the bus level braking is limited from",
+    "MC_VBUS_REGEN_BAND_V": "the band over which braking falls to none",
     "MC_STALL_TIME_S": "the stall checks' time",
     "MC_STALL_SPEED_MIN_RPM": "the stall check's lowest speed",
     "MC_STALL_BEMF_LOW_FRACTION": "the stall check's back-EMF floor (0: off)",
