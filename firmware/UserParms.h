@@ -242,6 +242,18 @@
 #ifndef MC_VBUS_OVERVOLTAGE_V
 #define MC_VBUS_OVERVOLTAGE_V BOARD_VBUS_OVERVOLTAGE_V /* in any state but FAULT */
 #endif
+/* A STOP in CLOSED_LOOP with the rotor above the speed whose line-to-line
+ * back-EMF peak is MC_STOP_RELEASE_FRACTION of the bus (measured) does not
+ * release the switches at once: the six diodes would rectify that back-EMF
+ * into the bus, and a supply that takes no current back leaves it in the
+ * capacitor (the Hurst stopped at 5,300 rpm charged 470 uF past the 32 V
+ * trip in 4.7 ms). The current loops hold zero torque (Iq 0, Id as field
+ * weakening needs) while the rotor coasts, and release it below that
+ * speed (checked once a window): STOPPED. mc_status_t.stopping says so;
+ * S2 (MC_REQUEST_START_STOP) meanwhile takes the speed loop back. */
+#ifndef MC_STOP_RELEASE_FRACTION
+#define MC_STOP_RELEASE_FRACTION 0.9
+#endif
 /* Braking into the bus: a decelerating rotor returns its energy to the DC
  * bus, and a supply that cannot take current back (a bench supply, a
  * rectifier) leaves it in the bus capacitor, which charges towards the

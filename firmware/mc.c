@@ -404,6 +404,8 @@ static void mc_slow_apply(mc_t *mc)
         mc->speed_ref = so->speed_ref;
         if (so->fault != MC_FAULT_NONE) {
             mc_fault(mc, so->fault);
+        } else if (so->release && mc->stopping) {
+            mc_stop(mc); /* the rotor is below the release speed */
         }
     }
 }
@@ -452,6 +454,7 @@ static void mc_window_end(mc_t *mc)
         mc->lock_vb = 0;
     }
     si->vbus = mc->vbus; /* the dead-time measurement's, and the braking limit's */
+    si->stopping = mc->stopping;
     mc->preset_pending = false;
     mc->slow_posted = true;
     MC_BARRIER(); /* every field above is written before the flag hands it over */
@@ -641,11 +644,30 @@ static bool mc_on_lock(mc_t *mc, const mc_events_t *ev)
 
 /* OPEN_LOOP, CLOSED_LOOP and IDENTIFY: their changes of state come from
  * the finishing part and the slow step. */
+/* A STOP (or S2) in a running state: in CLOSED_LOOP above the release
+ * speed (UserParms.h MC_STOP_RELEASE_FRACTION) zero torque, the slow step
+ * releasing the outputs once the rotor is below it (mc_slow_apply);
+ * while stopping, S2 takes the speed loop back. Out of the common path. */
+static bool mc_on_stop(mc_t *mc, const mc_events_t *ev)
+{
+    if (MC_DRIVE && mc->state == MC_STATE_CLOSED_LOOP) {
+        if (mc->stopping) {
+            mc->stopping = ev->stop; /* S2 again: the speed loop back */
+            return true;
+        }
+        if (q15_abs_sat(mc_est_omega(mc)) > mc_release_speed(mc->vbus)) {
+            mc->stopping = true;
+            return true;
+        }
+    }
+    mc_stop(mc);
+    return false;
+}
+
 static bool mc_on_running(mc_t *mc, const mc_events_t *ev)
 {
     if (ev->toggle || ev->stop) {
-        mc_stop(mc);
-        return false;
+        return mc_on_stop(mc, ev);
     }
     return true;
 }

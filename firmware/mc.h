@@ -171,6 +171,9 @@ typedef struct {
     int16_t ia, ib;         /* offset-corrected phase currents, Q15 of BOARD_I_FULLSCALE_A */
     uint16_t duty[3];       /* duties of the last step (what the next period applies) */
     bool outputs_on;        /* as in the last mc_pwm_out_t */
+    bool stopping;          /* CLOSED_LOOP after a STOP: zero torque while the rotor coasts
+                               down to the speed the switches can be released at (UserParms.h
+                               MC_STOP_RELEASE_FRACTION), then STOPPED */
     int16_t deadtime;       /* the dead time compensated and modelled, Tcy (duty counts):
                                PWM_DEADTIME_NS's until a lock measured it (MC_DEADTIME_MEASURE) */
     bool ref_remote;        /* the reference is a set one (mc_set_reference), not the pot */
@@ -258,6 +261,7 @@ typedef struct {
     int16_t ref_remote;     /* the remote reference ... */
     bool ref_from_remote;   /* ... when it replaces the pot */
     q15_t spd_kp, spd_ki;   /* the speed gains as posted (mc_set_gain) */
+    bool stopping;          /* CLOSED_LOOP after a STOP: zero torque (mc_t.stopping) */
     bool preset;            /* closed loop entered in this window: */
     q15_t preset_iq;        /* the speed PI's integral, Q15 current */
     q15_t preset_speed_ref; /* the ramp's start, Q15 speed */
@@ -287,6 +291,7 @@ typedef struct {
     dq_q15_t i_ref;      /* current references for the next window */
     q15_t speed_ref;     /* the ramped reference */
     uint16_t fault;      /* a stall fault, or MC_FAULT_NONE */
+    bool release;        /* stopping: the rotor below the release speed (mc_release_speed) */
     q15_t speed_target;  /* the reference before the ramp (every state) */
     q15_t torque_target; /* TORQUEMODE: the Iq reference (every state) */
     q15_t ol_iq;         /* OPEN_LOOP: the torque current, low-passed (mc.c note 1) */
@@ -480,6 +485,9 @@ typedef struct {
 #endif
 
     bool sums_on;      /* LOCK (MC_DTM_ON) or IDENTIFY: the window's voltage sums run */
+    bool stopping;     /* CLOSED_LOOP after a STOP above the release speed: zero torque until
+                          the rotor is below it (MC_STOP_RELEASE_FRACTION); with the cold
+                          fields, whose offsets do not count */
     uint8_t id_status; /* mc_id_status_t, the interrupt's view */
     uint16_t id_error; /* MC_ID_ERROR_* of a run the interrupt ended */
 #if MC_IDENTIFY

@@ -159,6 +159,7 @@ void mc_status(const mc_t *mc, mc_status_t *st)
     st->duty[1] = mc->duty[1];
     st->duty[2] = mc->duty[2];
     st->outputs_on = mc->outputs_on;
+    st->stopping = mc->stopping;
     st->deadtime = mc->dt_counts;
     /* a choice posted but not yet taken counts: the writer reading its
      * own write back must find it, whether or not a period fell between */

@@ -385,6 +385,18 @@ MC_CHECK_FOR(MC_VBUS_REGEN_BAND_V, MC_VBUS_OVERVOLTAGE_V,
 MC_CHECK_FOR(MC_VBUS_REGEN_BAND_V, BOARD_VBUS_FULLSCALE_V, MC_VBUS_REGEN_BAND_Q15 >= 8,
              "must be at least 8 counts of BOARD_VBUS_FULLSCALE_V");
 #define MC_VBUS_REGEN_K ((int32_t)(32767.0 * 1024.0 / (double)MC_VBUS_REGEN_BAND_Q15 + 0.5))
+/* The release speed of a STOP (mc_release_speed): Q15 speed = vbus (Q15) *
+ * MC_STOP_RELEASE_K >> 12, the speed whose line-to-line back-EMF peak is
+ * MC_STOP_RELEASE_FRACTION of the bus. */
+MC_CHECK(MC_STOP_RELEASE_FRACTION, MC_STOP_RELEASE_FRACTION > 0.0 && MC_STOP_RELEASE_FRACTION < 1.0,
+         "must be in (0, 1): the back-EMF at release below the bus");
+#define MC_STOP_RELEASE_K_                                                                         \
+    ((double)MC_STOP_RELEASE_FRACTION * (double)BOARD_VBUS_FULLSCALE_V * 1000.0 /                  \
+     ((double)MOTOR_KE_VPK_LL_PER_KRPM * (double)MC_SPEED_FULLSCALE_RPM) * 4096.0)
+MC_CHECK_FOR(MC_STOP_RELEASE_FRACTION, MOTOR_KE_VPK_LL_PER_KRPM,
+             MC_STOP_RELEASE_K_ >= 16.0 && MC_STOP_RELEASE_K_ < 32767.0,
+             "with Ke and the bus's full scale, out of the release speed's scaling");
+#define MC_STOP_RELEASE_K ((int32_t)(MC_STOP_RELEASE_K_ + 0.5))
 
 /* ---- voltage limit ----------------------------------------------------------- */
 

@@ -84,6 +84,15 @@ Q15_INLINE ab_q15_t mc_duty_to_voltage(const int16_t duty[3], q15_t vbus)
  * and above (UserParms.h MC_VBUS_REGEN_V). iq_max >= 0. */
 q15_t mc_regen_limit(q15_t iq_max, q15_t vbus);
 
+/* The speed a STOP releases the switches below (Q15 speed, >= 0) with the
+ * bus at vbus (Q15): its line-to-line back-EMF peak is
+ * MC_STOP_RELEASE_FRACTION of the bus. */
+Q15_INLINE q15_t mc_release_speed(q15_t vbus)
+{
+    int32_t w = ((int32_t)((vbus < 0) ? 0 : vbus) * MC_STOP_RELEASE_K) >> 12;
+    return (q15_t)((w > 32767) ? 32767 : w);
+}
+
 /* Inputs of one stall check (one speed-loop run in CLOSED_LOOP). */
 typedef struct {
     q15_t speed;      /* estimated speed, Q15 of MC_SPEED_FULLSCALE_RPM */

@@ -66,9 +66,10 @@ q15_t mc_regen_limit(q15_t iq_max, q15_t vbus)
     if (over >= (int32_t)MC_VBUS_REGEN_BAND_Q15) {
         return 0;
     }
-    /* (band - over) < band <= 2^15 / 8: the product is below 2^25 */
+    /* 0 < band - over < band: the product is below 2^25, and frac below
+     * 32767 (band - over <= band - 1, K = 32767 * 2^10 / band rounded) */
     int32_t frac = (((int32_t)MC_VBUS_REGEN_BAND_Q15 - over) * MC_VBUS_REGEN_K) >> 10;
-    return q15_mul(iq_max, (q15_t)((frac > 32767) ? 32767 : frac));
+    return q15_mul(iq_max, (q15_t)frac);
 }
 
 uint16_t mc_stall_check(mc_stall_t *s, const mc_stall_in_t *in)
@@ -102,7 +103,7 @@ uint16_t mc_stall_check(mc_stall_t *s, const mc_stall_in_t *in)
     if (cnt[2] >= MC_STALL_TRACK_TICKS) {
         return MC_FAULT_STALL_TRACK;
     }
-    if (s->swing_flips >= MC_SWING_FLIPS && s->swing_gap <= MC_SWING_GAP_TICKS) {
+    if (s->swing_flips >= MC_SWING_FLIPS) { /* reached at a reversal: the run is live */
         return MC_FAULT_SPEED_UNSTABLE;
     }
     return MC_FAULT_NONE;
@@ -122,16 +123,12 @@ static void mc_slow_speed_pi(mc_slow_t *sl, const mc_slow_in_t *in, q15_t target
         diff = -MC_SPEED_RAMP_STEP;
     }
     /* With the bus high the braking current is limited (below): the
-     * reference slowing down waits for the rotor rather than run ahead of
-     * it into a speed error the loop may not brake to. */
-    q15_t brake = mc_regen_limit(MC_IQ_MAX_Q15, in->vbus);
+     * reference does not run below the rotor into a speed error the loop
+     * may not brake to, it follows the rotor down. (The drive turns
+     * forward only: references are positive, braking is negative Iq.) */
     int32_t next = (int32_t)sl->spd_ref + diff;
-    if (brake < MC_IQ_MAX_Q15) {
-        if (w >= 0 && diff < 0 && next < (int32_t)w) {
-            next = (sl->spd_ref < w) ? sl->spd_ref : w;
-        } else if (w < 0 && diff > 0 && next > (int32_t)w) {
-            next = (sl->spd_ref > w) ? sl->spd_ref : w;
-        }
+    if (mc_regen_limit(MC_IQ_MAX_Q15, in->vbus) < MC_IQ_MAX_Q15 && next < (int32_t)w) {
+        next = w;
     }
     sl->spd_ref = (q15_t)next;
 
@@ -142,10 +139,9 @@ static void mc_slow_speed_pi(mc_slow_t *sl, const mc_slow_in_t *in, q15_t target
     if (iq_max > MC_IQ_MAX_Q15) {
         iq_max = MC_IQ_MAX_Q15;
     }
-    /* Braking is current against the rotation: at most what the bus allows
-     * (mc_regen_limit) on that side. */
-    brake = mc_regen_limit(iq_max, in->vbus);
-    pi_set_limits(&sl->pi_w, (q15_t)((w >= 0) ? -brake : -iq_max), (w >= 0) ? iq_max : brake);
+    /* Braking (negative Iq, the rotor turning forward): at most what the
+     * bus allows (mc_regen_limit). */
+    pi_set_limits(&sl->pi_w, (q15_t)-mc_regen_limit(iq_max, in->vbus), iq_max);
     /* Kp and Ki scheduled on the reference: full above MOTOR_SPEED_KP_FULL_RPM,
      * proportional below it (at least MC_KP_SCHED_MIN): the estimated
      * speed is noisiest at low speed, where a full Kp turns that noise into
@@ -174,14 +170,19 @@ static void mc_slow_speed_loop(mc_slow_t *sl, const smc_result_t *est, const mc_
     q15_t w = est->omega;
     dq_q15_t i_ref;
 
-    if (MC_TORQUE_MODE) {
-        /* a torque against the rotation brakes: at most what the bus allows */
+    if (MC_TORQUE_MODE || in->stopping) {
+        /* a torque against the rotation brakes: at most what the bus allows.
+         * After a STOP: none at all, while the rotor coasts to the release
+         * speed; the speed PI then resumes (S2, START) from zero torque and
+         * the ramp from the rotor's speed. */
         q15_t brake = mc_regen_limit(MC_IQ_MAX_Q15, in->vbus);
-        i_ref.q = out->torque_target;
-        if (w >= 0 && i_ref.q < (q15_t)-brake) {
+        i_ref.q = in->stopping ? 0 : out->torque_target;
+        if (in->stopping) {
+            pi_preset(&sl->pi_w, 0);
+            out->release = q15_abs_sat(w) <= mc_release_speed(in->vbus);
+        }
+        if (i_ref.q < (q15_t)-brake) {
             i_ref.q = (q15_t)-brake;
-        } else if (w < 0 && i_ref.q > brake) {
-            i_ref.q = brake;
         }
         sl->spd_ref = w;
         i_ref.d = mc_id_floor(fieldweak_id_ref(&sl->fw, w), i_ref.q);
@@ -301,6 +302,7 @@ static __attribute__((noinline)) void mc_slow_run(mc_slow_t *sl, const smc_resul
     }
     so->loop = false;
     so->fault = MC_FAULT_NONE;
+    so->release = false;
     mc_sensor_window(&sl->sensor, si, so);
     /* OPEN_LOOP: the load's share of the ramp current, the measured current
      * on the estimated q axis low-passed over 32 windows (the hand-off's

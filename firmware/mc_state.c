@@ -46,6 +46,7 @@ void mc_outputs_off(mc_t *mc)
      * the Hurst coasted from 937 to 103). It reads unknown instead: speed
      * 0, not valid, until the next start measures again. */
     mc_est_reset(mc);
+    mc->stopping = false;
     mc->epoch = (uint8_t)(mc->epoch + 1U); /* the slow step's results of this run are void */
     mc->preset_pending = false;
 #if MC_IDENTIFY

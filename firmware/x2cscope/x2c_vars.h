@@ -67,6 +67,7 @@
     X(duty[1],         U, "",    X2C_FS_CODE)                   \
     X(duty[2],         U, "",    X2C_FS_CODE)                   \
     X(outputs_on,      B, "",    X2C_FS_CODE)                   \
+    X(stopping,        B, "",    X2C_FS_CODE)                   \
     X2C_ESTIMATOR_VARS(X)                                        \
     X(dt_counts,       S, "",    X2C_FS_CODE)
 /* The estimator's, in the drive (MC_DRIVE 1); the commissioning image has none. */

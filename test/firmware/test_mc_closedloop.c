@@ -678,6 +678,77 @@ static void test_after_stop_the_coasting_rotor_should_read_unknown_not_a_frozen_
     assert_cmp(mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 8L * PWM_FREQUENCY_HZ), >, 0);
 }
 
+/* A STOP at the top speed (field weakening: the Hurst's back-EMF 38 V line-to-line peak on a
+ * 24 V bus) into the simulator's bus model (470 uF, a supply that takes nothing back):
+ * releasing the switches at once let the diodes charge the bus past the 32 V trip in 4.7 ms.
+ * The drive holds zero torque (Iq reference 0) while the rotor coasts, releases below the
+ * speed whose back-EMF is 0.9 of the bus, and ends STOPPED without a fault, the bus near its
+ * level. S2 while it coasts takes the speed loop back. */
+static void
+test_a_stop_above_the_release_speed_should_coast_at_zero_torque_then_let_go(void **state)
+{
+    (void)state;
+    mc_bench_cfg_t c;
+    mc_bench_cfg_default(&c);
+    c.bus_model = true;
+    c.pot = 1.0;
+    mc_bench_init(&b, &c);
+    mc_request(&b.mc, MC_REQUEST_START);
+    assert_cmp(mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 8L * PWM_FREQUENCY_HZ), >, 0);
+    run(6.0);
+    double from = mc_bench_rpm(&b);
+    double release = mc_rpm_of_q15(mc_release_speed(b.st.vbus));
+    assert_cmp(from, >, release + 1000.0);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    long coast = 0;
+    while (b.st.state == MC_STATE_CLOSED_LOOP && coast < 5L * PWM_FREQUENCY_HZ) {
+        mc_bench_step(&b);
+        if (b.st.state == MC_STATE_CLOSED_LOOP) {
+            assert_true(b.st.stopping);
+            assert_true(b.st.outputs_on);
+            if (coast > PWM_FREQUENCY_HZ / 500) { /* the first window's reference aside */
+                assert_int_equal(b.st.iq_ref, 0);
+            }
+        }
+        coast++;
+    }
+    double at = mc_bench_rpm(&b);
+    printf(
+        "measured: STOP at %.0f rpm into a %.0f uF bus: zero torque for %.0f ms, released at %.0f "
+        "rpm (release speed %.0f), bus peak %.2f V, fault %u\n",
+        from, b.rig.bus_c_f * 1e6, 1000.0 * (double)coast / PWM_FREQUENCY_HZ, at, release,
+        b.rig.vbus_peak_v, (unsigned)b.st.fault);
+    assert_int_equal(b.st.state, MC_STATE_STOPPED);
+    assert_false(b.st.outputs_on);
+    assert_false(b.st.stopping);
+    assert_cmp(at, <, release + 200.0);
+    assert_cmp(b.rig.vbus_peak_v, <, (double)MC_VBUS_REGEN_V);
+    for (long k = 0; k < PWM_FREQUENCY_HZ / 2; k++) {
+        mc_bench_step(&b);
+        assert_int_equal(b.st.state, MC_STATE_STOPPED);
+    }
+    assert_cmp(b.rig.vbus_peak_v, <, (double)MC_VBUS_REGEN_V);
+
+    /* again, and S2 while it coasts: back to the speed loop at once, the rotor driven up */
+    mc_request(&b.mc, MC_REQUEST_START);
+    assert_cmp(mc_bench_run_until(&b, MC_STATE_CLOSED_LOOP, 8L * PWM_FREQUENCY_HZ), >, 0);
+    run(6.0);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    for (long k = 0; k < PWM_FREQUENCY_HZ / 20; k++) {
+        mc_bench_step(&b);
+    }
+    assert_true(b.st.stopping);
+    double low = mc_bench_rpm(&b);
+    mc_request(&b.mc, MC_REQUEST_START_STOP);
+    mc_bench_step(&b);
+    assert_false(b.st.stopping);
+    run(2.0);
+    printf(
+        "measured: S2 after 50 ms of coasting at %.0f rpm: closed loop again, %.0f rpm 2 s later\n",
+        low, mc_bench_rpm(&b));
+    assert_cmp(mc_bench_rpm(&b), >, low);
+}
+
 static void test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen(void **state)
 {
     (void)state;
@@ -716,6 +787,8 @@ int main(void)
         cmocka_unit_test(test_the_two_part_step_should_equal_mc_step_bit_for_bit),
         cmocka_unit_test(test_stop_in_closed_loop_should_turn_the_outputs_off_at_once),
         cmocka_unit_test(test_after_stop_the_coasting_rotor_should_read_unknown_not_a_frozen_speed),
+        cmocka_unit_test(
+            test_a_stop_above_the_release_speed_should_coast_at_zero_torque_then_let_go),
         cmocka_unit_test(test_overcurrent_in_closed_loop_should_trip_in_the_period_it_is_seen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
