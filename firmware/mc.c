@@ -642,8 +642,6 @@ static bool mc_on_lock(mc_t *mc, const mc_events_t *ev)
     return true;
 }
 
-/* OPEN_LOOP, CLOSED_LOOP and IDENTIFY: their changes of state come from
- * the finishing part and the slow step. */
 /* A STOP (or S2) in a running state: in CLOSED_LOOP above the release
  * speed (UserParms.h MC_STOP_RELEASE_FRACTION) zero torque, the slow step
  * releasing the outputs once the rotor is below it (mc_slow_apply);
@@ -664,6 +662,8 @@ static bool mc_on_stop(mc_t *mc, const mc_events_t *ev)
     return false;
 }
 
+/* OPEN_LOOP, CLOSED_LOOP and IDENTIFY: their changes of state come from
+ * the finishing part and the slow step. */
 static bool mc_on_running(mc_t *mc, const mc_events_t *ev)
 {
     if (ev->toggle || ev->stop) {

@@ -173,8 +173,8 @@ static void mc_slow_speed_loop(mc_slow_t *sl, const smc_result_t *est, const mc_
     if (MC_TORQUE_MODE || in->stopping) {
         /* a torque against the rotation brakes: at most what the bus allows.
          * After a STOP: none at all, while the rotor coasts to the release
-         * speed; the speed PI then resumes (S2, START) from zero torque and
-         * the ramp from the rotor's speed. */
+         * speed; the speed PI then resumes (S2) from zero torque and the
+         * ramp from the rotor's speed. */
         q15_t brake = mc_regen_limit(MC_IQ_MAX_Q15, in->vbus);
         i_ref.q = in->stopping ? 0 : out->torque_target;
         if (in->stopping) {
