@@ -124,11 +124,12 @@ static void mc_slow_speed_pi(mc_slow_t *sl, const mc_slow_in_t *in, q15_t target
     }
     /* With the bus high the braking current is limited (below): the
      * reference does not run below the rotor into a speed error the loop
-     * may not brake to, it follows the rotor down. (The drive turns
+     * may not brake to, it follows the rotor down, and never up (a load
+     * that drives the rotor above it is not followed). (The drive turns
      * forward only: references are positive, braking is negative Iq.) */
     int32_t next = (int32_t)sl->spd_ref + diff;
     if (mc_regen_limit(MC_IQ_MAX_Q15, in->vbus) < MC_IQ_MAX_Q15 && next < (int32_t)w) {
-        next = w;
+        next = (sl->spd_ref < w) ? sl->spd_ref : w;
     }
     sl->spd_ref = (q15_t)next;
 
