@@ -114,6 +114,7 @@ typedef struct {
     double spd_err2, ang_rms2;         /* second window */
     double spd_rip, spd_rip2;          /* speed error's RMS about its mean, % of the reference */
     double dt_comp_us;                 /* the dead time the core compensates at the end, us */
+    double vbus_peak_v;                /* the bus's highest (--bus-model; else the supply's), V */
     double i_peak;
 } run_result_t;
 
@@ -127,8 +128,8 @@ static double rated_rpm_w(const simcore_t *s)
     return s->mp->rated_rpm * 2.0 * M_PI / 60.0;
 }
 
-/* Everything a seed decides. */
-static void draw(uint32_t seed, const char *motor, const char *board, run_draw_t *d)
+/* Everything a seed decides; bus_model: the bus as its capacitor (sim --bus-model). */
+static void draw(uint32_t seed, const char *motor, const char *board, bool bus_model, run_draw_t *d)
 {
     uint64_t r = 0x9E3779B97F4A7C15ULL ^ ((uint64_t)seed * 0x2545F4914F6CDD1DULL);
     const sim_motor_profile_t *mp;
@@ -154,6 +155,7 @@ static void draw(uint32_t seed, const char *motor, const char *board, run_draw_t
     d->cfg.offset_b_codes = uni(&r, -30.0, 30.0);
     d->cfg.noise_codes = uni(&r, 0.5, 3.0);
     d->cfg.seed = seed | 1u;
+    d->cfg.bus_model = bus_model;
     if (sim_rand_uniform(&r) < 0.5) {
         d->cfg.inv.model = SIM_INV_AVERAGED;
         d->cfg.inv.dt_shape = (int)(sim_rand_uniform(&r) * 3.0); /* linear, hard, ripple */
@@ -342,6 +344,7 @@ static int run_one(run_draw_t *dp, run_result_t *res, FILE *csv, bool verbose)
     }
     res->i_peak = s.log.i_peak_a;
     res->dt_comp_us = (double)s.st.deadtime / (double)BOARD_FCY_HZ * 1e6;
+    res->vbus_peak_v = s.rig.vbus_peak_v;
     if (w1.n > 0) {
         res->ang_mean = sim_window_ang_mean(&w1);
         res->ang_rms = sim_window_ang_rms(&w1);
@@ -409,7 +412,7 @@ static void print_header(void)
            "rpm1,rpm2,start_need_nm,start_have_nm,physics_limited,step_limited,t_cl_s,retries,"
            "fault,ang_mean,"
            "ang_rms,ang_max,spd_err_pct,est_err_pct,spd_err2_pct,ang_rms2,i_peak,spd_rip_pct,"
-           "spd_rip2_pct,dt_comp_us\n");
+           "spd_rip2_pct,dt_comp_us,vbus_peak_v\n");
 }
 
 static void print_row(const char *motor, const run_draw_t *d, const run_result_t *r)
@@ -418,7 +421,7 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
     printf(
         "%u,%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.4f,%.5f,%.3f,%s,%d,%.4f,%.3f,%.2f,%.2f,%.2f,%.1f,"
         "%s,%.5f,%s,%.5f,%.1f,%.1f,%.5f,%.5f,%d,%d,%.4f,%d,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,"
-        "%.3f,%.3f,%.3f,%.3f\n",
+        "%.3f,%.3f,%.3f,%.3f,%.2f\n",
         d->seed, motor, r->result, r->why, c->rs_scale, c->l_scale, c->ke_scale, c->j_scale,
         c->b_scale, c->coulomb_nm, c->deadtime_s * 1e6,
         (c->inv.model == SIM_INV_SWITCHING) ? "switching" : "averaged", c->inv.dt_shape,
@@ -427,14 +430,25 @@ static void print_row(const char *motor, const run_draw_t *d, const run_result_t
         d->step_nm, d->rpm1, d->rpm2, d->start_need_nm, d->start_have_nm,
         d->physics_limited ? 1 : 0, d->step_limited ? 1 : 0, r->t_cl, r->retries,
         mc_fault_name(r->fault), r->ang_mean, r->ang_rms, r->ang_max, r->spd_err, r->est_err,
-        r->spd_err2, r->ang_rms2, r->i_peak, r->spd_rip, r->spd_rip2, r->dt_comp_us);
+        r->spd_err2, r->ang_rms2, r->i_peak, r->spd_rip, r->spd_rip2, r->dt_comp_us,
+        r->vbus_peak_v);
     fflush(stdout);
 }
 
 /* Every option, once (sim_opt.h). A campaign chunk is bounded so that no
  * option value asks for unbounded work: COUNT_MAX runs of a few seconds of
  * simulated time each. */
-enum { OPT_HELP, OPT_MOTOR, OPT_BOARD, OPT_CSV, OPT_SEED, OPT_FROM, OPT_COUNT, OPT_KNOWN_FAIL };
+enum {
+    OPT_HELP,
+    OPT_MOTOR,
+    OPT_BOARD,
+    OPT_CSV,
+    OPT_SEED,
+    OPT_FROM,
+    OPT_COUNT,
+    OPT_KNOWN_FAIL,
+    OPT_BUS_MODEL
+};
 
 #define KNOWN_MAX 8 /* --known-fail seeds a campaign takes */
 
@@ -458,6 +472,8 @@ static const sim_opt_t OPTS[] = {
     {.id = OPT_KNOWN_FAIL, .name = "--known-fail", .type = SIM_OPT_NUMBER, .value = "N",
      .range = SIM_OPT_SEED_RANGE,
      .help = "with --from: a seed whose failure goes to stderr, not the exit status"},
+    {.id = OPT_BUS_MODEL, .name = "--bus-model", .type = SIM_OPT_FLAG,
+     .help = "the bus as its capacitor and a supply that only sources (sim --bus-model)"},
 };
 /* clang-format on */
 
@@ -478,6 +494,7 @@ static void usage(FILE *f)
 int main(int argc, char **argv)
 {
     const char *motor = "hurst", *board = "mclv", *csv_path = NULL;
+    bool bus_model = false;
     long long from = -1, count = 0, one = -1; /* seeds up to 2^32 - 1 even where long is 32 bits */
     long long known[KNOWN_MAX];
     int n_known = 0;
@@ -507,6 +524,9 @@ int main(int argc, char **argv)
                 break;
             case OPT_CSV:
                 csv_path = v;
+                break;
+            case OPT_BUS_MODEL:
+                bus_model = true;
                 break;
             case OPT_SEED:
                 one = (long long)x;
@@ -571,7 +591,7 @@ int main(int argc, char **argv)
         char part[4096]; /* the trace is written here and renamed over --csv once complete,
                             so a refused or failed run leaves an earlier trace as it was */
         char pq[256];    /* the path, quoted */
-        draw((uint32_t)one, motor, board, &d);
+        draw((uint32_t)one, motor, board, bus_model, &d);
         if (csv_path != NULL) {
             struct stat st;
             if (stat(csv_path, &st) == 0 && !S_ISREG(st.st_mode)) {
@@ -616,7 +636,7 @@ int main(int argc, char **argv)
     for (i = 0; i < (int)count; i++) {
         run_draw_t d;
         run_result_t r;
-        draw((uint32_t)(from + i), motor, board, &d);
+        draw((uint32_t)(from + i), motor, board, bus_model, &d);
         if (run_one(&d, &r, NULL, false) != 0) {
             return 2;
         }
